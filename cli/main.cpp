@@ -1,0 +1,40 @@
+// shadowcert: certify, render and diff-compare shadow volumes on triangle soups.
+// This file only composes: each subcommand lives in its own cli/*_command.cpp, and this is
+// the one place that turns exceptions into exit codes (0 ok, 1 a check failed, 2 usage,
+// input or environment).
+#include <CLI/CLI.hpp>
+#include <exception>
+#include <iostream>
+#include <new>
+
+#include "cli/exit_code.h"
+#include "cli/inspect_command.h"
+#include "core/input_error.h"
+
+int main(int argc, char** argv) {
+  using namespace shadowcert::cli;
+  CLI::App app{"shadowcert: exact certificates and GL renderings of shadow volumes on triangle soups"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "shadowcert 0.1.0");
+
+  int exit_code = kExitOk;
+  add_inspect_command(app, exit_code);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // --help and --version are "errors" with exit code 0 in CLI11.
+    const int code = app.exit(e);
+    return code == 0 ? kExitOk : kExitUsage;
+  } catch (const shadowcert::InputError& e) {
+    std::cerr << "shadowcert: error: " << e.what() << '\n';
+    return kExitUsage;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "shadowcert: error: out of memory\n";
+    return kExitUsage;
+  } catch (const std::exception& e) {
+    std::cerr << "shadowcert: error: " << e.what() << '\n';
+    return kExitUsage;
+  }
+  return exit_code;
+}
