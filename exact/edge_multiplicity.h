@@ -1,0 +1,50 @@
+#pragma once
+// Per-edge multiplicities (DESIGN.md §3) by four methods, each a pure function over the same
+// canonical soup and edge table:
+//   m(u, v) = - sum over triangles {u, v, o} with s != 0 of sign D(u, v, o, L)
+// together with the sign each triangle's caps use (zero: the triangle casts nothing).
+//   exact   : D's exact sign (exact/light_orientation.h)
+//   kim     : per-edge float evaluation of D(u, v, o) (Kim 2008); caps from D(a, b, c) in
+//             input order. No consistency: closure can fail.
+//   peciva  : per-triangle consistency (Pečiva 2013): a triangle whose three edge evaluations
+//             disagree (or are partly zero) is discarded from edges and caps.
+//   refedge : one evaluation per triangle on its vertices sorted by the canonical order, edge
+//             signs by permutation parity, the same sign for caps (Milet 2014 §2.2, Alg. 2-4).
+// Float methods evaluate core/light_side_formula.h in `float` or `double`, as a shader would.
+#include <cstdint>
+#include <string_view>
+#include <vector>
+
+#include "core/light.h"
+#include "core/sign.h"
+#include "core/soup.h"
+#include "exact/edge_table.h"
+
+namespace shadowcert {
+
+enum class MultiplicityMethod { exact, kim, peciva, refedge };
+enum class Precision { float32, float64 };  // the arithmetic of float methods
+
+struct EdgeMultiplicities {
+  std::vector<std::int32_t> multiplicity;  // per edge of the table
+  std::vector<Sign> triangle_sign;         // per soup triangle: the cap sign s(t) actually used
+};
+
+[[nodiscard]] EdgeMultiplicities exact_multiplicities(const Soup& canonical, const EdgeTable& table,
+                                                      const Light& light);
+[[nodiscard]] EdgeMultiplicities kim_multiplicities(const Soup& canonical, const EdgeTable& table, const Light& light,
+                                                    Precision precision);
+[[nodiscard]] EdgeMultiplicities peciva_multiplicities(const Soup& canonical, const EdgeTable& table,
+                                                       const Light& light, Precision precision);
+[[nodiscard]] EdgeMultiplicities refedge_multiplicities(const Soup& canonical, const EdgeTable& table,
+                                                        const Light& light, Precision precision);
+
+// Dispatches on `method` (precision is ignored by exact).
+[[nodiscard]] EdgeMultiplicities edge_multiplicities(MultiplicityMethod method, const Soup& canonical,
+                                                     const EdgeTable& table, const Light& light, Precision precision);
+
+[[nodiscard]] std::string_view method_name(MultiplicityMethod method);
+// Throws std::invalid_argument("parse_method: ...") on an unknown name.
+[[nodiscard]] MultiplicityMethod parse_method(std::string_view name);
+
+}  // namespace shadowcert
