@@ -26,8 +26,8 @@ class InputError : public std::runtime_error {
  private:
   static std::string compose(const std::string& file, std::size_t line, const std::string& message) {
     std::string s = file;
-    if (line > 0) s += ":" + std::to_string(line);
-    return s + ": " + message;
+    if (line > 0) s.append(":").append(std::to_string(line));
+    return s.append(": ").append(message);
   }
   std::string file_;
   std::size_t line_;
