@@ -11,6 +11,11 @@
 //   refedge : one evaluation per triangle on its vertices sorted by the canonical order, edge
 //             signs by permutation parity, the same sign for caps (Milet 2014 §2.2, Alg. 2-4).
 // Float methods evaluate core/light_side_formula.h in `float` or `double`, as a shader would.
+// A triangle with a repeated index has no edge and s = 0 in every method. Sign convention:
+// Milet 2014's Algorithm 3 sums +D, the opposite of m here. See docs/multiplicities.md.
+// Every function below throws std::invalid_argument("<function>: ...") on a light with a
+// non-finite coordinate, w not 0 or 1, or direction (0, 0, 0), and on a table whose sizes do
+// not fit the soup. Precondition: `table` is build_edge_table(canonical).
 #include <cstdint>
 #include <string_view>
 #include <vector>
@@ -38,6 +43,13 @@ struct EdgeMultiplicities {
                                                        const Light& light, Precision precision);
 [[nodiscard]] EdgeMultiplicities refedge_multiplicities(const Soup& canonical, const EdgeTable& table,
                                                         const Light& light, Precision precision);
+
+// Per entry of the table (the order of table.opposite_vertex): the sign the method adds for
+// that opposite vertex o of edge (u, v), i.e. sign D(u, v, o, L) as the method evaluates it,
+// zero where it excludes the triangle. multiplicity[e] = - (sum of edge e's entries), computed
+// by the very same code path; for tests and diagnostics (precision is ignored by exact).
+[[nodiscard]] std::vector<Sign> edge_entry_signs(MultiplicityMethod method, const Soup& canonical,
+                                                 const EdgeTable& table, const Light& light, Precision precision);
 
 // Dispatches on `method` (precision is ignored by exact).
 [[nodiscard]] EdgeMultiplicities edge_multiplicities(MultiplicityMethod method, const Soup& canonical,

@@ -14,6 +14,8 @@ namespace shadowcert {
 struct EdgeTable {
   std::vector<std::array<std::uint32_t, 2>> edges;  // (u, v), u < v, sorted ascending
   // Edge e's opposite entries are [first_opposite[e], first_opposite[e + 1]); size edges + 1.
+  // Within an edge the entries are in ascending triangle index, one per triangle (a triangle
+  // with three distinct indices has three distinct edges); a duplicated triangle appears twice.
   std::vector<std::uint32_t> first_opposite;
   std::vector<std::uint32_t> opposite_vertex;    // the third vertex of the triangle
   std::vector<std::uint32_t> opposite_triangle;  // that triangle's index in the soup
