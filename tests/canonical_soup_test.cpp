@@ -1,0 +1,71 @@
+#include "scene/canonical_soup.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <random>
+
+#include "scene/procedural_mesh.h"
+#include "scene/welded_soup.h"
+
+using shadowcert::canonical_soup;
+using shadowcert::Soup;
+
+TEST(CanonicalSoup, Vertices_SortedLexicographicallyAndDistinct) {
+  Soup s;
+  s.vertices = {{1, 0, 0}, {0, 2, 0}, {0, 1, 5}, {1, 0, 0}, {0, 1, -5}};
+  s.triangles = {{0, 1, 2}, {3, 4, 1}};
+  const auto c = canonical_soup(s);
+  ASSERT_EQ(c.soup.vertices.size(), 4u);
+  EXPECT_TRUE(std::is_sorted(c.soup.vertices.begin(), c.soup.vertices.end()));
+  EXPECT_EQ(std::adjacent_find(c.soup.vertices.begin(), c.soup.vertices.end()), c.soup.vertices.end());
+  EXPECT_EQ(c.canonical_id[0], c.canonical_id[3]);
+  // Each triangle keeps its corners' positions, in its own order.
+  for (std::size_t t = 0; t < s.triangles.size(); ++t)
+    for (int k = 0; k < 3; ++k) EXPECT_EQ(c.soup.vertices[c.soup.triangles[t][k]], s.vertices[s.triangles[t][k]]);
+}
+
+TEST(CanonicalSoup, NegativeZero_WeldsWithPositiveZero) {
+  Soup s;
+  s.vertices = {{0.0, 1, 0}, {-0.0, 1, 0}, {1, 1, 1}};
+  s.triangles = {{0, 1, 2}};
+  const auto c = canonical_soup(s);
+  EXPECT_EQ(c.soup.vertices.size(), 2u);
+  EXPECT_EQ(c.canonical_id[0], c.canonical_id[1]);
+}
+
+TEST(CanonicalSoup, VertexRelabelling_GivesTheSameSoup) {
+  const Soup original = shadowcert::random_soup(7, 200, 3.0);
+  std::mt19937_64 rng(7);
+  std::vector<std::uint32_t> perm(original.vertices.size());
+  std::iota(perm.begin(), perm.end(), 0u);
+  std::shuffle(perm.begin(), perm.end(), rng);
+  Soup relabelled = original;
+  for (std::size_t i = 0; i < perm.size(); ++i) relabelled.vertices[perm[i]] = original.vertices[i];
+  for (auto& t : relabelled.triangles)
+    for (auto& v : t) v = perm[v];
+  const auto a = canonical_soup(original);
+  const auto b = canonical_soup(relabelled);
+  EXPECT_EQ(a.soup.vertices, b.soup.vertices);
+  EXPECT_EQ(a.soup.triangles, b.soup.triangles);
+}
+
+TEST(CanonicalSoup, SameVertexSetsAsWeldSoup) {
+  const Soup s = shadowcert::uv_sphere({0, 0, 0}, 1.0, 16, 8);
+  const auto c = canonical_soup(s);
+  const auto w = shadowcert::weld_soup(s);
+  EXPECT_EQ(c.soup.vertices.size(), w.soup.vertices.size());
+  EXPECT_EQ(c.soup.normals.size(), c.soup.vertices.size());
+  for (std::size_t i = 0; i < s.vertices.size(); ++i)
+    for (std::size_t j = i + 1; j < std::min<std::size_t>(s.vertices.size(), i + 40); ++j)
+      EXPECT_EQ(c.canonical_id[i] == c.canonical_id[j], w.welded_id[i] == w.welded_id[j]);
+}
+
+TEST(CanonicalSoup, IndexOutOfRange_ThrowsNamingFunction) {
+  Soup s;
+  s.vertices = {{0, 0, 0}};
+  s.triangles = {{0, 0, 1}};
+  EXPECT_THROW((void)canonical_soup(s), std::invalid_argument);
+}
