@@ -1,0 +1,372 @@
+// Tests of exact/soup_file.h: round trips, the same cube in every format, fan
+// triangulation, the bad-file corpus (tests/data/bad/EXPECTED.tsv) and the real meshes.
+#include "exact/soup_file.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/input_error.h"
+
+namespace shadowcert {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kTestData = SHADOWCERT_TEST_DATA;
+const fs::path kSharedData = SHADOWCERT_SHARED_DATA;
+
+// A directory of its own for each test, removed afterwards.
+class ScratchDirectory {
+ public:
+  ScratchDirectory() {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    path_ = fs::temp_directory_path() /
+            ("shadowcert_soup_file_" + std::string(info->test_suite_name()) + "_" + info->name() + "_" +
+             std::to_string(reinterpret_cast<std::uintptr_t>(this)));
+    fs::remove_all(path_);
+    fs::create_directories(path_);
+  }
+  ~ScratchDirectory() {
+    std::error_code ignored;
+    fs::remove_all(path_, ignored);
+  }
+  ScratchDirectory(const ScratchDirectory&) = delete;
+  ScratchDirectory& operator=(const ScratchDirectory&) = delete;
+  [[nodiscard]] fs::path operator/(const std::string& name) const { return path_ / name; }
+
+ private:
+  fs::path path_;
+};
+
+void write_text(const fs::path& file, const std::string& text) {
+  std::ofstream out(file, std::ios::binary);
+  out << text;
+}
+
+// Bitwise, so that -0.0 differs from 0.0 and a NaN would equal itself.
+bool same_bits(const Vec3& a, const Vec3& b) {
+  for (std::size_t i = 0; i < 3; ++i)
+    if (std::bit_cast<std::uint64_t>(a[i]) != std::bit_cast<std::uint64_t>(b[i])) return false;
+  return true;
+}
+
+void expect_bitwise_equal(const Soup& expected, const Soup& actual) {
+  ASSERT_EQ(expected.vertices.size(), actual.vertices.size());
+  for (std::size_t k = 0; k < expected.vertices.size(); ++k)
+    EXPECT_TRUE(same_bits(expected.vertices[k], actual.vertices[k]))
+        << "vertex " << k << ": " << expected.vertices[k][0] << " " << expected.vertices[k][1] << " "
+        << expected.vertices[k][2] << " read back as " << actual.vertices[k][0] << " " << actual.vertices[k][1]
+        << " " << actual.vertices[k][2];
+  EXPECT_EQ(expected.triangles, actual.triangles);
+}
+
+// Doubles that a careless writer or reader loses: signed zero, digits beyond 15,
+// extremes, subnormals.
+Soup tricky_soup() {
+  using L = std::numeric_limits<double>;
+  Soup soup;
+  soup.vertices = {
+      {-0.0, 0.0, 0.1},
+      {1e-300, 1e300, -1e300},
+      {L::denorm_min(), -L::denorm_min(), 2.5e-310},
+      {L::max(), L::lowest(), L::min()},
+      {1.0 / 3.0, 2.0 / 3.0, -0.1},
+      {123456789.123456789, 0.30000000000000004, 9007199254740993.0},
+      {std::nextafter(1.0, 2.0), std::nextafter(1.0, 0.0), -4.9406564584124654e-324},
+  };
+  soup.triangles = {{0, 1, 2}, {3, 4, 5}, {6, 0, 3}, {2, 2, 5}, {1, 0, 2}};
+  return soup;
+}
+
+TEST(SoupFile, RoundTripEveryWritableFormat_BitwiseIdentical) {
+  const ScratchDirectory scratch;
+  const Soup soup = tricky_soup();
+  for (const char* extension : {".off", ".obj", ".ply", ".OFF"}) {
+    SCOPED_TRACE(extension);
+    const fs::path file = scratch / (std::string("tricky") + extension);
+    write_soup(file, soup);
+    expect_bitwise_equal(soup, read_soup(file));
+  }
+}
+
+TEST(SoupFile, PlyRoundTripWithNormals_NormalsBitwiseIdentical) {
+  const ScratchDirectory scratch;
+  Soup soup = tricky_soup();
+  for (std::size_t k = 0; k < soup.vertices.size(); ++k)
+    soup.normals.push_back({0.1f * static_cast<float>(k), -0.0f, std::numeric_limits<float>::denorm_min()});
+  const fs::path file = scratch / "normals.ply";
+  write_soup(file, soup);
+  const Soup read = read_soup(file);
+  expect_bitwise_equal(soup, read);
+  ASSERT_EQ(read.normals.size(), soup.normals.size());
+  for (std::size_t k = 0; k < soup.normals.size(); ++k)
+    for (std::size_t i = 0; i < 3; ++i)
+      EXPECT_EQ(std::bit_cast<std::uint32_t>(read.normals[k][i]), std::bit_cast<std::uint32_t>(soup.normals[k][i]));
+}
+
+TEST(WriteSoup, UnwritableExtension_ThrowsInvalidArgument) {
+  const ScratchDirectory scratch;
+  EXPECT_THROW(write_soup(scratch / "soup.stl", tricky_soup()), std::invalid_argument);
+  EXPECT_THROW(write_soup(scratch / "soup", tricky_soup()), std::invalid_argument);
+}
+
+TEST(WriteSoup, InvalidSoup_ThrowsInvalidArgument) {
+  const ScratchDirectory scratch;
+  Soup nan_vertex = tricky_soup();
+  nan_vertex.vertices[1][2] = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(write_soup(scratch / "a.off", nan_vertex), std::invalid_argument);
+  Soup bad_index = tricky_soup();
+  bad_index.triangles.push_back({0, 1, 7});
+  EXPECT_THROW(write_soup(scratch / "b.obj", bad_index), std::invalid_argument);
+  Soup bad_normals = tricky_soup();
+  bad_normals.normals.resize(2);
+  EXPECT_THROW(write_soup(scratch / "c.ply", bad_normals), std::invalid_argument);
+}
+
+// ------------------------------------------------------------- one cube, every format
+
+using Corner = std::array<double, 3>;
+using GeometricTriangle = std::array<Corner, 3>;
+
+// The triangles as coordinates, each rotated (orientation kept) to start at its smallest
+// corner, then sorted: equal for two soups that weld to the same geometry, whatever their
+// vertex numbering (STL readers weld and renumber).
+std::vector<GeometricTriangle> welded_geometry(const Soup& soup) {
+  std::vector<GeometricTriangle> triangles;
+  for (const Triangle& t : soup.triangles) {
+    GeometricTriangle g{soup.vertices[t[0]], soup.vertices[t[1]], soup.vertices[t[2]]};
+    std::rotate(g.begin(), std::min_element(g.begin(), g.end()), g.end());
+    triangles.push_back(g);
+  }
+  std::sort(triangles.begin(), triangles.end());
+  return triangles;
+}
+
+// The fan triangulation of the six quads of tests/data/good/cube_quads.obj.
+const std::vector<Triangle> kCubeTriangles = {{0, 3, 2}, {0, 2, 1}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
+                                              {2, 3, 7}, {2, 7, 6}, {0, 4, 7}, {0, 7, 3}, {1, 2, 6}, {1, 6, 5}};
+
+TEST(ReadSoup, CubeInEveryFormat_SameTrianglesAndGeometry) {
+  const Soup reference = read_soup(kTestData / "good" / "cube_quads.obj");
+  ASSERT_EQ(reference.vertices.size(), 8U);
+  EXPECT_EQ(reference.triangles, kCubeTriangles);
+  const auto geometry = welded_geometry(reference);
+  for (const char* name : {"cube_quads_slashes.obj", "cube_quads.off", "cube_quads_ascii.ply",
+                           "cube_quads_binary_le.ply", "cube_quads_binary_be.ply", "cube_ascii.stl",
+                           "cube_binary.stl", "cube_binary_solid_header.stl"}) {
+    SCOPED_TRACE(name);
+    const Soup soup = read_soup(kTestData / "good" / name);
+    EXPECT_EQ(soup.triangles.size(), 12U);
+    EXPECT_EQ(soup.vertices.size(), 8U);  // STL readers weld the 36 corners back to 8
+    EXPECT_EQ(welded_geometry(soup), geometry);
+    // Formats with an index list keep the file's numbering, so the triangles are the same.
+    if (!std::string(name).ends_with(".stl")) {
+      EXPECT_EQ(soup.triangles, kCubeTriangles);
+    }
+  }
+}
+
+TEST(ReadSoup, BinaryPlyWithNormals_OneNormalPerVertex) {
+  const Soup soup = read_soup(kTestData / "good" / "cube_quads_binary_le.ply");
+  ASSERT_EQ(soup.normals.size(), soup.vertices.size());
+  for (std::size_t k = 0; k < soup.vertices.size(); ++k)
+    for (std::size_t i = 0; i < 3; ++i)  // outward at every corner of the cube
+      EXPECT_EQ(soup.normals[k][i] > 0, soup.vertices[k][i] > 0) << "vertex " << k;
+  EXPECT_TRUE(read_soup(kTestData / "good" / "cube_quads_ascii.ply").normals.empty());
+}
+
+TEST(ReadSoup, UppercaseExtension_ReadLikeLowercase) {
+  const ScratchDirectory scratch;
+  fs::copy_file(kTestData / "good" / "cube_quads.obj", scratch / "CUBE.OBJ");
+  EXPECT_EQ(read_soup(scratch / "CUBE.OBJ").triangles, kCubeTriangles);
+}
+
+// z of (b - a) x (c - a): positive iff the triangle turns counter-clockwise seen from +z.
+double normal_z(const Soup& soup, const Triangle& t) {
+  const Vec3& a = soup.vertices[t[0]];
+  const Vec3& b = soup.vertices[t[1]];
+  const Vec3& c = soup.vertices[t[2]];
+  return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+}
+
+TEST(ReadSoup, PolygonsFanFromFirstVertex_OrientationKept) {
+  const ScratchDirectory scratch;
+  // A counter-clockwise quad and pentagon, and the quad again clockwise.
+  write_text(scratch / "fans.obj",
+             "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\nv 3 1 0\nv 2.5 2 0\nv 1.5 2 0\nv 1.5 1 0\n"
+             "f 1 2 3 4\nf 5 6 7 8 9\nf 4 3 2 1\n");
+  const Soup soup = read_soup(scratch / "fans.obj");
+  const std::vector<Triangle> expected = {{0, 1, 2}, {0, 2, 3}, {4, 5, 6}, {4, 6, 7}, {4, 7, 8}, {3, 2, 1}, {3, 1, 0}};
+  EXPECT_EQ(soup.triangles, expected);
+  for (std::size_t j = 0; j < 5; ++j) EXPECT_GT(normal_z(soup, soup.triangles[j]), 0) << "triangle " << j;
+  for (std::size_t j = 5; j < 7; ++j) EXPECT_LT(normal_z(soup, soup.triangles[j]), 0) << "triangle " << j;
+}
+
+// ---------------------------------------------------------------------- the bad corpus
+
+const fs::path kBad = kTestData / "bad";
+
+// Files in tests/data/bad that are not test inputs.
+const std::set<std::string> kNotInputs = {"EXPECTED.tsv", "make_binary_files.py"};
+
+// EXPECTED.tsv: "file<TAB>substring of what()" per line; '#' lines are comments.
+std::vector<std::pair<std::string, std::string>> read_manifest() {
+  std::ifstream in(kBad / "EXPECTED.tsv");
+  std::vector<std::pair<std::string, std::string>> entries;
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    const std::size_t tab = line.find('\t');
+    if (tab == std::string::npos) throw std::runtime_error("EXPECTED.tsv: no tab in: " + line);
+    entries.emplace_back(line.substr(0, tab), line.substr(tab + 1));
+  }
+  return entries;
+}
+
+TEST(ReadSoup, BadCorpus_EveryFileThrowsItsExpectedMessage) {
+  const auto manifest = read_manifest();
+  EXPECT_GE(manifest.size(), 25U);
+  for (const auto& [name, expected] : manifest) {
+    SCOPED_TRACE(name);
+    try {
+      const Soup soup = read_soup(kBad / name);
+      ADD_FAILURE() << name << " was read (" << soup.triangles.size() << " triangles) instead of rejected";
+    } catch (const InputError& error) {
+      const std::string what = error.what();
+      EXPECT_NE(what.find(name), std::string::npos) << what;
+      EXPECT_NE(what.find(expected), std::string::npos) << "expected '" << expected << "' in: " << what;
+    }
+  }
+}
+
+TEST(ReadSoup, BadCorpus_EveryFileIsInTheManifest) {
+  std::set<std::string> listed;
+  for (const auto& entry : read_manifest()) EXPECT_TRUE(listed.insert(entry.first).second) << entry.first;
+  std::set<std::string> present;
+  for (const auto& entry : fs::directory_iterator(kBad))
+    if (!kNotInputs.contains(entry.path().filename().string())) present.insert(entry.path().filename().string());
+  EXPECT_EQ(present, listed);
+}
+
+TEST(ReadSoup, BadCorpus_CgalPrintsNothing) {
+  ::testing::internal::CaptureStderr();
+  ::testing::internal::CaptureStdout();
+  for (const auto& entry : read_manifest()) EXPECT_THROW((void)read_soup(kBad / entry.first), InputError);
+  const std::string out = ::testing::internal::GetCapturedStdout();
+  const std::string err = ::testing::internal::GetCapturedStderr();
+  EXPECT_EQ(out, "");
+  EXPECT_EQ(err, "");
+}
+
+TEST(ReadSoup, TextError_NamesFileAndLine) {
+  try {
+    (void)read_soup(kBad / "obj_nan_vertex.obj");
+    FAIL() << "not rejected";
+  } catch (const InputError& error) {
+    EXPECT_EQ(fs::path(error.file()).filename(), "obj_nan_vertex.obj");
+    EXPECT_EQ(error.line(), 3U);
+    EXPECT_EQ(error.message(), "'nan' is not a finite number");
+  }
+}
+
+TEST(ReadSoup, MissingFile_ThrowsInputError) {
+  const ScratchDirectory scratch;
+  EXPECT_THROW((void)read_soup(scratch / "missing.obj"), InputError);
+  try {
+    (void)read_soup(scratch / "missing.obj");
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("missing.obj: no such file"), std::string::npos) << error.what();
+  }
+}
+
+TEST(ReadSoup, Directory_ThrowsInputError) {
+  const ScratchDirectory scratch;
+  fs::create_directory(scratch / "meshes.obj");
+  try {
+    (void)read_soup(scratch / "meshes.obj");
+    FAIL() << "not rejected";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("meshes.obj: is a directory"), std::string::npos) << error.what();
+  }
+}
+
+TEST(ReadSoup, EmptyPath_ThrowsInvalidArgument) { EXPECT_THROW((void)read_soup(""), std::invalid_argument); }
+
+// ------------------------------------------------------------------------ real meshes
+
+TEST(ReadSoup, SharedMeshes_TriangleCountsOfTheReadme) {
+  if (!fs::is_directory(kSharedData)) GTEST_SKIP() << kSharedData << " not found";
+  const std::map<std::string, std::size_t> triangles = {
+      {"closed_manifold/thingi10k_65004.stl", 1466},
+      {"closed_manifold/spot.obj", 5856},
+      {"closed_manifold/thingi10k_908460.stl", 36074},
+      {"closed_manifold/nefertiti.obj", 99938},
+      {"closed_defective/horse.ply", 96966},
+      {"closed_defective/beast.obj", 64618},
+      {"closed_defective/manifold_self_intersectA.obj", 17160},
+      {"soups/trimesh_bunny.ply", 16301},
+      {"soups/trimesh_cycloidal.ply", 43368},
+      {"soups/trimesh_chair_model.obj", 12756},
+      {"soups/beetle.obj", 2053},
+      {"soups/stanford-bunny.obj", 69451},
+      {"soups/ogre.obj", 124008},
+      {"edge_cases/trimesh_multibody.stl", 32},
+      {"edge_cases/manifold_openscad-nonmanifold-crash.obj", 1442},
+      {"edge_cases/trimesh_featuretype.STL", 3476},
+      {"edge_cases/trimesh_shared.STL", 24},
+      {"edge_cases/teapot.obj", 6320},
+  };
+  for (const auto& [file, count] : triangles) {
+    SCOPED_TRACE(file);
+    const fs::path path = kSharedData / file;
+    if (!fs::exists(path)) continue;
+    const Soup soup = read_soup(path);
+    EXPECT_EQ(soup.triangles.size(), count);
+    if (file == "closed_defective/horse.ply") {
+      EXPECT_EQ(soup.normals.size(), soup.vertices.size());
+    }
+  }
+}
+
+// The largest shared mesh on its own, so that gtest's time for this test is its read time
+// (docs/soup-files.md; speed targets belong to bench/, this asserts only the count).
+TEST(ReadSoup, LargestSharedMesh_OgreReadsAllTriangles) {
+  const fs::path ogre = kSharedData / "soups" / "ogre.obj";
+  if (!fs::exists(ogre)) GTEST_SKIP() << ogre << " not found";
+  EXPECT_EQ(read_soup(ogre).triangles.size(), 124008U);
+}
+
+TEST(ReadSoup, SharedMeshes_VertexCountsOfTheReadme) {
+  if (!fs::is_directory(kSharedData)) GTEST_SKIP() << kSharedData << " not found";
+  // STL vertex counts are after CGAL's exact welding, the README's V column.
+  const std::map<std::string, std::size_t> vertices = {
+      {"closed_manifold/thingi10k_65004.stl", 731},
+      {"closed_manifold/spot.obj", 2930},
+      {"closed_manifold/thingi10k_908460.stl", 18035},
+      {"closed_manifold/nefertiti.obj", 49971},
+  };
+  for (const auto& [file, count] : vertices) {
+    SCOPED_TRACE(file);
+    if (fs::exists(kSharedData / file)) {
+      EXPECT_EQ(read_soup(kSharedData / file).vertices.size(), count);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace shadowcert
