@@ -7,6 +7,7 @@
 #include <iostream>
 #include <new>
 
+#include "cli/certify_command.h"
 #include "cli/exit_code.h"
 #include "cli/inspect_command.h"
 #include "core/input_error.h"
@@ -19,6 +20,7 @@ int main(int argc, char** argv) {
 
   int exit_code = kExitOk;
   add_inspect_command(app, exit_code);
+  add_certify_command(app, exit_code);
 
   try {
     app.parse(argc, argv);

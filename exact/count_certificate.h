@@ -56,6 +56,14 @@ class OccluderCounter {
   std::unique_ptr<Impl> impl_;
 };
 
+// Signed crossings of the segment from -> to with the chain's faces (DESIGN.md §4.2): +1 entering
+// a face against its outward orientation, -1 leaving, so they sum to the change of the chain's
+// winding number, n(to) - n(from) for a correct chain. nullopt when the segment touches a face's
+// boundary or plane (a zero sign that matters). Tests every face: for single queries and tests.
+[[nodiscard]] std::optional<std::int64_t> chain_crossings(const Soup& canonical, const Light& light,
+                                                          const ShadowVolumeChain& chain, const Vec3& from,
+                                                          const Vec3& to);
+
 [[nodiscard]] CountCertificate certify_counts(const Soup& canonical, const Light& light,
                                               const ShadowVolumeChain& chain, const CountSampling& sampling);
 

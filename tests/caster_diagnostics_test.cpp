@@ -10,6 +10,7 @@
 #include <cmath>
 #include <filesystem>
 #include <numeric>
+#include <ostream>
 #include <random>
 #include <string>
 #include <vector>
@@ -406,6 +407,9 @@ struct ReadmeTopology {
       components;
 };
 
+// Printed by name only: gtest would otherwise dump the struct's bytes into every test name.
+void PrintTo(const ReadmeTopology& f, std::ostream* os) { *os << f.file; }
+
 class SharedMeshReadme : public testing::TestWithParam<ReadmeTopology> {};
 
 TEST_P(SharedMeshReadme, IndexTopology_MatchesReadmeColumns) {
@@ -456,6 +460,8 @@ struct WeldedFigures {
   bool closed, manifold, oriented;
   std::uint64_t si_pairs;
 };
+
+void PrintTo(const WeldedFigures& f, std::ostream* os) { *os << f.file; }
 
 class SharedMeshWelded : public testing::TestWithParam<WeldedFigures> {};
 

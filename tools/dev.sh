@@ -41,7 +41,9 @@ demo() {
   local scene=data/scenes/default.json
   echo "== shadowcert inspect $scene"
   "$BUILD_DIR/cli/shadowcert" inspect "$scene" --json out/inspect.json
-  echo "== outputs: out/inspect.json"
+  echo "== shadowcert certify $scene"
+  "$BUILD_DIR/cli/shadowcert" certify "$scene" --method all --json out/certify.json --volume-out out/volume.off
+  echo "== outputs: out/inspect.json out/certify.json out/volume_<method>.off"
 }
 
 case "${1:-}" in

@@ -1,0 +1,156 @@
+// Speed of the certificates (DESIGN.md §4.1, §4.2) on a 1M-triangle sphere grid and on the
+// largest shared mesh:
+//   closure alone (target well under 150 ms), the exact pipeline canonical soup + edge table +
+//   exact multiplicities + chain + closure (target under 1 s on one core), and occluder-count
+//   checks (target at least 50,000 points per second on 2 cores, peak memory under 1 GiB).
+// Every benchmark reports the process's peak resident memory so far (getrusage).
+#include <benchmark/benchmark.h>
+#include <sys/resource.h>
+
+#include <filesystem>
+#include <string>
+
+#include "exact/closure_certificate.h"
+#include "exact/count_certificate.h"
+#include "exact/edge_multiplicity.h"
+#include "exact/edge_table.h"
+#include "exact/shadow_volume_chain.h"
+#include "exact/soup_file.h"
+#include "scene/canonical_soup.h"
+#include "scene/procedural_mesh.h"
+
+namespace {
+
+using namespace shadowcert;
+
+// Above the grid (x, z in [-12.25, 12.25], spheres resting on y = 0) and off-axis, so that
+// shadows fall obliquely between the spheres and on the ground below.
+const Light kPointLight{{5.3, 20.0, 3.7, 1.0}};
+const Light kDirectionalLight{{0.3, 1.0, 0.2, 0.0}};
+
+double peak_rss_mib() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<double>(usage.ru_maxrss) / 1024.0;  // Linux: kilobytes
+}
+
+struct Prepared {
+  Soup canonical;
+  EdgeTable table;
+  ShadowVolumeChain chain;
+};
+
+Prepared prepare(const Soup& soup, const Light& light) {
+  Prepared p;
+  p.canonical = canonical_soup(soup).soup;
+  p.table = build_edge_table(p.canonical);
+  p.chain = assemble_chain(p.canonical, p.table, exact_multiplicities(p.canonical, p.table, light), light);
+  return p;
+}
+
+const Prepared& sphere_grid_1m(bool directional) {
+  static const Soup soup = sphere_grid(1'000'000);
+  static const Prepared point = prepare(soup, kPointLight);
+  static const Prepared sun = prepare(soup, kDirectionalLight);
+  return directional ? sun : point;
+}
+
+const Soup* ogre_soup() {
+  static const std::filesystem::path file = std::filesystem::path(SHADOWCERT_SHARED_DATA) / "soups" / "ogre.obj";
+  static const Soup soup = std::filesystem::exists(file) ? read_soup(file) : Soup{};
+  return soup.triangles.empty() ? nullptr : &soup;
+}
+
+void BM_Closure_SphereGrid1M(benchmark::State& state) {
+  const Prepared& p = sphere_grid_1m(state.range(0) != 0);
+  ClosureCertificate c;
+  for (auto _ : state) benchmark::DoNotOptimize(c = certify_closure(p.chain));
+  state.counters["closed"] = c.closed ? 1 : 0;
+  state.counters["chain_faces"] = static_cast<double>(p.chain.triangles.size() + p.chain.quads.size());
+  state.counters["peak_rss_MiB"] = peak_rss_mib();
+}
+BENCHMARK(BM_Closure_SphereGrid1M)
+    ->Arg(0)
+    ->Arg(1)
+    ->ArgName("directional")
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+// canonical soup + edge table + exact multiplicities + chain + closure: all single-threaded.
+void BM_ExactPipeline_SphereGrid1M(benchmark::State& state) {
+  static const Soup soup = sphere_grid(1'000'000);
+  bool closed = false;
+  for (auto _ : state) {
+    const Prepared p = prepare(soup, kPointLight);
+    closed = certify_closure(p.chain).closed;
+    benchmark::DoNotOptimize(closed);
+  }
+  state.counters["closed"] = closed ? 1 : 0;
+  state.counters["peak_rss_MiB"] = peak_rss_mib();
+}
+BENCHMARK(BM_ExactPipeline_SphereGrid1M)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void report_counts(benchmark::State& state, const CountCertificate& c, double seconds) {
+  state.counters["checks"] = static_cast<double>(c.checks);
+  state.counters["failures"] = static_cast<double>(c.failures);
+  state.counters["redrawn"] = static_cast<double>(c.redrawn);
+  state.counters["skipped"] = static_cast<double>(c.skipped);
+  state.counters["points_per_s"] = seconds > 0.0 ? static_cast<double>(c.checks) / seconds : 0.0;
+  state.counters["peak_rss_MiB"] = peak_rss_mib();
+}
+
+CountSampling bench_sampling(std::uint64_t points) {
+  CountSampling s;
+  s.in_box = points / 2;
+  s.on_triangles = points - points / 2;
+  s.seed = 42;
+  return s;
+}
+
+// Whole certify_counts calls (AABB tree build, sampling, direct counts, crossings): the
+// figure is checks per second of that call.
+void BM_CountChecks_SphereGrid1M(benchmark::State& state) {
+  const bool directional = state.range(1) != 0;
+  const Prepared& p = sphere_grid_1m(directional);
+  const Light& light = directional ? kDirectionalLight : kPointLight;
+  CountCertificate c;
+  double seconds = 0.0;
+  for (auto _ : state) {
+    c = certify_counts(p.canonical, light, p.chain, bench_sampling(static_cast<std::uint64_t>(state.range(0))));
+    seconds = c.seconds;
+  }
+  report_counts(state, c, seconds);
+}
+BENCHMARK(BM_CountChecks_SphereGrid1M)
+    ->Args({200'000, 0})
+    ->Args({200'000, 1})
+    ->ArgNames({"points", "directional"})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(1);
+
+void BM_CountChecks_Ogre(benchmark::State& state) {
+  const Soup* soup = ogre_soup();
+  if (soup == nullptr) {
+    state.SkipWithError("../shared/data/soups/ogre.obj not found");
+    return;
+  }
+  // Above and in front of the model, off-axis (its box is [-15.6, 15.6] x [0, 32] x [-5.5, 4.3]).
+  const Light light{{10.0, 45.0, 20.0, 1.0}};
+  static const Prepared p = prepare(*soup, light);
+  CountCertificate c;
+  for (auto _ : state)
+    c = certify_counts(p.canonical, light, p.chain, bench_sampling(static_cast<std::uint64_t>(state.range(0))));
+  report_counts(state, c, c.seconds);
+  state.counters["closed"] = certify_closure(p.chain).closed ? 1 : 0;
+}
+BENCHMARK(BM_CountChecks_Ogre)
+    ->Arg(200'000)
+    ->ArgName("points")
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(1);
+
+}  // namespace
+
+BENCHMARK_MAIN();

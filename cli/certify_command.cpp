@@ -1,0 +1,276 @@
+#include "cli/certify_command.h"
+
+#include <fmt/core.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "cli/exit_code.h"
+#include "cli/json_output.h"
+#include "cli/point_file.h"
+#include "cli/scene_input.h"
+#include "core/input_error.h"
+#include "exact/closure_certificate.h"
+#include "exact/count_certificate.h"
+#include "exact/edge_multiplicity.h"
+#include "exact/edge_table.h"
+#include "exact/shadow_volume_chain.h"
+#include "scene/canonical_soup.h"
+
+namespace shadowcert::cli {
+namespace {
+
+// Far vertices of --volume-out are pushed this many scene diagonals away: far enough to
+// read as infinite in a viewer, near enough to stay well inside float range.
+constexpr double kFarDistanceInDiagonals = 10.0;
+
+struct CertifyOptions {
+  std::string input;
+  std::vector<double> light;  // empty: the scene's first light
+  std::string method = "all";
+  std::string precision = "float";
+  std::uint64_t samples = 2000;
+  std::uint64_t seed = 1;
+  std::string points_file;
+  std::string volume_out;
+  std::string json_file;
+};
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+Light chosen_light(const CertifyOptions& options, const Scene& scene) {
+  if (options.light.empty()) {
+    if (scene.lights.empty()) throw InputError(options.input, "the scene has no light; pass --light X,Y,Z,W");
+    return scene.lights.front();
+  }
+  if (options.light.size() != 4) throw CLI::ValidationError("--light", "expects four numbers X,Y,Z,W");
+  Light light;
+  for (int k = 0; k < 4; ++k) {
+    if (!std::isfinite(options.light[k])) throw CLI::ValidationError("--light", "coordinates must be finite");
+    light.position[k] = options.light[k];
+  }
+  if (light.position[3] != 0.0 && light.position[3] != 1.0)
+    throw CLI::ValidationError("--light", "W must be 1 (point light) or 0 (directional light)");
+  if (light.directional() && light.position[0] == 0.0 && light.position[1] == 0.0 && light.position[2] == 0.0)
+    throw CLI::ValidationError("--light", "a directional light needs a nonzero direction");
+  return light;
+}
+
+std::vector<MultiplicityMethod> chosen_methods(const std::string& name) {
+  if (name == "all")
+    return {MultiplicityMethod::exact, MultiplicityMethod::kim, MultiplicityMethod::peciva,
+            MultiplicityMethod::refedge};
+  try {
+    return {parse_method(name)};
+  } catch (const std::invalid_argument&) {
+    throw CLI::ValidationError("--method", "unknown method '" + name + "' (exact, kim, peciva, refedge, all)");
+  }
+}
+
+double scene_diagonal(const Soup& soup) {
+  Vec3 lo = soup.vertices.front(), hi = lo;
+  for (const Vec3& p : soup.vertices)
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::min(lo[k], p[k]);
+      hi[k] = std::max(hi[k], p[k]);
+    }
+  return std::hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
+}
+
+std::filesystem::path volume_path(const std::string& base, MultiplicityMethod method, bool several) {
+  if (!several) return base;
+  std::filesystem::path p(base);
+  return p.parent_path() / (p.stem().string() + "_" + std::string(method_name(method)) + p.extension().string());
+}
+
+struct MethodReport {
+  std::string name;
+  ClosureCertificate closure;
+  CountCertificate counts;
+  std::uint64_t silhouette_edges = 0;
+  std::int32_t max_multiplicity = 0;
+  std::map<std::int32_t, std::uint64_t> histogram;  // |m| -> edges, m != 0
+  std::uint64_t zero_facing_triangles = 0;
+  double multiplicity_seconds = 0, chain_seconds = 0, closure_seconds = 0;
+  [[nodiscard]] double seconds() const {
+    return multiplicity_seconds + chain_seconds + closure_seconds + counts.seconds;
+  }
+  [[nodiscard]] bool passed() const { return closure.closed && counts.failures == 0; }
+};
+
+MethodReport certify_method(MultiplicityMethod method, Precision precision, const Soup& soup, const EdgeTable& table,
+                            const Light& light, const CountSampling& sampling, const CertifyOptions& options,
+                            bool several_methods) {
+  MethodReport report;
+  report.name = std::string(method_name(method));
+  auto start = Clock::now();
+  const EdgeMultiplicities m = edge_multiplicities(method, soup, table, light, precision);
+  report.multiplicity_seconds = seconds_since(start);
+
+  for (std::int32_t value : m.multiplicity) {
+    if (value == 0) continue;
+    const std::int32_t magnitude = value < 0 ? -value : value;
+    ++report.silhouette_edges;
+    ++report.histogram[magnitude];
+    report.max_multiplicity = std::max(report.max_multiplicity, magnitude);
+  }
+  for (Sign s : m.triangle_sign)
+    if (s == Sign::zero) ++report.zero_facing_triangles;
+
+  start = Clock::now();
+  const ShadowVolumeChain chain = assemble_chain(soup, table, m, light);
+  report.chain_seconds = seconds_since(start);
+  start = Clock::now();
+  report.closure = certify_closure(chain);
+  report.closure_seconds = seconds_since(start);
+  report.counts = certify_counts(soup, light, chain, sampling);
+
+  if (!options.volume_out.empty())
+    write_chain(volume_path(options.volume_out, method, several_methods), chain, soup, light,
+                kFarDistanceInDiagonals * std::max(scene_diagonal(soup), 1.0));
+  return report;
+}
+
+nlohmann::json to_json(const MethodReport& r) {
+  nlohmann::json histogram = nlohmann::json::object();
+  for (const auto& [magnitude, edges] : r.histogram) histogram[std::to_string(magnitude)] = edges;
+  nlohmann::json failures = nlohmann::json::array();
+  for (const CountFailure& f : r.counts.first_failures)
+    failures.push_back({{"point", f.point}, {"expected", f.expected}, {"crossed", f.crossed}});
+  nlohmann::json unbalanced = nlohmann::json::array();
+  for (std::size_t i = 0; i < r.closure.unbalanced.size() && i < 16; ++i) {
+    const UnbalancedEdge& e = r.closure.unbalanced[i];
+    unbalanced.push_back({{"from", e.from}, {"to", e.to}, {"excess", e.excess}});
+  }
+  return {{"closed", r.closure.closed},
+          {"unbalanced_edges", r.closure.unbalanced.size()},
+          {"first_unbalanced", unbalanced},
+          {"count_checks", r.counts.checks},
+          {"count_failures", r.counts.failures},
+          {"count_redrawn", r.counts.redrawn},
+          {"count_skipped", r.counts.skipped},
+          {"first_count_failures", failures},
+          {"silhouette_edges", r.silhouette_edges},
+          {"max_multiplicity", r.max_multiplicity},
+          {"multiplicity_histogram", histogram},
+          {"zero_facing_triangles", r.zero_facing_triangles},
+          {"seconds", r.seconds()},
+          {"stage_seconds",
+           {{"multiplicities", r.multiplicity_seconds},
+            {"chain", r.chain_seconds},
+            {"closure", r.closure_seconds},
+            {"counts", r.counts.seconds}}}};
+}
+
+void print_report(const MethodReport& r) {
+  fmt::print("{}\n", r.name);
+  fmt::print("  closed                 {}", r.closure.closed ? "yes" : "NO");
+  if (!r.closure.closed) fmt::print(" ({} unbalanced edges)", r.closure.unbalanced.size());
+  fmt::print("\n  count checks           {} passed, {} failed ({} redrawn, {} skipped)\n",
+             r.counts.checks - r.counts.failures, r.counts.failures, r.counts.redrawn, r.counts.skipped);
+  fmt::print("  silhouette edges       {}\n", r.silhouette_edges);
+  fmt::print("  max |m|                {}\n", r.max_multiplicity);
+  fmt::print("  |m| histogram         ");
+  for (const auto& [magnitude, edges] : r.histogram) fmt::print(" {}:{}", magnitude, edges);
+  fmt::print("\n  triangles with s = 0   {}\n", r.zero_facing_triangles);
+  fmt::print("  seconds                multiplicities {:.3f}, chain {:.3f}, closure {:.3f}, counts {:.3f}\n",
+             r.multiplicity_seconds, r.chain_seconds, r.closure_seconds, r.counts.seconds);
+}
+
+int run_certify(const CertifyOptions& options) {
+  const auto start = Clock::now();
+  const Scene scene = load_scene_or_mesh(options.input);
+  const Light light = chosen_light(options, scene);
+  const std::vector<MultiplicityMethod> methods = chosen_methods(options.method);
+  if (options.precision != "float" && options.precision != "double")
+    throw CLI::ValidationError("--precision", "expects float or double");
+  const Precision precision = options.precision == "float" ? Precision::float32 : Precision::float64;
+
+  const Soup input = merged_soup(scene);
+  if (input.triangles.empty()) throw InputError(options.input, "no triangle to certify");
+  const double load_seconds = seconds_since(start);
+
+  auto stage = Clock::now();
+  const CanonicalSoup canonical = canonical_soup(input);
+  const double canonical_seconds = seconds_since(stage);
+  stage = Clock::now();
+  const EdgeTable table = build_edge_table(canonical.soup);
+  const double table_seconds = seconds_since(stage);
+
+  CountSampling sampling;
+  sampling.in_box = options.samples / 2;
+  sampling.on_triangles = options.samples - sampling.in_box;
+  sampling.seed = options.seed;
+  if (!options.points_file.empty()) sampling.user_points = read_point_file(options.points_file);
+
+  fmt::print("{}: {} triangles, {} welded vertices, {} edges; light ({}, {}, {}, {})\n", options.input,
+             input.triangles.size(), canonical.soup.vertices.size(), table.size(), light.position[0],
+             light.position[1], light.position[2], light.position[3]);
+  fmt::print("seconds: load {:.3f}, weld+order {:.3f}, edge table {:.3f}\n", load_seconds, canonical_seconds,
+             table_seconds);
+
+  nlohmann::json json_methods = nlohmann::json::object();
+  bool exact_failed = false;
+  for (MultiplicityMethod method : methods) {
+    const MethodReport report = certify_method(method, precision, canonical.soup, table, light, sampling, options,
+                                               methods.size() > 1);
+    print_report(report);
+    json_methods[report.name] = to_json(report);
+    if (method == MultiplicityMethod::exact && !report.passed()) exact_failed = true;
+  }
+
+  if (!options.json_file.empty()) {
+    const nlohmann::json report = {
+        {"input", options.input},
+        {"triangles", input.triangles.size()},
+        {"welded_vertices", canonical.soup.vertices.size()},
+        {"edges", table.size()},
+        {"light", light.position},
+        {"precision", options.precision},
+        {"seed", options.seed},
+        {"samples", options.samples},
+        {"user_points", sampling.user_points.size()},
+        {"stage_seconds", {{"load", load_seconds}, {"weld_and_order", canonical_seconds}, {"edge_table", table_seconds}}},
+        {"methods", json_methods}};
+    write_json_file(options.json_file, report);
+  }
+  if (exact_failed) {
+    fmt::print(stderr, "shadowcert: the exact method failed a certificate: this is a bug, please report it\n");
+    return kExitCheckFailed;
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+void add_certify_command(CLI::App& app, int& exit_code) {
+  auto options = std::make_shared<CertifyOptions>();
+  CLI::App* cmd = app.add_subcommand("certify", "Exact multiplicities and shadow-volume certificates (DESIGN.md 4)");
+  cmd->add_option("input", options->input, "Mesh file (.obj .off .ply .stl) or scene (.json)")->required();
+  cmd->add_option("--light", options->light, "Light X,Y,Z,W (W = 1 point, W = 0 directional); default: the scene's first")
+      ->delimiter(',')
+      ->expected(4);
+  cmd->add_option("--method", options->method, "exact, kim, peciva, refedge or all")->capture_default_str();
+  cmd->add_option("--precision", options->precision, "Arithmetic of the float methods: float or double")
+      ->capture_default_str();
+  cmd->add_option("--samples", options->samples, "Random count-check samples (half in the box, half on triangles)")
+      ->capture_default_str();
+  cmd->add_option("--seed", options->seed, "Seed of the random samples")->capture_default_str();
+  cmd->add_option("--points", options->points_file, "Extra sample points, one \"x y z\" per line");
+  cmd->add_option("--volume-out", options->volume_out,
+                  "Write the chain (.off .obj .ply; far vertices pushed to a finite distance); with several "
+                  "methods, one file per method named FILE_method.ext");
+  cmd->add_option("--json", options->json_file, "Write the certificates as a JSON object to FILE");
+  cmd->callback([options, &exit_code] { exit_code = run_certify(*options); });
+}
+
+}  // namespace shadowcert::cli

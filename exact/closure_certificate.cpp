@@ -1,0 +1,132 @@
+#include "exact/closure_certificate.h"
+
+#include <algorithm>
+#include <array>
+#include <limits>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+namespace shadowcert {
+namespace {
+
+// Chain vertex ids in use (shadow_volume_chain.h): n finite, then n far (point light) or one.
+std::uint64_t id_count(const ShadowVolumeChain& chain) {
+  const std::uint64_t n = chain.finite_vertices;
+  return chain.directional ? n + 1 : 2 * n;
+}
+
+// Calls f(from, to) for every directed boundary edge of every face (right-hand order).
+template <typename F>
+void for_each_directed_edge(const ShadowVolumeChain& chain, F&& f) {
+  for (const auto& t : chain.triangles) {
+    f(t[0], t[1]);
+    f(t[1], t[2]);
+    f(t[2], t[0]);
+  }
+  for (const auto& q : chain.quads) {
+    f(q[0], q[1]);
+    f(q[1], q[2]);
+    f(q[2], q[3]);
+    f(q[3], q[0]);
+  }
+}
+
+// The directed edges are sorted as packed 64-bit keys
+//   (lower id << 33) | (upper id << 1) | (1 if the edge runs upper -> lower),
+// by a two-level radix sort whose every pass stays in cache: first into blocks of
+// kBlockIds consecutive lower ids (a few hundred sequential output streams), then, block
+// by block, by lower id (a counting sort in L1) and by the rest (tiny sorts per vertex).
+// Every run of one (lower, upper) is an undirected edge whose uses in each direction must
+// balance (DESIGN.md §4.1). A self-loop (a == b, from a face with a repeated vertex) is no
+// edge: it bounds nothing.
+constexpr unsigned kBlockBits = 12;
+constexpr std::uint64_t kBlockIds = std::uint64_t{1} << kBlockBits;
+
+std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) {
+  return std::uint64_t{std::min(a, b)} << 33 | std::uint64_t{std::max(a, b)} << 1 | (a > b ? 1u : 0u);
+}
+
+[[noreturn, gnu::noinline, gnu::cold]] void throw_out_of_range(std::uint64_t id, std::uint64_t ids) {
+  throw std::invalid_argument("certify_closure: vertex id " + std::to_string(id) + " but the chain has " +
+                              std::to_string(ids) + " ids");
+}
+
+// Offsets of the blocks in the key array: block_start[b] .. block_start[b + 1].
+std::vector<std::size_t> block_starts(const ShadowVolumeChain& chain, std::uint64_t ids) {
+  std::vector<std::size_t> start((ids >> kBlockBits) + 2, 0);
+  for_each_directed_edge(chain, [&](std::uint32_t a, std::uint32_t b) {
+    if (std::max(a, b) >= ids) throw_out_of_range(std::max(a, b), ids);
+    if (a != b) ++start[(std::min(a, b) >> kBlockBits) + 1];
+  });
+  for (std::size_t i = 1; i < start.size(); ++i) start[i] += start[i - 1];
+  return start;
+}
+
+// Default-initialised, not zeroed: the scatter writes every entry.
+std::unique_ptr<std::uint64_t[]> keys_by_block(const ShadowVolumeChain& chain, std::vector<std::size_t> cursor) {
+  std::unique_ptr<std::uint64_t[]> keys(new std::uint64_t[cursor.back()]);
+  for_each_directed_edge(chain, [&](std::uint32_t a, std::uint32_t b) {
+    if (a != b) keys[cursor[std::min(a, b) >> kBlockBits]++] = edge_key(a, b);
+  });
+  return keys;
+}
+
+void sort_run(std::uint64_t* first, std::uint64_t* last) {
+  constexpr std::ptrdiff_t kInsertionLimit = 32;
+  if (last - first > kInsertionLimit) {
+    std::sort(first, last);
+    return;
+  }
+  for (std::uint64_t* i = first + 1; i < last; ++i) {
+    const std::uint64_t moving = *i;
+    std::uint64_t* j = i;
+    for (; j > first && moving < *(j - 1); --j) *j = *(j - 1);
+    *j = moving;
+  }
+}
+
+// A sorted run of keys with one lower id.
+void report_run(const std::uint64_t* first, const std::uint64_t* last, std::vector<UnbalancedEdge>& unbalanced) {
+  while (first < last) {
+    const std::uint64_t edge = *first >> 1;
+    std::int64_t excess = 0;
+    for (; first < last && (*first >> 1) == edge; ++first) excess += (*first & 1u) ? -1 : 1;
+    if (excess != 0)
+      unbalanced.push_back(
+          {static_cast<std::uint32_t>(edge >> 32), static_cast<std::uint32_t>(edge & 0xffffffffu), excess});
+  }
+}
+
+// One block: counting sort by lower id into `scratch`, then each vertex's run.
+void report_block(std::uint64_t* first, std::uint64_t* last, std::vector<std::uint64_t>& scratch,
+                  std::vector<UnbalancedEdge>& unbalanced) {
+  std::array<std::uint32_t, kBlockIds + 1> start{};
+  for (const std::uint64_t* k = first; k < last; ++k) ++start[((*k >> 33) & (kBlockIds - 1)) + 1];
+  for (std::size_t i = 1; i < start.size(); ++i) start[i] += start[i - 1];
+  scratch.resize(static_cast<std::size_t>(last - first));
+  std::array<std::uint32_t, kBlockIds + 1> cursor = start;
+  for (const std::uint64_t* k = first; k < last; ++k) scratch[cursor[(*k >> 33) & (kBlockIds - 1)]++] = *k;
+  for (std::size_t v = 0; v < kBlockIds; ++v) {
+    std::uint64_t* const run_first = scratch.data() + start[v];
+    std::uint64_t* const run_last = scratch.data() + start[v + 1];
+    sort_run(run_first, run_last);
+    report_run(run_first, run_last, unbalanced);
+  }
+}
+
+}  // namespace
+
+ClosureCertificate certify_closure(const ShadowVolumeChain& chain) {
+  const std::uint64_t ids = id_count(chain);
+  const std::vector<std::size_t> start = block_starts(chain, ids);
+  const std::unique_ptr<std::uint64_t[]> keys = keys_by_block(chain, start);
+  ClosureCertificate certificate;
+  std::vector<std::uint64_t> scratch;
+  for (std::size_t b = 0; b + 1 < start.size(); ++b)
+    report_block(keys.get() + start[b], keys.get() + start[b + 1], scratch, certificate.unbalanced);
+  certificate.closed = certificate.unbalanced.empty();
+  return certificate;
+}
+
+}  // namespace shadowcert
