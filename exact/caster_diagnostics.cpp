@@ -7,7 +7,7 @@
 #include "exact/degenerate_triangles.h"
 #include "exact/triangle_soup_self_intersections.h"
 #include "exact/triangle_soup_topology.h"
-#include "scene/welded_soup.h"
+#include "scene/canonical_soup.h"
 
 namespace shadowcert {
 namespace {
@@ -42,8 +42,9 @@ CasterDiagnostics diagnose_caster(const Soup& soup) {
   d.vertices = soup.vertices.size();
   d.triangles = soup.triangles.size();
   // DESIGN.md §1: vertex identity is the index after exact welding, so every count below is
-  // taken on the welded soup.
-  const WeldedSoup welded = weld_soup(soup);
+  // taken on the welded soup. The canonical form welds by one sort (faster than hashing) and
+  // only renumbers vertices, which no figure here depends on.
+  const CanonicalSoup welded = canonical_soup(soup);
   d.welded_vertices = welded.soup.vertices.size();
   const std::vector<TriangleShape> shapes = classify_triangle_shapes(welded.soup);
   d.degenerate_triangles = count_degenerate(shapes);

@@ -4,7 +4,7 @@
 // self-intersection) use CGAL's exact predicates; no tolerance anywhere.
 //
 // Definitions (docs/caster-diagnostics.md has them at length, with examples):
-//  - Everything is counted on weld_soup(soup) (DESIGN.md §1: two vertices are one iff their
+//  - Everything is counted on the exactly welded soup (canonical_soup; DESIGN.md §1: two vertices are one iff their
 //    doubles are bitwise equal, -0 == +0), so "index" below means welded index.
 //  - A triangle is *index-proper* when its three indices are distinct. Only index-proper
 //    triangles have edges, fans, duplicates and components; a triangle with a repeated index
