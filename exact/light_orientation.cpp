@@ -9,6 +9,7 @@
 #include <string>
 
 #include "exact/light_orientation_filter.h"
+#include "exact/orient_unchecked.h"
 
 namespace shadowcert {
 namespace {
@@ -94,7 +95,15 @@ Sign orient(const HomogeneousPoint& p, const HomogeneousPoint& q, const Homogene
   require_homogeneous(s, 4);
   const int infinite = (p[3] == 0.0) + (q[3] == 0.0) + (r[3] == 0.0) + (s[3] == 0.0);
   if (infinite > 1) throw std::invalid_argument("orient: at most one argument may be a point at infinity (w = 0)");
-  if (infinite == 0) return finite_orientation(xyz(p), xyz(q), xyz(r), xyz(s));
+  return detail::orient_unchecked(p, q, r, s);
+}
+
+namespace detail {
+
+Sign orient_unchecked(const HomogeneousPoint& p, const HomogeneousPoint& q, const HomogeneousPoint& r,
+                      const HomogeneousPoint& s) {
+  if (p[3] != 0.0 && q[3] != 0.0 && r[3] != 0.0 && s[3] != 0.0)
+    return finite_orientation(xyz(p), xyz(q), xyz(r), xyz(s));
   // orient is alternating (a determinant): move the point at infinity last by one
   // transposition, which flips the sign. With s = (d, 0), subtracting p from q and r gives
   // orient = sign det[q - p, r - p, d] (DESIGN.md §2, the same reduction as for a light).
@@ -103,6 +112,8 @@ Sign orient(const HomogeneousPoint& p, const HomogeneousPoint& q, const Homogene
   if (q[3] == 0.0) return -directional_orientation(xyz(p), xyz(s), xyz(r), q);
   return -directional_orientation(xyz(s), xyz(q), xyz(r), p);
 }
+
+}  // namespace detail
 
 Sign light_orientation(const Vec3& a, const Vec3& b, const Vec3& c, const Light& light) {
   const std::array<double, 4>& l = light.position;
