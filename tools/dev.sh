@@ -13,6 +13,7 @@ PACKAGES=(
   libcgal-dev libgmp-dev libmpfr-dev libboost-dev libtbb-dev
   nlohmann-json3-dev libcli11-dev libfmt-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  libegl-dev libepoxy-dev libpng-dev libglm-dev libgl1-mesa-dri libegl-mesa0
 )
 
 install_missing() {

@@ -1,0 +1,30 @@
+#pragma once
+// core::Camera to GL matrices (GLM, computed in double) and the pixel convention shared with
+// the exact module (DESIGN.md §5, docs/gpu.md):
+//   image pixel (i, r), row r = 0 at the TOP, covers [i, i+1) x [r, r+1) in image
+//   coordinates; its centre is (i + 0.5, r + 0.5). In GL window coordinates (origin at the
+//   bottom left) that centre is (i + 0.5, height - r - 0.5): GL samples exactly there, and
+//   readback (gpu/offscreen_target.h) flips rows so that row 0 is the top one.
+#include <glm/glm.hpp>
+
+#include "core/camera.h"
+#include "core/soup.h"
+
+namespace shadowcert::gpu {
+
+// The near plane when a caller gives none. The far plane is at infinity, so that a later
+// slice's shadow-volume back caps (points at infinity, w = 0) are never clipped (z-fail).
+// Depth precision only matters near the camera; scenes with tiny features pass their own.
+inline constexpr double kDefaultNearPlane = 0.01;
+
+// Throws std::invalid_argument naming the function for a degenerate camera (eye == target,
+// up parallel to the view direction, fov outside (0, 180), empty image).
+[[nodiscard]] glm::dmat4 view_matrix(const Camera& camera);
+[[nodiscard]] glm::dmat4 projection_matrix(const Camera& camera, double z_near = kDefaultNearPlane);
+
+// Where a world point lands in image coordinates (x right, y DOWN, pixel (i, r)'s centre at
+// (i + 0.5, r + 0.5)); for tests and for the exact side's pixel rays. The point must be in
+// front of the camera.
+[[nodiscard]] glm::dvec2 project_to_image(const Camera& camera, const Vec3& point);
+
+}  // namespace shadowcert::gpu

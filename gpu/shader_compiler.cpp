@@ -1,0 +1,56 @@
+#include "gpu/shader_compiler.h"
+
+#include <string>
+
+#include "gpu/gl_error.h"
+
+namespace shadowcert::gpu {
+namespace {
+
+std::string shader_log(GLuint shader) {
+  GLint length = 0;
+  glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &length);
+  std::string log(static_cast<std::size_t>(length > 0 ? length : 0), '\0');
+  if (length > 0) glGetShaderInfoLog(shader, length, nullptr, log.data());
+  while (!log.empty() && (log.back() == '\0' || log.back() == '\n')) log.pop_back();
+  return log;
+}
+
+std::string program_log(GLuint program) {
+  GLint length = 0;
+  glGetProgramiv(program, GL_INFO_LOG_LENGTH, &length);
+  std::string log(static_cast<std::size_t>(length > 0 ? length : 0), '\0');
+  if (length > 0) glGetProgramInfoLog(program, length, nullptr, log.data());
+  while (!log.empty() && (log.back() == '\0' || log.back() == '\n')) log.pop_back();
+  return log;
+}
+
+}  // namespace
+
+Shader compile_shader(GLenum stage, std::string_view source, std::string_view name) {
+  Shader shader = Shader::create(stage);
+  if (!shader) throw GlError(std::string(name) + ": glCreateShader failed (bad stage?)");
+  const GLchar* text = source.data();
+  const auto length = static_cast<GLint>(source.size());
+  glShaderSource(shader.name(), 1, &text, &length);
+  glCompileShader(shader.name());
+  GLint ok = GL_FALSE;
+  glGetShaderiv(shader.name(), GL_COMPILE_STATUS, &ok);
+  if (ok != GL_TRUE) throw GlError(std::string(name) + ": GLSL compile error:\n" + shader_log(shader.name()));
+  check_gl_errors(std::string(name).c_str());
+  return shader;
+}
+
+Program link_program(std::initializer_list<const Shader*> shaders, std::string_view name) {
+  Program program = Program::create();
+  for (const Shader* s : shaders) glAttachShader(program.name(), s->name());
+  glLinkProgram(program.name());
+  for (const Shader* s : shaders) glDetachShader(program.name(), s->name());
+  GLint ok = GL_FALSE;
+  glGetProgramiv(program.name(), GL_LINK_STATUS, &ok);
+  if (ok != GL_TRUE) throw GlError(std::string(name) + ": GLSL link error:\n" + program_log(program.name()));
+  check_gl_errors(std::string(name).c_str());
+  return program;
+}
+
+}  // namespace shadowcert::gpu

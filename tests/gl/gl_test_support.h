@@ -1,0 +1,34 @@
+#pragma once
+// A fixture that gives each GL test a current debug context, or skips the test when the
+// machine has no EGL device at all (any other GL environment failure is a failure).
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <optional>
+#include <string>
+
+#include "gpu/egl_context.h"
+#include "gpu/gl_environment_error.h"
+
+namespace shadowcert::gpu::test {
+
+inline bool gl_required() {
+  const char* value = std::getenv("SHADOWCERT_REQUIRE_GL");
+  return value != nullptr && std::string(value) == "1";
+}
+
+class GlTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    try {
+      // Debug on in every test: a GL error anywhere fails the test with the driver's text.
+      context_.emplace(EglContextOptions{std::nullopt, true});
+    } catch (const NoGlDeviceError& error) {
+      if (gl_required()) FAIL() << "SHADOWCERT_REQUIRE_GL=1 but: " << error.what();
+      GTEST_SKIP() << "no EGL device: " << error.what();
+    }
+  }
+  std::optional<EglContext> context_;
+};
+
+}  // namespace shadowcert::gpu::test
