@@ -530,3 +530,34 @@ INSTANTIATE_TEST_SUITE_P(
     [](const testing::TestParamInfo<WeldedFigures>& param_info) { return test_name_of(param_info.param.file); });
 
 }  // namespace
+
+// The answer is a property of the geometry, not of the file that carried it: the same cube in
+// every readable format (quads fan-triangulated, STL merged by position) diagnoses the same.
+TEST(DiagnoseCaster, SameCubeInEveryFormat_SameFigures) {
+  const std::filesystem::path good = std::filesystem::path(SHADOWCERT_TEST_DATA) / "good";
+  std::vector<std::filesystem::path> files;
+  for (const auto& entry : std::filesystem::directory_iterator(good))
+    if (entry.path().filename().string().rfind("cube", 0) == 0) files.push_back(entry.path());
+  std::sort(files.begin(), files.end());
+  ASSERT_GE(files.size(), 6u);
+  const shadowcert::CasterDiagnostics first = shadowcert::diagnose_caster(shadowcert::read_soup(files.front()));
+  for (const auto& file : files) {
+    SCOPED_TRACE(file.string());
+    const shadowcert::CasterDiagnostics d = shadowcert::diagnose_caster(shadowcert::read_soup(file));
+    EXPECT_EQ(d.welded_vertices, first.welded_vertices);
+    EXPECT_EQ(d.triangles, first.triangles);
+    EXPECT_EQ(d.degenerate_triangles, first.degenerate_triangles);
+    EXPECT_EQ(d.duplicate_triangles, first.duplicate_triangles);
+    EXPECT_EQ(d.edges, first.edges);
+    EXPECT_EQ(d.border_edges, first.border_edges);
+    EXPECT_EQ(d.nonmanifold_edges, first.nonmanifold_edges);
+    EXPECT_EQ(d.nonmanifold_vertices, first.nonmanifold_vertices);
+    EXPECT_EQ(d.components, first.components);
+    EXPECT_EQ(d.closed, first.closed);
+    EXPECT_EQ(d.manifold, first.manifold);
+    EXPECT_EQ(d.consistently_oriented, first.consistently_oriented);
+    EXPECT_EQ(d.self_intersecting_pairs, first.self_intersecting_pairs);
+  }
+  EXPECT_TRUE(first.closed);
+  EXPECT_EQ(first.edges, 18u);
+}
