@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "cli/exit_code.h"
-#include "cli/json_output.h"
+#include "cli/output_file.h"
 #include "cli/point_file.h"
 #include "cli/scene_input.h"
 #include "core/input_error.h"
@@ -134,9 +134,12 @@ MethodReport certify_method(MultiplicityMethod method, Precision precision, cons
   report.closure_seconds = seconds_since(start);
   report.counts = certify_counts(soup, light, chain, sampling);
 
-  if (!options.volume_out.empty())
-    write_chain(volume_path(options.volume_out, method, several_methods), chain, soup, light,
+  if (!options.volume_out.empty()) {
+    const std::filesystem::path file = volume_path(options.volume_out, method, several_methods);
+    create_parent_directories(file);
+    write_chain(file, chain, soup, light,
                 kFarDistanceInDiagonals * std::max(scene_diagonal(soup), 1.0));
+  }
   return report;
 }
 

@@ -8,7 +8,7 @@
 #include <string>
 
 #include "cli/exit_code.h"
-#include "cli/json_output.h"
+#include "cli/output_file.h"
 #include "cli/scene_input.h"
 #include "core/input_error.h"
 #include "exact/caster_diagnostics.h"

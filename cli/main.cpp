@@ -10,6 +10,7 @@
 #include "cli/certify_command.h"
 #include "cli/exit_code.h"
 #include "cli/inspect_command.h"
+#include "cli/render_command.h"
 #include "core/input_error.h"
 
 int main(int argc, char** argv) {
@@ -21,6 +22,7 @@ int main(int argc, char** argv) {
   int exit_code = kExitOk;
   add_inspect_command(app, exit_code);
   add_certify_command(app, exit_code);
+  add_render_command(app, exit_code);
 
   try {
     app.parse(argc, argv);

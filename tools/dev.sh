@@ -44,7 +44,10 @@ demo() {
   "$BUILD_DIR/cli/shadowcert" inspect "$scene" --json out/inspect.json
   echo "== shadowcert certify $scene"
   "$BUILD_DIR/cli/shadowcert" certify "$scene" --method all --json out/certify.json --volume-out out/volume.off
-  echo "== outputs: out/inspect.json out/certify.json out/volume_<method>.off"
+  echo "== shadowcert render $scene --method cpu"
+  "$BUILD_DIR/cli/shadowcert" render "$scene" --method cpu --out out/render.png --counts out/counts.png \
+    --mask out/mask.png --json out/render.json
+  echo "== outputs under out/: inspect.json certify.json volume_<method>.off render.png counts.png mask.png render.json"
 }
 
 case "${1:-}" in

@@ -1,8 +1,13 @@
+// Output files of the CLI: folders made on demand, JSON written pretty-printed.
 #pragma once
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
 namespace shadowcert::cli {
+
+// Creates the folders above `file` (nothing for a bare name); throws InputError naming the
+// file when that fails. Every output option of the CLI calls it before writing.
+void create_parent_directories(const std::filesystem::path& file);
 
 // Writes `value` pretty-printed to `file`, creating parent folders; throws InputError
 // naming the file when it cannot be written.

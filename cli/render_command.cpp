@@ -1,0 +1,230 @@
+#include "cli/render_command.h"
+
+#include <epoxy/gl.h>
+#include <fmt/core.h>
+
+#include <array>
+#include <chrono>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cli/exit_code.h"
+#include "cli/output_file.h"
+#include "cli/scene_input.h"
+#include "core/input_error.h"
+#include "exact/edge_multiplicity.h"
+#include "exact/edge_table.h"
+#include "exact/shadow_volume_chain.h"
+#include "gpu/egl_context.h"
+#include "gpu/gl_environment_error.h"
+#include "gpu/offscreen_target.h"
+#include "gpu/png_image.h"
+#include "gpu/shadow_volume_geometry.h"
+#include "gpu/stencil_shadow_renderer.h"
+#include "scene/canonical_soup.h"
+
+namespace shadowcert::cli {
+namespace {
+
+// Frames drawn (without readback, each ended by glFinish) for the ms-per-frame figure: one
+// frame alone would mostly time llvmpipe's first-use shader compilation.
+constexpr int kTimedFrames = 5;
+
+// Mesh colours, in scene order (cycled): only a picture, nothing is decided from them.
+constexpr std::array<std::array<float, 3>, 4> kPalette{
+    {{0.85f, 0.85f, 0.85f}, {0.95f, 0.55f, 0.35f}, {0.45f, 0.75f, 0.95f}, {0.6f, 0.9f, 0.5f}}};
+
+struct RenderOptions {
+  std::string input;
+  std::string method = "cpu";
+  bool zpass = false;
+  bool zfail = false;
+  std::string size;  // "WxH"; empty: the scene camera's
+  std::string out;
+  std::string counts;
+  std::string mask;
+  std::string json_file;
+  std::optional<int> device;
+};
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+void apply_size(const std::string& size, Camera& camera) {
+  if (size.empty()) return;
+  const auto x = size.find('x');
+  unsigned long w = 0, h = 0;
+  try {
+    if (x == std::string::npos) throw std::invalid_argument("no x");
+    std::size_t used_w = 0, used_h = 0;
+    w = std::stoul(size.substr(0, x), &used_w);
+    h = std::stoul(size.substr(x + 1), &used_h);
+    if (used_w != x || used_h != size.size() - x - 1) throw std::invalid_argument("trailing");
+  } catch (const std::exception&) {
+    throw CLI::ValidationError("--size", "expects WxH, e.g. 1024x768");
+  }
+  constexpr unsigned long kMaxSide = 16384;  // GL_MAX_RENDERBUFFER_SIZE of every driver we target
+  if (w == 0 || h == 0 || w > kMaxSide || h > kMaxSide)
+    throw CLI::ValidationError("--size", "each side must be in [1, 16384]");
+  camera.width = static_cast<std::uint32_t>(w);
+  camera.height = static_cast<std::uint32_t>(h);
+}
+
+// exact/'s symbolic chain to homogeneous floats (exact/shadow_volume_chain.h): ids [0, n) are
+// the canonical vertices (w = 1); a point light's n + i is x_i's far vertex (x_i - l, 0), a
+// directional light's n is (-l, 0). x - l is formed in double and rounded once. Quads
+// (a, b, c, d) become (a, b, c) and (a, c, d), keeping the outward orientation.
+gpu::ShadowVolumeGeometry to_geometry(const ShadowVolumeChain& chain, const Soup& canonical, const Light& light) {
+  gpu::ShadowVolumeGeometry g;
+  const auto& l = light.position;
+  g.vertices.reserve(canonical.vertices.size() * 2);
+  for (const Vec3& x : canonical.vertices)
+    g.vertices.push_back({static_cast<float>(x[0]), static_cast<float>(x[1]), static_cast<float>(x[2]), 1.0f});
+  if (chain.directional) {
+    g.vertices.push_back({static_cast<float>(-l[0]), static_cast<float>(-l[1]), static_cast<float>(-l[2]), 0.0f});
+  } else {
+    for (const Vec3& x : canonical.vertices)
+      g.vertices.push_back({static_cast<float>(x[0] - l[0]), static_cast<float>(x[1] - l[1]),
+                            static_cast<float>(x[2] - l[2]), 0.0f});
+  }
+  g.triangles.reserve(chain.triangles.size() + 2 * chain.quads.size());
+  for (const auto& t : chain.triangles) g.triangles.push_back(t);
+  for (const auto& q : chain.quads) {
+    g.triangles.push_back({q[0], q[1], q[2]});
+    g.triangles.push_back({q[0], q[2], q[3]});
+  }
+  return g;
+}
+
+std::uint64_t count_pixels(const gpu::RgbaImage& colour, const gpu::GrayImage& stencil, bool lit) {
+  std::uint64_t n = 0;
+  for (std::size_t i = 0; i < stencil.pixels.size(); ++i) {
+    const bool covered = colour.pixels[4 * i + 3] != 0;  // alpha 255 where a receiver was drawn
+    if (covered && (stencil.pixels[i] == 0) == lit) ++n;
+  }
+  return n;
+}
+
+int run_render(const RenderOptions& options) {
+  const auto start = Clock::now();
+  if (options.method != "cpu")
+    throw CLI::ValidationError("--method", "only 'cpu' exists so far (gs, ts, cs, pertri, shadowmap come later)");
+  if (options.zpass && options.zfail) throw CLI::ValidationError("--zpass", "excludes --zfail");
+  Scene scene = load_scene_or_mesh(options.input);
+  if (scene.lights.empty()) throw InputError(options.input, "the scene has no light");
+  apply_size(options.size, scene.camera);
+  const Soup merged = merged_soup(scene);
+  if (merged.triangles.empty()) throw InputError(options.input, "no triangle to render");
+
+  // The volumes: one exact chain per light (DESIGN.md §3).
+  auto stage = Clock::now();
+  const CanonicalSoup canonical = canonical_soup(merged);
+  const EdgeTable table = build_edge_table(canonical.soup);
+  std::vector<gpu::ShadowVolumeGeometry> geometries;
+  for (const Light& light : scene.lights) {
+    const EdgeMultiplicities m = exact_multiplicities(canonical.soup, table, light);
+    geometries.push_back(to_geometry(assemble_chain(canonical.soup, table, m, light), canonical.soup, light));
+  }
+  const double chain_seconds = seconds_since(stage);
+
+  std::optional<gpu::EglContext> context;
+  try {
+    context.emplace(gpu::EglContextOptions{options.device, gpu::kGlDebugByDefault});
+  } catch (const gpu::GlEnvironmentError& e) {
+    // Rethrown with what the user needs to know; main maps it to exit code 2.
+    throw gpu::GlEnvironmentError(
+        "render needs OpenGL 4.5 core through headless EGL (a GPU driver or Mesa's llvmpipe: packages "
+        "libegl-mesa0 libgl1-mesa-dri); " + std::string(e.what()));
+  }
+
+  stage = Clock::now();
+  std::vector<gpu::ShadedSoupPart> parts;
+  for (std::size_t i = 0; i < scene.meshes.size(); ++i)
+    parts.push_back({&scene.meshes[i].soup, kPalette[i % kPalette.size()]});
+  const gpu::ShadedSoupMesh receivers(parts);
+  std::vector<std::unique_ptr<gpu::ShadowVolumeMesh>> volumes;
+  std::vector<gpu::LightVolume> lights;
+  for (std::size_t i = 0; i < scene.lights.size(); ++i) {
+    volumes.push_back(std::make_unique<gpu::ShadowVolumeMesh>(geometries[i]));
+    lights.push_back({scene.lights[i], volumes.back().get()});
+  }
+  const gpu::OffscreenTarget target(scene.camera.width, scene.camera.height);
+  const gpu::StencilShadowRenderer renderer;
+  gpu::StencilShadowOptions render_options;
+  render_options.method = options.zpass ? gpu::StencilMethod::zpass : gpu::StencilMethod::zfail;
+  for (auto& c : render_options.light_colour) c /= static_cast<float>(scene.lights.size());
+  const double upload_seconds = seconds_since(stage);
+
+  stage = Clock::now();
+  const gpu::StencilShadowFrame frame = renderer.render(target, receivers, scene.camera, lights, render_options);
+  const double first_frame_seconds = seconds_since(stage);
+  render_options.read_back = false;
+  stage = Clock::now();
+  for (int i = 0; i < kTimedFrames; ++i) {
+    (void)renderer.render(target, receivers, scene.camera, lights, render_options);
+    glFinish();
+  }
+  const double frame_ms = 1000.0 * seconds_since(stage) / kTimedFrames;
+
+  for (const std::string& file : {options.out, options.counts, options.mask}) create_parent_directories(file);
+  if (!options.out.empty()) gpu::write_png(options.out, frame.colour);
+  if (!options.counts.empty()) gpu::write_png(options.counts, frame.first_stencil);
+  if (!options.mask.empty()) gpu::write_png(options.mask, frame.first_lit_mask);
+  const std::uint64_t lit = count_pixels(frame.colour, frame.first_stencil, true);
+  const std::uint64_t shadowed = count_pixels(frame.colour, frame.first_stencil, false);
+  const double seconds = seconds_since(start);
+
+  const char* method = options.zpass ? "zpass" : "zfail";
+  fmt::print("{}: {} triangles, {} lights, {}x{}, cpu/{} on {}\n", options.input, merged.triangles.size(),
+             scene.lights.size(), scene.camera.width, scene.camera.height, method, context->renderer());
+  fmt::print("  volume triangles (first light) {}\n", geometries.front().triangles.size());
+  fmt::print("  first light: {} lit, {} shadowed receiver pixels\n", lit, shadowed);
+  fmt::print("  seconds: chains {:.3f}, upload {:.3f}, first frame {:.3f}; {:.2f} ms per frame ({} frames)\n",
+             chain_seconds, upload_seconds, first_frame_seconds, frame_ms, kTimedFrames);
+  if (!options.json_file.empty()) {
+    write_json_file(options.json_file,
+                    {{"input", options.input},
+                     {"method", "cpu"},
+                     {"stencil", method},
+                     {"size", {scene.camera.width, scene.camera.height}},
+                     {"renderer", context->renderer()},
+                     {"device", context->device()},
+                     {"lights", scene.lights.size()},
+                     {"lit_pixels", lit},
+                     {"shadowed_pixels", shadowed},
+                     {"frame_ms", frame_ms},
+                     {"seconds", seconds},
+                     {"stage_seconds",
+                      {{"chains", chain_seconds}, {"upload", upload_seconds}, {"first_frame", first_frame_seconds}}}});
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+void add_render_command(CLI::App& app, int& exit_code) {
+  auto options = std::make_shared<RenderOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "render",
+      "Stencil shadow volumes with OpenGL 4.5 core (headless EGL; DESIGN.md 3, 5). Lights are drawn one after "
+      "another; --counts, --mask and the pixel counts are for the FIRST light");
+  cmd->add_option("input", options->input, "Mesh file (.obj .off .ply .stl) or scene (.json)")->required();
+  cmd->add_option("--method", options->method,
+                  "How the volume is built: cpu (the exact chain from exact/, drawn as is). Only cpu exists "
+                  "now; gs, ts, cs, pertri and shadowmap come in later sessions")
+      ->capture_default_str();
+  cmd->add_flag("--zfail", options->zfail, "Count faces behind the visible point (default; right with the eye in a volume)");
+  cmd->add_flag("--zpass", options->zpass, "Count faces in front of the visible point (wrong with the eye in a volume)");
+  cmd->add_option("--size", options->size, "Image size WxH (default: the scene camera's)");
+  cmd->add_option("--out", options->out, "Write the shaded image (RGBA PNG; alpha 0 where no surface)");
+  cmd->add_option("--counts", options->counts, "Write the first light's stencil counts mod 256 (8-bit gray PNG)");
+  cmd->add_option("--mask", options->mask, "Write the first light's lit mask (255 where the count is 0)");
+  cmd->add_option("--json", options->json_file, "Write method, size, renderer, pixel counts and timings as JSON");
+  cmd->add_option("--device", options->device, "Use EGL device N (default: a hardware device, else llvmpipe)");
+  cmd->callback([options, &exit_code] { exit_code = run_render(*options); });
+}
+
+}  // namespace shadowcert::cli

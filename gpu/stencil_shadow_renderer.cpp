@@ -1,0 +1,185 @@
+#include "gpu/stencil_shadow_renderer.h"
+
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include "gpu/camera_transform.h"
+#include "gpu/embedded_shaders.h"
+#include "gpu/gl_error.h"
+#include "gpu/shader_compiler.h"
+
+namespace shadowcert::gpu {
+namespace {
+
+// Uniform locations fixed by layout(location) in shadow_scene.{vert,frag}.glsl.
+constexpr GLint kWorldToClipLocation = 0;
+constexpr GLint kColourLocation = 1;
+constexpr GLint kLightLocation = 2;
+constexpr GLint kLambertWeightLocation = 3;
+
+// Attribute locations of shadow_scene.vert.glsl.
+constexpr GLuint kPositionAttribute = 0;
+constexpr GLuint kNormalAttribute = 1;
+constexpr GLuint kAlbedoAttribute = 2;
+
+struct ShadedVertex {
+  std::array<float, 4> position;
+  std::array<float, 3> normal;
+  std::array<float, 3> albedo;
+};
+
+std::array<float, 3> face_normal(const Vec3& a, const Vec3& b, const Vec3& c) {
+  // In double: only shading reads it (DESIGN.md §1: no decision depends on a normal).
+  const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+  const double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+  const double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+  const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  if (!(length > 0.0) || !std::isfinite(length)) return {0.0f, 0.0f, 0.0f};  // unlit in the shader
+  return {static_cast<float>(n[0] / length), static_cast<float>(n[1] / length), static_cast<float>(n[2] / length)};
+}
+
+void set_uniform_colour(GLuint program, const std::array<float, 3>& rgb) {
+  glProgramUniform4f(program, kColourLocation, rgb[0], rgb[1], rgb[2], 1.0f);
+}
+
+}  // namespace
+
+ShadedSoupMesh::ShadedSoupMesh(const Soup& soup) : ShadedSoupMesh(std::span<const ShadedSoupPart>(std::array{ShadedSoupPart{&soup}})) {}
+
+ShadedSoupMesh::ShadedSoupMesh(std::span<const ShadedSoupPart> parts)
+    : vertices_(Buffer::create()), vertex_array_(VertexArray::create()) {
+  std::vector<ShadedVertex> vertices;
+  for (const ShadedSoupPart& part : parts) {
+    if (part.soup == nullptr) throw std::invalid_argument("ShadedSoupMesh: a part without a soup");
+    const Soup& soup = *part.soup;
+    const bool vertex_normals = soup.normals.size() == soup.vertices.size() && !soup.normals.empty();
+    for (const Triangle& t : soup.triangles) {
+      const std::array<float, 3> n = face_normal(soup.vertices[t[0]], soup.vertices[t[1]], soup.vertices[t[2]]);
+      for (std::uint32_t id : t) {
+        const Vec3& p = soup.vertices[id];
+        // Rounded once to float, as the volumes' finite vertices are (cli/ converts them the
+        // same way), so a cap and its occluder triangle are the same float triangle.
+        vertices.push_back({{static_cast<float>(p[0]), static_cast<float>(p[1]), static_cast<float>(p[2]), 1.0f},
+                            vertex_normals ? soup.normals[id] : n,
+                            part.albedo});
+      }
+    }
+  }
+  if (vertices.size() > static_cast<std::size_t>(std::numeric_limits<GLsizei>::max())) {
+    throw std::invalid_argument("ShadedSoupMesh: too many triangles for one draw call");
+  }
+  const ShadedVertex none{};
+  glNamedBufferStorage(vertices_.name(),
+                       vertices.empty() ? sizeof none : static_cast<GLsizeiptr>(vertices.size() * sizeof none),
+                       vertices.empty() ? &none : vertices.data(), 0);
+  vertex_count_ = static_cast<GLsizei>(vertices.size());
+  const GLuint vao = vertex_array_.name();
+  glVertexArrayVertexBuffer(vao, 0, vertices_.name(), 0, sizeof(ShadedVertex));
+  glVertexArrayAttribFormat(vao, kPositionAttribute, 4, GL_FLOAT, GL_FALSE, offsetof(ShadedVertex, position));
+  glVertexArrayAttribFormat(vao, kNormalAttribute, 3, GL_FLOAT, GL_FALSE, offsetof(ShadedVertex, normal));
+  glVertexArrayAttribFormat(vao, kAlbedoAttribute, 3, GL_FLOAT, GL_FALSE, offsetof(ShadedVertex, albedo));
+  for (GLuint attribute : {kPositionAttribute, kNormalAttribute, kAlbedoAttribute}) {
+    glVertexArrayAttribBinding(vao, attribute, 0);
+    glEnableVertexArrayAttrib(vao, attribute);
+  }
+  check_gl_errors("ShadedSoupMesh upload");
+}
+
+StencilShadowRenderer::StencilShadowRenderer() {
+  const Shader vertex = compile_shader(GL_VERTEX_SHADER, shaders::shadow_scene_vert, "shadow_scene.vert.glsl");
+  const Shader fragment = compile_shader(GL_FRAGMENT_SHADER, shaders::shadow_scene_frag, "shadow_scene.frag.glsl");
+  program_ = link_program({&vertex, &fragment}, "shadow_scene");
+}
+
+StencilShadowFrame StencilShadowRenderer::render(const OffscreenTarget& target, const ShadedSoupMesh& receivers,
+                                                 const Camera& camera, std::span<const LightVolume> lights,
+                                                 const StencilShadowOptions& options) const {
+  for (std::size_t i = 0; i < lights.size(); ++i) {
+    if (lights[i].volume == nullptr) {
+      throw std::invalid_argument("StencilShadowRenderer::render: light " + std::to_string(i) + " has no volume");
+    }
+  }
+  const GLuint program = program_.name();
+  const glm::mat4 world_to_clip(projection_matrix(camera) * view_matrix(camera));
+  glProgramUniformMatrix4fv(program, kWorldToClipLocation, 1, GL_FALSE, glm::value_ptr(world_to_clip));
+
+  target.bind();
+  target.clear(options.background);
+  glUseProgram(program);
+  glDisable(GL_CULL_FACE);  // soups have no orientation; volumes need both faces counted
+  glDisable(GL_BLEND);
+  glDisable(GL_POLYGON_OFFSET_FILL);
+  glFrontFace(GL_CCW);      // outward faces seen from outside are front faces
+
+  // 1. Depth pre-pass in ambient colour.
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glDepthMask(GL_TRUE);
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  glDisable(GL_STENCIL_TEST);
+  glProgramUniform1f(program, kLambertWeightLocation, 0.0f);
+  set_uniform_colour(program, options.ambient);
+  glBindVertexArray(receivers.vertex_array());
+  glDrawArrays(GL_TRIANGLES, 0, receivers.vertex_count());
+
+  StencilShadowFrame frame;
+  for (std::size_t i = 0; i < lights.size(); ++i) {
+    const LightVolume& lv = lights[i];
+    // 2. Volume pass: counts only, nothing else written.
+    glStencilMask(0xFF);
+    glClear(GL_STENCIL_BUFFER_BIT);
+    glEnable(GL_STENCIL_TEST);
+    glStencilFunc(GL_ALWAYS, 0, 0xFF);
+    if (options.method == StencilMethod::zfail) {
+      glStencilOpSeparate(GL_BACK, GL_KEEP, GL_INCR_WRAP, GL_KEEP);
+      glStencilOpSeparate(GL_FRONT, GL_KEEP, GL_DECR_WRAP, GL_KEEP);
+    } else {
+      glStencilOpSeparate(GL_FRONT, GL_KEEP, GL_KEEP, GL_INCR_WRAP);
+      glStencilOpSeparate(GL_BACK, GL_KEEP, GL_KEEP, GL_DECR_WRAP);
+    }
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    glDepthMask(GL_FALSE);
+    glDepthFunc(GL_LESS);  // a cap at the visible point's own depth fails: "behind" it
+    glEnable(GL_DEPTH_CLAMP);  // w = 0 caps reach depth 1 exactly; rounding must not clip them
+    glBindVertexArray(lv.volume->vertex_array());
+    glDrawElements(GL_TRIANGLES, lv.volume->index_count(), GL_UNSIGNED_INT, nullptr);
+    glDisable(GL_DEPTH_CLAMP);
+    if (i == 0 && options.read_back) {
+      frame.first_stencil = target.read_stencil();
+      frame.first_lit_mask = lit_mask(frame.first_stencil);
+    }
+
+    // 3. Lit pass: this light's Lambert term where the count is 0, on the visible surface only.
+    glStencilFunc(GL_EQUAL, 0, 0xFF);
+    glStencilOpSeparate(GL_FRONT_AND_BACK, GL_KEEP, GL_KEEP, GL_KEEP);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glDepthFunc(GL_EQUAL);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ONE);
+    const std::array<double, 4>& l = lv.light.position;
+    glProgramUniform4f(program, kLightLocation, static_cast<float>(l[0]), static_cast<float>(l[1]),
+                       static_cast<float>(l[2]), static_cast<float>(l[3]));
+    glProgramUniform1f(program, kLambertWeightLocation, 1.0f);
+    set_uniform_colour(program, options.light_colour);
+    glBindVertexArray(receivers.vertex_array());
+    glDrawArrays(GL_TRIANGLES, 0, receivers.vertex_count());
+    glDisable(GL_BLEND);
+    glProgramUniform1f(program, kLambertWeightLocation, 0.0f);
+  }
+
+  glBindVertexArray(0);
+  glUseProgram(0);
+  glDisable(GL_STENCIL_TEST);
+  glDepthFunc(GL_LESS);
+  glDepthMask(GL_TRUE);
+  check_gl_errors("StencilShadowRenderer::render");
+  if (options.read_back) frame.colour = target.read_colour();
+  return frame;
+}
+
+}  // namespace shadowcert::gpu

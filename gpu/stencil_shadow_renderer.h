@@ -1,0 +1,90 @@
+#pragma once
+// Stencil shadow volumes (DESIGN.md §3, §5): the counting identity n(P) = winding number of
+// the chain at P, evaluated per pixel in the stencil buffer.
+//
+// Per frame: a depth pre-pass of the receivers in ambient colour; then per light: clear the
+// stencil, draw that light's volume with colour and depth writes off and two-sided
+// GL_INCR_WRAP / GL_DECR_WRAP (counts modulo 256, as §5 compares them), then add the light's
+// Lambert term where the stencil is 0 (depth GL_EQUAL, additive blending).
+//   z-fail (default, Carmack's reverse): back faces +1 and front faces -1 where the depth
+//     test FAILS, i.e. the faces behind the visible point P; right wherever the eye is,
+//     because caps close the volume at the occluder and at infinity.
+//   z-pass: front faces +1 and back faces -1 where it PASSES (faces between eye and P);
+//     wrong when the eye itself is inside a volume (the count is then off by the eye's own).
+// Caps at infinity: the projection's far plane is at infinity and GL_DEPTH_CLAMP is on for
+// the volume pass, so nothing is clipped there; no polygon offset is used: every pass runs
+// the same invariant vertex shader, so a cap and the triangle it lies on get equal depths.
+#include <array>
+#include <span>
+#include <vector>
+
+#include "core/camera.h"
+#include "core/light.h"
+#include "core/soup.h"
+#include "gpu/gl_object.h"
+#include "gpu/image.h"
+#include "gpu/offscreen_target.h"
+#include "gpu/shadow_volume_geometry.h"
+
+namespace shadowcert::gpu {
+
+// One soup of the receiver/caster mesh with its colour.
+struct ShadedSoupPart {
+  const Soup* soup = nullptr;
+  std::array<float, 3> albedo{0.8f, 0.8f, 0.8f};
+};
+
+// Receivers on the GPU: triangles expanded to three vertices each (vec4 position with
+// w = 1, rounded once to float exactly as ShadowVolumeGeometry's finite vertices are; the
+// soup's vertex normals when it has them, else the face normal; the part's albedo).
+class ShadedSoupMesh {
+ public:
+  explicit ShadedSoupMesh(std::span<const ShadedSoupPart> parts);
+  explicit ShadedSoupMesh(const Soup& soup);
+
+  [[nodiscard]] GLuint vertex_array() const { return vertex_array_.name(); }
+  [[nodiscard]] GLsizei vertex_count() const { return vertex_count_; }
+
+ private:
+  Buffer vertices_;
+  VertexArray vertex_array_;
+  GLsizei vertex_count_ = 0;
+};
+
+enum class StencilMethod { zfail, zpass };
+
+// A light and the volume its shadows are counted with.
+struct LightVolume {
+  Light light;
+  const ShadowVolumeMesh* volume = nullptr;
+};
+
+struct StencilShadowOptions {
+  StencilMethod method = StencilMethod::zfail;
+  std::array<float, 4> background{0.0f, 0.0f, 0.0f, 0.0f};  // alpha 0 marks uncovered pixels
+  std::array<float, 3> ambient{0.15f, 0.15f, 0.15f};
+  // Each light's colour; several lights share 1 so that the sum stays in range.
+  std::array<float, 3> light_colour{0.85f, 0.85f, 0.85f};
+  bool read_back = true;  // off for timing: render() returns only what was drawn
+};
+
+struct StencilShadowFrame {
+  RgbaImage colour;           // alpha 255 where a receiver covers the pixel, 0 elsewhere
+  GrayImage first_stencil;    // the first light's counts modulo 256 (after its volume pass)
+  GrayImage first_lit_mask;   // lit_mask(first_stencil): 255 where the count is 0
+};
+
+class StencilShadowRenderer {
+ public:
+  StencilShadowRenderer();  // compiles shadow_scene.{vert,frag}.glsl; throws GlError with the log
+
+  // Renders into `target` (bound and cleared here), lights one after another. Throws
+  // std::invalid_argument for a light without a volume, GlError on a GL error.
+  StencilShadowFrame render(const OffscreenTarget& target, const ShadedSoupMesh& receivers, const Camera& camera,
+                            std::span<const LightVolume> lights, const StencilShadowOptions& options = {}) const;
+
+ private:
+  Program program_;
+};
+
+}  // namespace shadowcert::gpu
