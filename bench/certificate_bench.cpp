@@ -13,7 +13,7 @@
 #include "exact/closure_certificate.h"
 #include "exact/count_certificate.h"
 #include "exact/edge_multiplicity.h"
-#include "exact/edge_table.h"
+#include "scene/edge_table.h"
 #include "exact/shadow_volume_chain.h"
 #include "exact/soup_file.h"
 #include "scene/canonical_soup.h"

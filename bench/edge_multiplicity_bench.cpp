@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "exact/edge_multiplicity.h"
-#include "exact/edge_table.h"
+#include "scene/edge_table.h"
 #include "exact/soup_file.h"
 #include "scene/canonical_soup.h"
 #include "scene/procedural_mesh.h"

@@ -16,7 +16,7 @@
 #include "cli/scene_input.h"
 #include "core/input_error.h"
 #include "exact/edge_multiplicity.h"
-#include "exact/edge_table.h"
+#include "scene/edge_table.h"
 #include "exact/shadow_volume_chain.h"
 #include "gpu/egl_context.h"
 #include "gpu/gl_environment_error.h"

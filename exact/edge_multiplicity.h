@@ -23,7 +23,7 @@
 #include "core/light.h"
 #include "core/sign.h"
 #include "core/soup.h"
-#include "exact/edge_table.h"
+#include "scene/edge_table.h"
 
 namespace shadowcert {
 

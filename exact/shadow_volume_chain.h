@@ -13,7 +13,7 @@
 #include "core/light.h"
 #include "core/soup.h"
 #include "exact/edge_multiplicity.h"
-#include "exact/edge_table.h"
+#include "scene/edge_table.h"
 
 namespace shadowcert {
 

@@ -16,7 +16,7 @@
 
 #include "brute_force_orientation.h"
 #include "core/light_side_formula.h"
-#include "exact/edge_table.h"
+#include "scene/edge_table.h"
 #include "scene/canonical_soup.h"
 #include "scene/procedural_mesh.h"
 

@@ -1,6 +1,6 @@
-// The edge table of a canonical soup (exact/edge_table.h) against hand counts and against an
+// The edge table of a canonical soup (scene/edge_table.h) against hand counts and against an
 // independent std::map construction.
-#include "exact/edge_table.h"
+#include "scene/edge_table.h"
 
 #include <gtest/gtest.h>
 

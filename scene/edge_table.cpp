@@ -1,4 +1,4 @@
-#include "exact/edge_table.h"
+#include "scene/edge_table.h"
 
 #include <algorithm>
 #include <bit>
