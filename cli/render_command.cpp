@@ -18,6 +18,7 @@
 #include "exact/edge_multiplicity.h"
 #include "scene/edge_table.h"
 #include "exact/shadow_volume_chain.h"
+#include "gpu/compute_volume.h"
 #include "gpu/egl_context.h"
 #include "gpu/gl_environment_error.h"
 #include "gpu/offscreen_target.h"
@@ -110,8 +111,9 @@ std::uint64_t count_pixels(const gpu::RgbaImage& colour, const gpu::GrayImage& s
 
 int run_render(const RenderOptions& options) {
   const auto start = Clock::now();
-  if (options.method != "cpu")
-    throw CLI::ValidationError("--method", "only 'cpu' exists so far (gs, ts, cs, pertri, shadowmap come later)");
+  const bool cs = options.method == "cs";
+  if (options.method != "cpu" && !cs)
+    throw CLI::ValidationError("--method", "only 'cpu' and 'cs' exist so far (gs, ts, pertri, shadowmap come later)");
   if (options.zpass && options.zfail) throw CLI::ValidationError("--zpass", "excludes --zfail");
   Scene scene = load_scene_or_mesh(options.input);
   if (scene.lights.empty()) throw InputError(options.input, "the scene has no light");
@@ -119,12 +121,13 @@ int run_render(const RenderOptions& options) {
   const Soup merged = merged_soup(scene);
   if (merged.triangles.empty()) throw InputError(options.input, "no triangle to render");
 
-  // The volumes: one exact chain per light (DESIGN.md §3).
+  // The volumes: one exact chain per light (DESIGN.md §3); cs builds its own on the GPU from
+  // the same canonical soup and edge table (gpu/compute_volume.h).
   auto stage = Clock::now();
   const CanonicalSoup canonical = canonical_soup(merged);
   const EdgeTable table = build_edge_table(canonical.soup);
   std::vector<gpu::ShadowVolumeGeometry> geometries;
-  for (const Light& light : scene.lights) {
+  for (const Light& light : cs ? std::vector<Light>{} : scene.lights) {
     const EdgeMultiplicities m = exact_multiplicities(canonical.soup, table, light);
     geometries.push_back(to_geometry(assemble_chain(canonical.soup, table, m, light), canonical.soup, light));
   }
@@ -146,11 +149,24 @@ int run_render(const RenderOptions& options) {
     parts.push_back({&scene.meshes[i].soup, kPalette[i % kPalette.size()]});
   const gpu::ShadedSoupMesh receivers(parts);
   std::vector<std::unique_ptr<gpu::ShadowVolumeMesh>> volumes;
+  std::optional<gpu::ComputeVolumeSoup> cs_soup;
+  std::vector<std::unique_ptr<gpu::ComputeShadowVolume>> cs_volumes;
   std::vector<gpu::LightVolume> lights;
+  if (cs) cs_soup.emplace(canonical.soup, table);
   for (std::size_t i = 0; i < scene.lights.size(); ++i) {
-    volumes.push_back(std::make_unique<gpu::ShadowVolumeMesh>(geometries[i]));
-    lights.push_back({scene.lights[i], volumes.back().get()});
+    if (cs) {
+      cs_volumes.push_back(std::make_unique<gpu::ComputeShadowVolume>(*cs_soup));
+      lights.push_back({scene.lights[i], nullptr, cs_volumes.back()->draw()});
+    } else {
+      volumes.push_back(std::make_unique<gpu::ShadowVolumeMesh>(geometries[i]));
+      lights.push_back({scene.lights[i], volumes.back().get()});
+    }
   }
+  // cs rebuilds its volumes in every frame (a moving light costs nothing more), so its frame
+  // time includes the compute passes; cpu's chains are built once, before the frames.
+  const auto build_cs_volumes = [&] {
+    for (std::size_t i = 0; i < cs_volumes.size(); ++i) cs_volumes[i]->build(scene.lights[i]);
+  };
   const gpu::OffscreenTarget target(scene.camera.width, scene.camera.height);
   const gpu::StencilShadowRenderer renderer;
   gpu::StencilShadowOptions render_options;
@@ -159,11 +175,23 @@ int run_render(const RenderOptions& options) {
   const double upload_seconds = seconds_since(stage);
 
   stage = Clock::now();
+  build_cs_volumes();
+  std::uint64_t volume_triangles = cs ? 0 : geometries.front().triangles.size();
+  if (cs) {
+    // The output is sized for the worst case but clamped to one storage block: say so
+    // rather than draw a partial (open) volume.
+    for (const auto& v : cs_volumes)
+      if (v->read_requested_vertices() > v->capacity_vertices())
+        throw InputError(options.input, "the cs volume needs more vertices than one GL storage buffer holds (" +
+                                            std::to_string(v->capacity_vertices()) + ")");
+    volume_triangles = cs_volumes.front()->read_requested_vertices() / 3;
+  }
   const gpu::StencilShadowFrame frame = renderer.render(target, receivers, scene.camera, lights, render_options);
   const double first_frame_seconds = seconds_since(stage);
   render_options.read_back = false;
   stage = Clock::now();
   for (int i = 0; i < kTimedFrames; ++i) {
+    build_cs_volumes();
     (void)renderer.render(target, receivers, scene.camera, lights, render_options);
     glFinish();
   }
@@ -178,16 +206,17 @@ int run_render(const RenderOptions& options) {
   const double seconds = seconds_since(start);
 
   const char* method = options.zpass ? "zpass" : "zfail";
-  fmt::print("{}: {} triangles, {} lights, {}x{}, cpu/{} on {}\n", options.input, merged.triangles.size(),
-             scene.lights.size(), scene.camera.width, scene.camera.height, method, context->renderer());
-  fmt::print("  volume triangles (first light) {}\n", geometries.front().triangles.size());
+  fmt::print("{}: {} triangles, {} lights, {}x{}, {}/{} on {}\n", options.input, merged.triangles.size(),
+             scene.lights.size(), scene.camera.width, scene.camera.height, options.method, method,
+             context->renderer());
+  fmt::print("  volume triangles (first light) {}\n", volume_triangles);
   fmt::print("  first light: {} lit, {} shadowed receiver pixels\n", lit, shadowed);
   fmt::print("  seconds: chains {:.3f}, upload {:.3f}, first frame {:.3f}; {:.2f} ms per frame ({} frames)\n",
              chain_seconds, upload_seconds, first_frame_seconds, frame_ms, kTimedFrames);
   if (!options.json_file.empty()) {
     write_json_file(options.json_file,
                     {{"input", options.input},
-                     {"method", "cpu"},
+                     {"method", options.method},
                      {"stencil", method},
                      {"size", {scene.camera.width, scene.camera.height}},
                      {"renderer", context->renderer()},
@@ -213,8 +242,9 @@ void add_render_command(CLI::App& app, int& exit_code) {
       "another; --counts, --mask and the pixel counts are for the FIRST light");
   cmd->add_option("input", options->input, "Mesh file (.obj .off .ply .stl) or scene (.json)")->required();
   cmd->add_option("--method", options->method,
-                  "How the volume is built: cpu (the exact chain from exact/, drawn as is). Only cpu exists "
-                  "now; gs, ts, cs, pertri and shadowmap come in later sessions")
+                  "How the volume is built: cpu (the exact chain from exact/, drawn as is) or cs (compute "
+                  "shader, float reference-edge multiplicities, rebuilt every frame; gpu/compute_volume.h). "
+                  "gs, ts, pertri and shadowmap come in later sessions")
       ->capture_default_str();
   cmd->add_flag("--zfail", options->zfail, "Count faces behind the visible point (default; right with the eye in a volume)");
   cmd->add_flag("--zpass", options->zpass, "Count faces in front of the visible point (wrong with the eye in a volume)");

@@ -100,7 +100,7 @@ StencilShadowFrame StencilShadowRenderer::render(const OffscreenTarget& target, 
                                                  const Camera& camera, std::span<const LightVolume> lights,
                                                  const StencilShadowOptions& options) const {
   for (std::size_t i = 0; i < lights.size(); ++i) {
-    if (lights[i].volume == nullptr) {
+    if (lights[i].volume == nullptr && (lights[i].indirect.vertex_array == 0 || lights[i].indirect.command == 0)) {
       throw std::invalid_argument("StencilShadowRenderer::render: light " + std::to_string(i) + " has no volume");
     }
   }
@@ -146,8 +146,15 @@ StencilShadowFrame StencilShadowRenderer::render(const OffscreenTarget& target, 
     glDepthMask(GL_FALSE);
     glDepthFunc(GL_LESS);  // a cap at the visible point's own depth fails: "behind" it
     glEnable(GL_DEPTH_CLAMP);  // w = 0 caps reach depth 1 exactly; rounding must not clip them
-    glBindVertexArray(lv.volume->vertex_array());
-    glDrawElements(GL_TRIANGLES, lv.volume->index_count(), GL_UNSIGNED_INT, nullptr);
+    if (lv.volume != nullptr) {
+      glBindVertexArray(lv.volume->vertex_array());
+      glDrawElements(GL_TRIANGLES, lv.volume->index_count(), GL_UNSIGNED_INT, nullptr);
+    } else {
+      glBindVertexArray(lv.indirect.vertex_array);
+      glBindBuffer(GL_DRAW_INDIRECT_BUFFER, lv.indirect.command);
+      glDrawArraysIndirect(GL_TRIANGLES, nullptr);
+      glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+    }
     glDisable(GL_DEPTH_CLAMP);
     if (i == 0 && options.read_back) {
       frame.first_stencil = target.read_stencil();

@@ -53,10 +53,19 @@ class ShadedSoupMesh {
 
 enum class StencilMethod { zfail, zpass };
 
-// A light and the volume its shadows are counted with.
+// A volume the GPU built itself (gpu/compute_volume.h): a vertex array of vec4 triangles
+// (attribute 0) drawn by glDrawArraysIndirect(GL_TRIANGLES) from `command`, a
+// DrawArraysIndirectCommand whose count only the GPU knows.
+struct IndirectVolumeDraw {
+  GLuint vertex_array = 0;
+  GLuint command = 0;
+};
+
+// A light and the volume its shadows are counted with: `volume`, or else `indirect`.
 struct LightVolume {
   Light light;
   const ShadowVolumeMesh* volume = nullptr;
+  IndirectVolumeDraw indirect{};
 };
 
 struct StencilShadowOptions {

@@ -1,0 +1,164 @@
+#version 450 core
+// The `cs` shadow volume (gpu/compute_volume.h): multiplicities by Milet 2014's reference
+// edge (§2.2, Algorithms 2-4) and the chain of DESIGN.md §3, built in three dispatches of
+// this one shader (pass_kind):
+//   0 edges     : one invocation per edge (u, v), u < v: for every opposite vertex o, sort
+//                 {u, v, o} by canonical INDEX (index order is the vertex order,
+//                 scene/canonical_soup.h), evaluate the light-side value on the sorted
+//                 positions, undo the permutation by parity; m = - sum. Writes m and |m|
+//                 copies of the side quad (u, v, v_inf, u_inf) oriented by sign(m).
+//   1 triangles : one invocation per triangle: the same sorted evaluation gives s(t); front
+//                 cap t' and back cap (t' at infinity, reversed) where s != 0. Caps and sides
+//                 of a triangle come from one value, so the chain is closed by construction.
+//   2 finish    : one invocation: the draw count is what was reserved, clamped to the
+//                 buffer (an overflow is reported through `requested`, never drawn past).
+// The light-side value mirrors core/light_side_formula.h operation for operation; every
+// intermediate is `precise` so no FMA or reassociation changes its rounding (the CPU side
+// builds with -ffp-contract=off), which is what makes the signs equal the CPU's bit for bit.
+layout(local_size_x = 64) in;
+
+layout(std430, binding = 0) readonly buffer Vertices { vec4 vertices[]; };       // w = 1, float
+layout(std430, binding = 1) readonly buffer Edges { uvec2 edges[]; };            // (u, v), u < v
+layout(std430, binding = 2) readonly buffer FirstOpposite { uint first_opposite[]; };  // CSR rows
+layout(std430, binding = 3) readonly buffer OppositeVertex { uint opposite_vertex[]; };
+layout(std430, binding = 4) readonly buffer Triangles { uint triangle_index[]; };  // 3 per triangle
+// Edge multiplicities m at [0, edge_count), triangle cap signs s(t) after them.
+layout(std430, binding = 5) writeonly buffer Signs { int signs[]; };
+// DrawArraysIndirectCommand followed by the number of vertices the passes asked for.
+layout(std430, binding = 6) coherent buffer Command {
+  uint vertex_count;
+  uint instance_count;
+  uint first_vertex;
+  uint base_instance;
+  uint requested;
+};
+layout(std430, binding = 7) writeonly buffer Volume { vec4 volume[]; };  // triangles, 3 vec4 each
+
+layout(location = 0) uniform vec4 light;       // (l, w), rounded once to float
+layout(location = 1) uniform uint pass_kind;   // 0 edges, 1 triangles, 2 finish
+layout(location = 2) uniform uint item_count;  // edges or triangles of this pass
+layout(location = 3) uniform uint capacity;    // vertices the Volume buffer holds
+layout(location = 4) uniform uint edge_count;  // where the triangle signs start in Signs
+
+const uint kNoRoom = 0xFFFFFFFFu;
+
+// core/light_side_formula.h: X = C - A; Y = l - A w; N = X x Y; value = N . (B - A).
+float light_side_value(vec3 a, vec3 b, vec3 c) {
+  precise float x0 = c.x - a.x;
+  precise float x1 = c.y - a.y;
+  precise float x2 = c.z - a.z;
+  precise float y0 = light.x - a.x * light.w;
+  precise float y1 = light.y - a.y * light.w;
+  precise float y2 = light.z - a.z * light.w;
+  precise float n0 = x1 * y2 - x2 * y1;
+  precise float n1 = x2 * y0 - x0 * y2;
+  precise float n2 = x0 * y1 - x1 * y0;
+  precise float z0 = b.x - a.x;
+  precise float z1 = b.y - a.y;
+  precise float z2 = b.z - a.z;
+  precise float value = n0 * z0 + n1 * z1 + n2 * z2;
+  return value;
+}
+
+// Sign of D on an ascending index triple (a < b < c): the one evaluation a triangle gets.
+int sorted_side(uint a, uint b, uint c) {
+  const float value = light_side_value(vertices[a].xyz, vertices[b].xyz, vertices[c].xyz);
+  return value > 0.0 ? 1 : (value < 0.0 ? -1 : 0);
+}
+
+// x_inf = (x - l, 0) for a point light, (-l, 0) for a directional one (DESIGN.md §3).
+vec4 far_vertex(vec4 x) {
+  if (light.w == 0.0) return vec4(-light.xyz, 0.0);
+  precise vec3 d = x.xyz - light.xyz;
+  return vec4(d, 0.0);
+}
+
+// Reserves n vertices; kNoRoom when they do not fit (the count still records the request).
+uint reserve(uint n) {
+  const uint base = atomicAdd(requested, n);
+  return (n <= capacity && base <= capacity - n) ? base : kNoRoom;
+}
+
+void emit(uint at, vec4 a, vec4 b, vec4 c) {
+  volume[at] = a;
+  volume[at + 1u] = b;
+  volume[at + 2u] = c;
+}
+
+void edge_pass(uint e) {
+  const uint u = edges[e].x;
+  const uint v = edges[e].y;
+  int m = 0;
+  for (uint i = first_opposite[e]; i < first_opposite[e + 1u]; ++i) {
+    const uint o = opposite_vertex[i];
+    // Milet 2014, Algorithm 3: the three places o can take relative to u < v.
+    int s;
+    if (o < u) {
+      s = sorted_side(o, u, v);   // (u, v, o) is a rotation of (o, u, v): even
+    } else if (o < v) {
+      s = -sorted_side(u, o, v);  // one transposition: odd
+    } else {
+      s = sorted_side(u, v, o);
+    }
+    m -= s;
+  }
+  signs[e] = m;
+  if (m == 0) return;
+  // m copies of (u, v, v_inf, u_inf), i.e. |m| copies of (p, q, q_inf, p_inf) with p, q
+  // swapped when m < 0; a directional light's quad is the triangle (p, q, inf).
+  const vec4 p = vertices[m > 0 ? u : v];
+  const vec4 q = vertices[m > 0 ? v : u];
+  const vec4 p_inf = far_vertex(p);
+  const vec4 q_inf = far_vertex(q);
+  const uint copies = uint(abs(m));
+  const uint per_copy = light.w == 0.0 ? 3u : 6u;
+  const uint base = reserve(copies * per_copy);
+  if (base == kNoRoom) return;
+  for (uint k = 0u; k < copies; ++k) {
+    const uint at = base + k * per_copy;
+    emit(at, p, q, q_inf);
+    if (per_copy == 6u) emit(at + 3u, p, q_inf, p_inf);
+  }
+}
+
+void triangle_pass(uint t) {
+  const uint a = triangle_index[3u * t];
+  const uint b = triangle_index[3u * t + 1u];
+  const uint c = triangle_index[3u * t + 2u];
+  if (a == b || b == c || c == a) {  // no edges, casts nothing
+    signs[edge_count + t] = 0;
+    return;
+  }
+  const uint lo = min(a, min(b, c));
+  const uint hi = max(a, max(b, c));
+  const uint mid = a + b + c - lo - hi;  // exact in uint arithmetic (wraps cancel)
+  const int inversions = int(a > b) + int(a > c) + int(b > c);
+  const int sorted = sorted_side(lo, mid, hi);
+  const int s = (inversions % 2 == 0) ? sorted : -sorted;  // D(a, b, c) from D(lo, mid, hi)
+  signs[edge_count + t] = s;
+  if (s == 0) return;
+  // Front cap t' (normal towards the light), back cap t' at infinity, reversed.
+  const vec4 f0 = vertices[a];
+  const vec4 f1 = vertices[s > 0 ? b : c];
+  const vec4 f2 = vertices[s > 0 ? c : b];
+  const bool point = light.w != 0.0;
+  const uint base = reserve(point ? 6u : 3u);
+  if (base == kNoRoom) return;
+  emit(base, f0, f1, f2);
+  if (point) emit(base + 3u, far_vertex(f0), far_vertex(f2), far_vertex(f1));
+}
+
+void main() {
+  // Rows of work groups past GL_MAX_COMPUTE_WORK_GROUP_COUNT's guaranteed 65535 in x.
+  const uint id = gl_GlobalInvocationID.y * gl_NumWorkGroups.x * gl_WorkGroupSize.x + gl_GlobalInvocationID.x;
+  if (pass_kind == 2u) {
+    if (id == 0u) vertex_count = min(requested, capacity);
+    return;
+  }
+  if (id >= item_count) return;
+  if (pass_kind == 0u) {
+    edge_pass(id);
+  } else {
+    triangle_pass(id);
+  }
+}
