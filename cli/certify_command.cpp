@@ -16,6 +16,7 @@
 #include "cli/point_file.h"
 #include "cli/scene_input.h"
 #include "core/input_error.h"
+#include "exact/captured_volume.h"
 #include "exact/closure_certificate.h"
 #include "exact/count_certificate.h"
 #include "exact/edge_multiplicity.h"
@@ -39,6 +40,7 @@ struct CertifyOptions {
   std::uint64_t seed = 1;
   std::string points_file;
   std::string volume_out;
+  std::string volume;  // a captured volume (.vol) to certify alone
   std::string json_file;
 };
 
@@ -189,7 +191,49 @@ void print_report(const MethodReport& r) {
              r.multiplicity_seconds, r.chain_seconds, r.closure_seconds, r.counts.seconds);
 }
 
+// How many unbalanced edges are printed (and put in the JSON) with their coordinates.
+constexpr std::size_t kShownUnbalanced = 8;
+
+// certify --volume: closure of what a method drew (render --capture). An open volume from a
+// robust method is the bug this exists to catch, hence exit 1.
+int run_certify_volume(const CertifyOptions& options) {
+  const auto start = Clock::now();
+  const CapturedVolume volume = read_captured_volume(options.volume);
+  const CapturedClosure result = certify_captured_closure(volume);
+  const double seconds = seconds_since(start);
+  const ClosureCertificate& c = result.certificate;
+  fmt::print("{}: {} triangles, {} welded vertices\n", options.volume, result.welded.triangles.size(),
+             result.welded.vertices.size());
+  fmt::print("  closed                 {}", c.closed ? "yes" : "NO");
+  if (!c.closed) fmt::print(" ({} unbalanced edges)", c.unbalanced.size());
+  fmt::print("\n");
+  nlohmann::json first = nlohmann::json::array();
+  for (std::size_t i = 0; i < c.unbalanced.size() && i < kShownUnbalanced; ++i) {
+    const UnbalancedEdge& e = c.unbalanced[i];
+    const auto& a = result.welded.vertices[e.from];
+    const auto& b = result.welded.vertices[e.to];
+    fmt::print("  unbalanced edge ({}, {}, {}, {}) -> ({}, {}, {}, {}), excess {}\n", a[0], a[1], a[2], a[3], b[0],
+               b[1], b[2], b[3], e.excess);
+    first.push_back({{"from", a}, {"to", b}, {"excess", e.excess}});
+  }
+  if (!options.json_file.empty())
+    write_json_file(options.json_file, {{"volume", options.volume},
+                                        {"closed", c.closed},
+                                        {"unbalanced_edges", c.unbalanced.size()},
+                                        {"first_unbalanced", first},
+                                        {"triangles", result.welded.triangles.size()},
+                                        {"vertices", result.welded.vertices.size()},
+                                        {"seconds", seconds}});
+  return c.closed ? kExitOk : kExitCheckFailed;
+}
+
 int run_certify(const CertifyOptions& options) {
+  if (!options.volume.empty()) {
+    if (!options.input.empty())
+      throw CLI::ValidationError("--volume", "certifies a captured volume alone; drop the MESH|SCENE argument");
+    return run_certify_volume(options);
+  }
+  if (options.input.empty()) throw CLI::ValidationError("input", "give a MESH|SCENE file, or --volume FILE");
   const auto start = Clock::now();
   const Scene scene = load_scene_or_mesh(options.input);
   const Light light = chosen_light(options, scene);
@@ -258,7 +302,7 @@ int run_certify(const CertifyOptions& options) {
 void add_certify_command(CLI::App& app, int& exit_code) {
   auto options = std::make_shared<CertifyOptions>();
   CLI::App* cmd = app.add_subcommand("certify", "Exact multiplicities and shadow-volume certificates (DESIGN.md 4)");
-  cmd->add_option("input", options->input, "Mesh file (.obj .off .ply .stl) or scene (.json)")->required();
+  cmd->add_option("input", options->input, "Mesh file (.obj .off .ply .stl) or scene (.json); not with --volume");
   cmd->add_option("--light", options->light, "Light X,Y,Z,W (W = 1 point, W = 0 directional); default: the scene's first")
       ->delimiter(',')
       ->expected(4);
@@ -272,6 +316,8 @@ void add_certify_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--volume-out", options->volume_out,
                   "Write the chain (.off .obj .ply; far vertices pushed to a finite distance); with several "
                   "methods, one file per method named FILE_method.ext");
+  cmd->add_option("--volume", options->volume,
+                  "Certify only the closure of a captured volume (.vol from render --capture); exit 1 when open");
   cmd->add_option("--json", options->json_file, "Write the certificates as a JSON object to FILE");
   cmd->callback([options, &exit_code] { exit_code = run_certify(*options); });
 }

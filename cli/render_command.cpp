@@ -14,6 +14,7 @@
 #include "cli/exit_code.h"
 #include "cli/output_file.h"
 #include "cli/scene_input.h"
+#include "cli/volume_capture.h"
 #include "core/input_error.h"
 #include "exact/edge_multiplicity.h"
 #include "scene/edge_table.h"
@@ -22,6 +23,7 @@
 #include "gpu/egl_context.h"
 #include "gpu/gl_environment_error.h"
 #include "gpu/offscreen_target.h"
+#include "gpu/per_triangle_volume.h"
 #include "gpu/png_image.h"
 #include "gpu/shadow_volume_geometry.h"
 #include "gpu/stencil_shadow_renderer.h"
@@ -48,6 +50,7 @@ struct RenderOptions {
   std::string counts;
   std::string mask;
   std::string json_file;
+  std::string capture;  // the first light's volume as drawn (.vol, exact/captured_volume.h)
   std::optional<int> device;
 };
 
@@ -111,9 +114,10 @@ std::uint64_t count_pixels(const gpu::RgbaImage& colour, const gpu::GrayImage& s
 
 int run_render(const RenderOptions& options) {
   const auto start = Clock::now();
-  const bool cs = options.method == "cs";
-  if (options.method != "cpu" && !cs)
-    throw CLI::ValidationError("--method", "only 'cpu' and 'cs' exist so far (gs, ts, pertri, shadowmap come later)");
+  const bool pertri = options.method == "pertri";
+  const bool built_on_gpu = options.method == "cs" || pertri;  // cs and pertri build their volumes on the GPU
+  if (options.method != "cpu" && !built_on_gpu)
+    throw CLI::ValidationError("--method", "only 'cpu', 'cs' and 'pertri' exist so far (gs, ts, shadowmap come later)");
   if (options.zpass && options.zfail) throw CLI::ValidationError("--zpass", "excludes --zfail");
   Scene scene = load_scene_or_mesh(options.input);
   if (scene.lights.empty()) throw InputError(options.input, "the scene has no light");
@@ -127,7 +131,7 @@ int run_render(const RenderOptions& options) {
   const CanonicalSoup canonical = canonical_soup(merged);
   const EdgeTable table = build_edge_table(canonical.soup);
   std::vector<gpu::ShadowVolumeGeometry> geometries;
-  for (const Light& light : cs ? std::vector<Light>{} : scene.lights) {
+  for (const Light& light : built_on_gpu ? std::vector<Light>{} : scene.lights) {
     const EdgeMultiplicities m = exact_multiplicities(canonical.soup, table, light);
     geometries.push_back(to_geometry(assemble_chain(canonical.soup, table, m, light), canonical.soup, light));
   }
@@ -151,10 +155,14 @@ int run_render(const RenderOptions& options) {
   std::vector<std::unique_ptr<gpu::ShadowVolumeMesh>> volumes;
   std::optional<gpu::ComputeVolumeSoup> cs_soup;
   std::vector<std::unique_ptr<gpu::ComputeShadowVolume>> cs_volumes;
+  std::vector<std::unique_ptr<gpu::PerTriangleShadowVolume>> pertri_volumes;  // Milet 2014 §2.1
   std::vector<gpu::LightVolume> lights;
-  if (cs) cs_soup.emplace(canonical.soup, table);
+  if (built_on_gpu) cs_soup.emplace(canonical.soup, table);
   for (std::size_t i = 0; i < scene.lights.size(); ++i) {
-    if (cs) {
+    if (pertri) {
+      pertri_volumes.push_back(std::make_unique<gpu::PerTriangleShadowVolume>(*cs_soup));
+      lights.push_back({scene.lights[i], nullptr, pertri_volumes.back()->draw()});
+    } else if (built_on_gpu) {
       cs_volumes.push_back(std::make_unique<gpu::ComputeShadowVolume>(*cs_soup));
       lights.push_back({scene.lights[i], nullptr, cs_volumes.back()->draw()});
     } else {
@@ -166,6 +174,7 @@ int run_render(const RenderOptions& options) {
   // time includes the compute passes; cpu's chains are built once, before the frames.
   const auto build_cs_volumes = [&] {
     for (std::size_t i = 0; i < cs_volumes.size(); ++i) cs_volumes[i]->build(scene.lights[i]);
+    for (std::size_t i = 0; i < pertri_volumes.size(); ++i) pertri_volumes[i]->build(scene.lights[i]);
   };
   const gpu::OffscreenTarget target(scene.camera.width, scene.camera.height);
   const gpu::StencilShadowRenderer renderer;
@@ -176,15 +185,20 @@ int run_render(const RenderOptions& options) {
 
   stage = Clock::now();
   build_cs_volumes();
-  std::uint64_t volume_triangles = cs ? 0 : geometries.front().triangles.size();
-  if (cs) {
+  std::uint64_t volume_triangles = built_on_gpu ? 0 : geometries.front().triangles.size();
+  if (built_on_gpu) {
     // The output is sized for the worst case but clamped to one storage block: say so
     // rather than draw a partial (open) volume.
-    for (const auto& v : cs_volumes)
-      if (v->read_requested_vertices() > v->capacity_vertices())
-        throw InputError(options.input, "the cs volume needs more vertices than one GL storage buffer holds (" +
-                                            std::to_string(v->capacity_vertices()) + ")");
-    volume_triangles = cs_volumes.front()->read_requested_vertices() / 3;
+    const auto check_capacity = [&](const auto& gpu_volumes) {
+      for (const auto& v : gpu_volumes)
+        if (v->read_requested_vertices() > v->capacity_vertices())
+          throw InputError(options.input, "the " + options.method + " volume needs more vertices than its GL " +
+                                              "storage buffers hold (" + std::to_string(v->capacity_vertices()) + ")");
+    };
+    check_capacity(cs_volumes);
+    check_capacity(pertri_volumes);
+    volume_triangles = (pertri ? pertri_volumes.front()->read_requested_vertices()
+                               : cs_volumes.front()->read_requested_vertices()) / 3;
   }
   const gpu::StencilShadowFrame frame = renderer.render(target, receivers, scene.camera, lights, render_options);
   const double first_frame_seconds = seconds_since(stage);
@@ -201,6 +215,11 @@ int run_render(const RenderOptions& options) {
   if (!options.out.empty()) gpu::write_png(options.out, frame.colour);
   if (!options.counts.empty()) gpu::write_png(options.counts, frame.first_stencil);
   if (!options.mask.empty()) gpu::write_png(options.mask, frame.first_lit_mask);
+  if (!options.capture.empty())  // what was drawn, so that certify --volume checks the GPU's own output
+    write_capture(options.capture,
+                  built_on_gpu ? captured_volume(pertri ? pertri_volumes.front()->read_triangles()
+                                              : cs_volumes.front()->read_triangles()) : captured_volume(geometries.front()),
+                  options.input + ", method " + options.method + ", first light");
   const std::uint64_t lit = count_pixels(frame.colour, frame.first_stencil, true);
   const std::uint64_t shadowed = count_pixels(frame.colour, frame.first_stencil, false);
   const double seconds = seconds_since(start);
@@ -242,9 +261,10 @@ void add_render_command(CLI::App& app, int& exit_code) {
       "another; --counts, --mask and the pixel counts are for the FIRST light");
   cmd->add_option("input", options->input, "Mesh file (.obj .off .ply .stl) or scene (.json)")->required();
   cmd->add_option("--method", options->method,
-                  "How the volume is built: cpu (the exact chain from exact/, drawn as is) or cs (compute "
-                  "shader, float reference-edge multiplicities, rebuilt every frame; gpu/compute_volume.h). "
-                  "gs, ts, pertri and shadowmap come in later sessions")
+                  "How the volume is built: cpu (the exact chain from exact/, drawn as is), cs (compute "
+                  "shader, float reference-edge multiplicities, rebuilt every frame; gpu/compute_volume.h) or "
+                  "pertri (compute shader, every triangle's closed volume, no silhouette, rebuilt every frame; "
+                  "gpu/per_triangle_volume.h). gs, ts and shadowmap come in later sessions")
       ->capture_default_str();
   cmd->add_flag("--zfail", options->zfail, "Count faces behind the visible point (default; right with the eye in a volume)");
   cmd->add_flag("--zpass", options->zpass, "Count faces in front of the visible point (wrong with the eye in a volume)");
@@ -253,6 +273,8 @@ void add_render_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--counts", options->counts, "Write the first light's stencil counts mod 256 (8-bit gray PNG)");
   cmd->add_option("--mask", options->mask, "Write the first light's lit mask (255 where the count is 0)");
   cmd->add_option("--json", options->json_file, "Write method, size, renderer, pixel counts and timings as JSON");
+  cmd->add_option("--capture", options->capture,
+                  "Write the first light's volume as drawn (.vol text; check it with certify --volume FILE)");
   cmd->add_option("--device", options->device, "Use EGL device N (default: a hardware device, else llvmpipe)");
   cmd->callback([options, &exit_code] { exit_code = run_render(*options); });
 }

@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "gpu/compute_pass.h"
 #include "gpu/embedded_shaders.h"
 #include "gpu/gl_error.h"
 #include "gpu/shader_compiler.h"
@@ -29,43 +30,15 @@ constexpr GLint kCapacityLocation = 3;
 constexpr GLint kEdgeCountLocation = 4;
 constexpr GLuint kEdgePass = 0, kTrianglePass = 1, kFinishPass = 2;
 
-constexpr GLuint kLocalSize = 64;          // local_size_x of the shader
-constexpr GLuint kMaxGroupsX = 65535;      // GL_MAX_COMPUTE_WORK_GROUP_COUNT[0]'s guaranteed minimum
 constexpr std::uint64_t kVerticesPerSideOrCaps = 6;  // one quad or front + back cap: two triangles
-constexpr std::uint64_t kVertexBytes = 4 * sizeof(float);
-
-// DrawArraysIndirectCommand, then the vertices the passes reserved (the shader's Command).
-struct Command {
-  GLuint count = 0;
-  GLuint instance_count = 1;
-  GLuint first = 0;
-  GLuint base_instance = 0;
-  GLuint requested = 0;
-};
-
-// glNamedBufferStorage rejects size 0: an empty array still gets a 4-byte buffer.
-template <class T>
-void upload(const Buffer& buffer, const std::vector<T>& data) {
-  const std::uint32_t none = 0;
-  glNamedBufferStorage(buffer.name(), data.empty() ? sizeof none : static_cast<GLsizeiptr>(data.size() * sizeof(T)),
-                       data.empty() ? static_cast<const void*>(&none) : data.data(), 0);
-}
-
-void dispatch(std::uint32_t items) {
-  const GLuint groups = (items + kLocalSize - 1) / kLocalSize;
-  if (groups == 0) return;
-  const GLuint x = std::min(groups, kMaxGroupsX);
-  glDispatchCompute(x, (groups + x - 1) / x, 1);  // the shader skips ids past item_count
-}
+using compute_pass::Command;
+using compute_pass::dispatch;
+using compute_pass::kVertexBytes;
+using compute_pass::upload;
 
 template <class T>
 std::vector<T> read_buffer(GLuint buffer, std::size_t offset_items, std::size_t count) {
-  std::vector<T> out(count);
-  if (count != 0)
-    glGetNamedBufferSubData(buffer, static_cast<GLintptr>(offset_items * sizeof(T)),
-                            static_cast<GLsizeiptr>(count * sizeof(T)), out.data());
-  check_gl_errors("ComputeShadowVolume readback");
-  return out;
+  return compute_pass::read_buffer<T>(buffer, offset_items, count, "ComputeShadowVolume readback");
 }
 
 }  // namespace
@@ -125,10 +98,7 @@ ComputeShadowVolume::ComputeShadowVolume(const ComputeVolumeSoup& soup)
   glNamedBufferStorage(command_.name(), sizeof initial, &initial, GL_DYNAMIC_STORAGE_BIT);
   glNamedBufferStorage(volume_.name(),
                        static_cast<GLsizeiptr>(std::max<std::uint64_t>(capacity_, 1) * kVertexBytes), nullptr, 0);
-  glVertexArrayVertexBuffer(vertex_array_.name(), 0, volume_.name(), 0, static_cast<GLsizei>(kVertexBytes));
-  glVertexArrayAttribFormat(vertex_array_.name(), 0, 4, GL_FLOAT, GL_FALSE, 0);
-  glVertexArrayAttribBinding(vertex_array_.name(), 0, 0);
-  glEnableVertexArrayAttrib(vertex_array_.name(), 0);
+  compute_pass::attach_volume(vertex_array_, volume_);
   check_gl_errors("ComputeShadowVolume buffers");
 }
 

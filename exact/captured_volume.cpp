@@ -1,0 +1,182 @@
+#include "exact/captured_volume.h"
+
+#include <bit>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <unordered_map>
+
+#include "core/input_error.h"
+#include "exact/shadow_volume_chain.h"
+
+namespace shadowcert {
+namespace {
+
+using Key = std::array<std::uint32_t, 4>;
+
+// -0 and +0 are one point; everything else (NaN payloads included) is compared by bits.
+Key weld_key(const std::array<float, 4>& v) {
+  Key k{};
+  for (int i = 0; i < 4; ++i) k[i] = v[i] == 0.0f ? 0u : std::bit_cast<std::uint32_t>(v[i]);
+  return k;
+}
+
+struct KeyHash {
+  std::size_t operator()(const Key& k) const {
+    std::uint64_t h = 0x9e3779b97f4a7c15ull;
+    for (std::uint32_t x : k) h = (h ^ x) * 0xff51afd7ed558ccdull;
+    return static_cast<std::size_t>(h ^ (h >> 32));
+  }
+};
+
+std::string_view next_token(std::string_view& rest) {
+  const auto begin = rest.find_first_not_of(" \t\r");
+  if (begin == std::string_view::npos) {
+    rest = {};
+    return {};
+  }
+  rest.remove_prefix(begin);
+  const auto end = rest.find_first_of(" \t\r");
+  const std::string_view token = rest.substr(0, end);
+  rest.remove_prefix(end == std::string_view::npos ? rest.size() : end);
+  return token;
+}
+
+}  // namespace
+
+CapturedVolume weld_captured_volume(const CapturedVolume& volume) {
+  CapturedVolume welded;
+  std::unordered_map<Key, std::uint32_t, KeyHash> ids;
+  ids.reserve(volume.vertices.size());
+  std::vector<std::uint32_t> remap(volume.vertices.size());
+  for (std::size_t i = 0; i < volume.vertices.size(); ++i) {
+    const auto [it, inserted] = ids.try_emplace(weld_key(volume.vertices[i]),
+                                                static_cast<std::uint32_t>(welded.vertices.size()));
+    // The first-seen bits represent the welded vertex, so a lone -0 is written as -0.
+    if (inserted) welded.vertices.push_back(volume.vertices[i]);
+    remap[i] = it->second;
+  }
+  welded.triangles.reserve(volume.triangles.size());
+  for (const auto& t : volume.triangles) {
+    std::array<std::uint32_t, 3> w{};
+    for (int k = 0; k < 3; ++k) {
+      if (t[k] >= remap.size())
+        throw std::invalid_argument("weld_captured_volume: vertex index " + std::to_string(t[k]) + " but " +
+                                    std::to_string(remap.size()) + " vertices");
+      w[k] = remap[t[k]];
+    }
+    welded.triangles.push_back(w);
+  }
+  return welded;
+}
+
+void write_captured_volume(const std::filesystem::path& file, const CapturedVolume& volume,
+                           std::string_view comment) {
+  const CapturedVolume welded = weld_captured_volume(volume);
+  std::ofstream out(file, std::ios::binary);
+  if (!out) throw InputError(file.string(), "cannot open for writing");
+  std::string text = "# shadowcert captured shadow volume (docs/cli.md): v x y z w, f a b c (1-based)\n";
+  std::string_view rest = comment;
+  while (!rest.empty()) {
+    const auto end = rest.find('\n');
+    text.append("# ").append(rest.substr(0, end)).append("\n");
+    rest.remove_prefix(end == std::string_view::npos ? rest.size() : end + 1);
+  }
+  // 9 significant digits (max_digits10 of float) read back bit for bit.
+  // to_chars, not printf: no locale can turn the decimal point into a comma.
+  char buffer[32];
+  for (const auto& v : welded.vertices) {
+    text += 'v';
+    for (float x : v) {
+      const auto end = std::to_chars(buffer, buffer + sizeof buffer, x, std::chars_format::general, 9).ptr;
+      text.append(" ").append(buffer, end);
+    }
+    text += '\n';
+  }
+  for (const auto& t : welded.triangles)
+    text.append("f ")
+        .append(std::to_string(t[0] + std::uint64_t{1}))
+        .append(" ")
+        .append(std::to_string(t[1] + std::uint64_t{1}))
+        .append(" ")
+        .append(std::to_string(t[2] + std::uint64_t{1}))
+        .append("\n");
+  out << text;
+  out.flush();
+  if (!out) throw InputError(file.string(), "write failed");
+}
+
+CapturedVolume read_captured_volume(const std::filesystem::path& file) {
+  const std::string name = file.string();
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw InputError(name, "cannot open");
+  CapturedVolume volume;
+  struct Face {
+    std::vector<std::uint64_t> indices;
+    std::size_t line;
+  };
+  std::vector<Face> faces;  // checked once every vertex is known (vertices may follow faces)
+  std::string line;
+  for (std::size_t number = 1; std::getline(in, line); ++number) {
+    std::string_view rest = line;
+    const std::string_view tag = next_token(rest);
+    if (tag.empty() || tag.front() == '#') continue;
+    if (tag == "v") {
+      std::array<float, 4> v{};
+      for (int k = 0; k < 4; ++k) {
+        const std::string_view token = next_token(rest);
+        if (token.empty()) throw InputError(name, number, "a vertex needs four numbers x y z w");
+        const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), v[k]);
+        if (ec != std::errc() || end != token.data() + token.size())
+          throw InputError(name, number, "'" + std::string(token) + "' is not a float");
+        if (!std::isfinite(v[k])) throw InputError(name, number, "coordinates must be finite");
+      }
+      if (!next_token(rest).empty()) throw InputError(name, number, "a vertex has exactly four numbers x y z w");
+      if (v[3] != 0.0f && v[3] != 1.0f) throw InputError(name, number, "w must be 1 (finite) or 0 (at infinity)");
+      volume.vertices.push_back(v);
+    } else if (tag == "f") {
+      Face face{{}, number};
+      for (std::string_view token = next_token(rest); !token.empty(); token = next_token(rest)) {
+        std::uint64_t index = 0;
+        const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), index);
+        if (ec != std::errc() || end != token.data() + token.size() || index == 0)
+          throw InputError(name, number, "'" + std::string(token) + "' is not a 1-based vertex index");
+        face.indices.push_back(index - 1);
+      }
+      if (face.indices.size() < 3) throw InputError(name, number, "a face needs at least 3 vertices");
+      faces.push_back(std::move(face));
+    } else {
+      throw InputError(name, number, "unknown record '" + std::string(tag) + "' (expected v, f or #)");
+    }
+  }
+  if (in.bad()) throw InputError(name, "read failed");
+  for (const Face& face : faces) {
+    for (std::uint64_t index : face.indices)
+      if (index >= volume.vertices.size())
+        throw InputError(name, face.line,
+                         "vertex index " + std::to_string(index + 1) + " but the file has " +
+                             std::to_string(volume.vertices.size()) + " vertices");
+    for (std::size_t k = 1; k + 1 < face.indices.size(); ++k)
+      volume.triangles.push_back({static_cast<std::uint32_t>(face.indices[0]),
+                                  static_cast<std::uint32_t>(face.indices[k]),
+                                  static_cast<std::uint32_t>(face.indices[k + 1])});
+  }
+  return volume;
+}
+
+CapturedClosure certify_captured_closure(const CapturedVolume& volume) {
+  CapturedClosure result{weld_captured_volume(volume), {}};
+  // certify_closure on a triangles-only chain: with `directional` its id range is n + 1,
+  // which covers the n welded vertices; the far-vertex convention plays no part here.
+  ShadowVolumeChain chain;
+  chain.finite_vertices = static_cast<std::uint32_t>(result.welded.vertices.size());
+  chain.directional = true;
+  chain.triangles = result.welded.triangles;
+  result.certificate = certify_closure(chain);
+  return result;
+}
+
+}  // namespace shadowcert

@@ -1,0 +1,65 @@
+#pragma once
+// Plumbing shared by the compute-built volumes (gpu/compute_volume.h `cs`,
+// gpu/per_triangle_volume.h `pertri`): storage uploads, 1D work split over a 2D grid, the
+// indirect draw command with its request counter, and synchronous readbacks. Internal to
+// gpu/: the shaders' layouts (Command, local size 64) are fixed here once.
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "gpu/gl_error.h"
+#include "gpu/gl_object.h"
+
+namespace shadowcert::gpu::compute_pass {
+
+constexpr GLuint kLocalSize = 64;      // local_size_x of every volume shader
+constexpr GLuint kMaxGroupsX = 65535;  // GL_MAX_COMPUTE_WORK_GROUP_COUNT[0]'s guaranteed minimum
+constexpr std::uint64_t kVertexBytes = 4 * sizeof(float);  // one vec4 volume vertex
+
+// DrawArraysIndirectCommand, then the vertices the passes reserved (the shaders' Command).
+struct Command {
+  GLuint count = 0;
+  GLuint instance_count = 1;
+  GLuint first = 0;
+  GLuint base_instance = 0;
+  GLuint requested = 0;
+};
+
+// glNamedBufferStorage rejects size 0: an empty array still gets a 4-byte buffer.
+template <class T>
+void upload(const Buffer& buffer, const std::vector<T>& data) {
+  const std::uint32_t none = 0;
+  glNamedBufferStorage(buffer.name(), data.empty() ? sizeof none : static_cast<GLsizeiptr>(data.size() * sizeof(T)),
+                       data.empty() ? static_cast<const void*>(&none) : data.data(), 0);
+}
+
+// One invocation per item; the shaders skip ids past their item count and fold the y rows
+// back into one index (gl_GlobalInvocationID.y * gl_NumWorkGroups.x * 64 + x).
+inline void dispatch(std::uint32_t items) {
+  const GLuint groups = (items + kLocalSize - 1) / kLocalSize;
+  if (groups == 0) return;
+  const GLuint x = std::min(groups, kMaxGroupsX);
+  glDispatchCompute(x, (groups + x - 1) / x, 1);
+}
+
+template <class T>
+std::vector<T> read_buffer(GLuint buffer, std::size_t offset_items, std::size_t count, const char* what) {
+  std::vector<T> out(count);
+  if (count != 0)
+    glGetNamedBufferSubData(buffer, static_cast<GLintptr>(offset_items * sizeof(T)),
+                            static_cast<GLsizeiptr>(count * sizeof(T)), out.data());
+  check_gl_errors(what);
+  return out;
+}
+
+// A vertex array reading `volume` as tightly packed vec4 at attribute 0 (what
+// StencilShadowRenderer's volume pass expects of an IndirectVolumeDraw).
+inline void attach_volume(const VertexArray& vertex_array, const Buffer& volume) {
+  glVertexArrayVertexBuffer(vertex_array.name(), 0, volume.name(), 0, static_cast<GLsizei>(kVertexBytes));
+  glVertexArrayAttribFormat(vertex_array.name(), 0, 4, GL_FLOAT, GL_FALSE, 0);
+  glVertexArrayAttribBinding(vertex_array.name(), 0, 0);
+  glEnableVertexArrayAttrib(vertex_array.name(), 0);
+}
+
+}  // namespace shadowcert::gpu::compute_pass

@@ -1,0 +1,155 @@
+#version 450 core
+// The `pertri` shadow volume (gpu/per_triangle_volume.h): Milet 2014 §2.1's per-triangle
+// volumes, no silhouette. One invocation per triangle t; where s(t) != 0 it writes the whole
+// V(t) of DESIGN.md §3: front cap t' (t, reversed when s = -1), for each directed edge (u, v)
+// of t' the side quad (v, u, u_inf, v_inf) as two triangles, and the back cap (t' at
+// infinity, reversed). s(t) is taken ONCE, by the reference-edge evaluation of
+// compute_volume.comp.glsl's triangle pass (sorted canonical indices, `precise` light-side
+// value, parity), and used for caps and sides alike: each V(t) is closed on its own, whatever
+// the rounding (a per-edge re-evaluation could flip one side and open it).
+layout(local_size_x = 64) in;
+
+layout(std430, binding = 0) readonly buffer Vertices { vec4 vertices[]; };       // w = 1, float
+layout(std430, binding = 1) readonly buffer Triangles { uint triangle_index[]; };  // 3 per triangle
+layout(std430, binding = 2) writeonly buffer Signs { int signs[]; };             // s(t) per triangle
+// DrawArraysIndirectCommand followed by the number of vertices the triangles asked for.
+layout(std430, binding = 3) coherent buffer Command {
+  uint vertex_count;
+  uint instance_count;
+  uint first_vertex;
+  uint base_instance;
+  uint requested;
+};
+// The output volume through four windows of one buffer: one storage block may address only
+// GL_MAX_SHADER_STORAGE_BLOCK_SIZE (llvmpipe 128 MiB = 8M vertices) but 1M triangles need
+// 24M vertices. Vertex i lives in window i / window_vertices.
+layout(std430, binding = 4) writeonly buffer Volume0 { vec4 volume0[]; };
+layout(std430, binding = 5) writeonly buffer Volume1 { vec4 volume1[]; };
+layout(std430, binding = 6) writeonly buffer Volume2 { vec4 volume2[]; };
+layout(std430, binding = 7) writeonly buffer Volume3 { vec4 volume3[]; };
+
+layout(location = 0) uniform vec4 light;             // (l, w), rounded once to float
+layout(location = 1) uniform uint pass_kind;         // 0 triangles, 1 finish
+layout(location = 2) uniform uint item_count;        // triangles
+layout(location = 3) uniform uint capacity;          // vertices the windows hold together
+layout(location = 4) uniform uint window_vertices;   // vertices per window
+
+const uint kNoRoom = 0xFFFFFFFFu;
+
+// core/light_side_formula.h: X = C - A; Y = l - A w; N = X x Y; value = N . (B - A).
+float light_side_value(vec3 a, vec3 b, vec3 c) {
+  precise float x0 = c.x - a.x;
+  precise float x1 = c.y - a.y;
+  precise float x2 = c.z - a.z;
+  precise float y0 = light.x - a.x * light.w;
+  precise float y1 = light.y - a.y * light.w;
+  precise float y2 = light.z - a.z * light.w;
+  precise float n0 = x1 * y2 - x2 * y1;
+  precise float n1 = x2 * y0 - x0 * y2;
+  precise float n2 = x0 * y1 - x1 * y0;
+  precise float z0 = b.x - a.x;
+  precise float z1 = b.y - a.y;
+  precise float z2 = b.z - a.z;
+  precise float value = n0 * z0 + n1 * z1 + n2 * z2;
+  return value;
+}
+
+// x_inf = (x - l, 0) for a point light, (-l, 0) for a directional one (DESIGN.md §3).
+vec4 far_vertex(vec4 x) {
+  if (light.w == 0.0) return vec4(-light.xyz, 0.0);
+  precise vec3 d = x.xyz - light.xyz;
+  return vec4(d, 0.0);
+}
+
+void store(uint at, vec4 x) {
+  const uint window = at / window_vertices;
+  const uint i = at - window * window_vertices;
+  if (window == 0u) {
+    volume0[i] = x;
+  } else if (window == 1u) {
+    volume1[i] = x;
+  } else if (window == 2u) {
+    volume2[i] = x;
+  } else {
+    volume3[i] = x;
+  }
+}
+
+void emit(uint at, vec4 a, vec4 b, vec4 c) {
+  store(at, a);
+  store(at + 1u, b);
+  store(at + 2u, c);
+}
+
+void triangle_pass(uint t) {
+  const uint a = triangle_index[3u * t];
+  const uint b = triangle_index[3u * t + 1u];
+  const uint c = triangle_index[3u * t + 2u];
+  if (a == b || b == c || c == a) {  // no edges, casts nothing
+    signs[t] = 0;
+    return;
+  }
+  const uint lo = min(a, min(b, c));
+  const uint hi = max(a, max(b, c));
+  const uint mid = a + b + c - lo - hi;  // exact in uint arithmetic (wraps cancel)
+  const int inversions = int(a > b) + int(a > c) + int(b > c);
+  const float value = light_side_value(vertices[lo].xyz, vertices[mid].xyz, vertices[hi].xyz);
+  const int sorted = value > 0.0 ? 1 : (value < 0.0 ? -1 : 0);
+  const int s = (inversions % 2 == 0) ? sorted : -sorted;  // D(a, b, c) from D(lo, mid, hi)
+  signs[t] = s;
+  if (s == 0) return;
+  // t' = (p0, p1, p2): its normal faces the light.
+  uint id[3];
+  id[0] = a;
+  id[1] = s > 0 ? b : c;
+  id[2] = s > 0 ? c : b;
+  vec4 p[3];
+  for (int k = 0; k < 3; ++k) p[k] = vertices[id[k]];
+  vec4 f[3];
+  for (int k = 0; k < 3; ++k) f[k] = far_vertex(p[k]);
+  // Point light: front cap, 3 quads (6 triangles), back cap = 24 vertices. Directional: all
+  // far vertices are (-l, 0), so a quad is the one triangle (v, u, inf) and the back cap
+  // collapses to a point: front cap + 3 triangles = 12 vertices.
+  const bool point = light.w != 0.0;
+  const uint n = point ? 24u : 12u;
+  const uint base = atomicAdd(requested, n);
+  if (n > capacity || base > capacity - n) return;  // overflow: reported through `requested`
+  uint at = base;
+  emit(at, p[0], p[1], p[2]);
+  at += 3u;
+  for (int k = 0; k < 3; ++k) {
+    const int u = k;
+    const int v = (k + 1) % 3;
+    // Quad (v, u, u_inf, v_inf) split on the diagonal from the edge's lower canonical
+    // index to the other end's far vertex, whatever the orientation: the neighbour across an
+    // interior edge then emits the very same two triangles reversed, so the pair cancels
+    // pixel for pixel. Split by orientation instead (first to third vertex, as cs and cpu
+    // split a chain quad), the two halves of a rounded, not quite planar quad disagree near
+    // the edge with the depth of the lit surface and leave shadow acne along every edge
+    // (measured on sphere_grid_1m.json: 8189 more shadowed pixels than cpu).
+    if (!point) {
+      emit(at, p[v], p[u], f[u]);
+      at += 3u;
+    } else if (id[v] < id[u]) {
+      emit(at, p[v], p[u], f[u]);
+      emit(at + 3u, p[v], f[u], f[v]);
+      at += 6u;
+    } else {
+      emit(at, p[u], f[u], f[v]);
+      emit(at + 3u, p[u], f[v], p[v]);
+      at += 6u;
+    }
+  }
+  if (point) emit(at, f[0], f[2], f[1]);
+}
+
+void main() {
+  // Rows of work groups past GL_MAX_COMPUTE_WORK_GROUP_COUNT's guaranteed 65535 in x.
+  const uint id = gl_GlobalInvocationID.y * gl_NumWorkGroups.x * gl_WorkGroupSize.x + gl_GlobalInvocationID.x;
+  if (pass_kind == 1u) {
+    if (id == 0u) vertex_count = min(requested, capacity);
+    return;
+  }
+  if (id >= item_count) return;
+  triangle_pass(id);
+}
