@@ -21,10 +21,12 @@
 #include "exact/shadow_volume_chain.h"
 #include "gpu/compute_volume.h"
 #include "gpu/egl_context.h"
+#include "gpu/geometry_shader_volume.h"
 #include "gpu/gl_environment_error.h"
 #include "gpu/offscreen_target.h"
 #include "gpu/per_triangle_volume.h"
 #include "gpu/png_image.h"
+#include "gpu/shadow_map_renderer.h"
 #include "gpu/shadow_volume_geometry.h"
 #include "gpu/stencil_shadow_renderer.h"
 #include "scene/canonical_soup.h"
@@ -52,6 +54,11 @@ struct RenderOptions {
   std::string json_file;
   std::string capture;  // the first light's volume as drawn (.vol, exact/captured_volume.h)
   std::optional<int> device;
+  // --method shadowmap only (gpu/shadow_map_renderer.h). The size is wide so that a value
+  // over the limit gets run_shadowmap's message rather than a parse error.
+  long long shadowmap_size = gpu::kDefaultShadowMapSize;
+  float shadowmap_bias = gpu::kDefaultShadowMapBias;
+  float shadowmap_slope = gpu::kDefaultShadowMapSlope;
 };
 
 using Clock = std::chrono::steady_clock;
@@ -112,12 +119,98 @@ std::uint64_t count_pixels(const gpu::RgbaImage& colour, const gpu::GrayImage& s
   return n;
 }
 
+// --method shadowmap: no volume, one depth map per light (gpu/shadow_map_renderer.h). The
+// outputs keep the stencil methods' shape; the counts image holds 0 where the first light's
+// map comparison says lit and 1 where it says shadowed (a map has no counts).
+int run_shadowmap(const RenderOptions& options) {
+  const auto start = Clock::now();
+  if (options.shadowmap_size < 1 || options.shadowmap_size > gpu::kMaxShadowMapSize)
+    throw CLI::ValidationError("--shadowmap-size", fmt::format("must be in [1, {}] (a {}^2 depth texture), got {}",
+                                                               gpu::kMaxShadowMapSize, gpu::kMaxShadowMapSize,
+                                                               options.shadowmap_size));
+  if (options.zpass) throw CLI::ValidationError("--zpass", "is a stencil option; shadowmap counts no volume");
+  if (!options.capture.empty()) throw CLI::ValidationError("--capture", "shadowmap draws no volume to capture");
+  Scene scene = load_scene_or_mesh(options.input);
+  if (scene.lights.empty()) throw InputError(options.input, "the scene has no light");
+  apply_size(options.size, scene.camera);
+  const Soup merged = merged_soup(scene);
+  if (merged.triangles.empty()) throw InputError(options.input, "no triangle to render");
+
+  std::optional<gpu::EglContext> context;
+  try {
+    context.emplace(gpu::EglContextOptions{options.device, gpu::kGlDebugByDefault});
+  } catch (const gpu::GlEnvironmentError& e) {
+    throw gpu::GlEnvironmentError(
+        "render needs OpenGL 4.5 core through headless EGL (a GPU driver or Mesa's llvmpipe: packages "
+        "libegl-mesa0 libgl1-mesa-dri); " + std::string(e.what()));
+  }
+  auto stage = Clock::now();
+  std::vector<gpu::ShadedSoupPart> parts;
+  for (std::size_t i = 0; i < scene.meshes.size(); ++i)
+    parts.push_back({&scene.meshes[i].soup, kPalette[i % kPalette.size()]});
+  const gpu::ShadedSoupMesh receivers(parts);
+  const gpu::OffscreenTarget target(scene.camera.width, scene.camera.height);
+  const gpu::ShadowMapRenderer renderer(static_cast<std::uint32_t>(options.shadowmap_size));
+  const gpu::SceneBounds bounds = gpu::soup_bounds(merged);
+  gpu::ShadowMapOptions render_options;
+  render_options.depth_bias = options.shadowmap_bias;
+  render_options.slope_scale = options.shadowmap_slope;
+  for (auto& c : render_options.light_colour) c /= static_cast<float>(scene.lights.size());
+  const double upload_seconds = seconds_since(stage);
+
+  stage = Clock::now();
+  const gpu::StencilShadowFrame frame = renderer.render(target, receivers, bounds, scene.camera, scene.lights, render_options);
+  const double first_frame_seconds = seconds_since(stage);
+  render_options.read_back = false;
+  stage = Clock::now();
+  for (int i = 0; i < kTimedFrames; ++i) {
+    (void)renderer.render(target, receivers, bounds, scene.camera, scene.lights, render_options);
+    glFinish();
+  }
+  const double frame_ms = 1000.0 * seconds_since(stage) / kTimedFrames;
+
+  for (const std::string& file : {options.out, options.counts, options.mask}) create_parent_directories(file);
+  if (!options.out.empty()) gpu::write_png(options.out, frame.colour);
+  if (!options.counts.empty()) gpu::write_png(options.counts, frame.first_stencil);
+  if (!options.mask.empty()) gpu::write_png(options.mask, frame.first_lit_mask);
+  const std::uint64_t lit = count_pixels(frame.colour, frame.first_stencil, true);
+  const std::uint64_t shadowed = count_pixels(frame.colour, frame.first_stencil, false);
+  const double seconds = seconds_since(start);
+
+  fmt::print("{}: {} triangles, {} lights, {}x{}, shadowmap {}^2 (bias {}, slope {}) on {}\n", options.input,
+             merged.triangles.size(), scene.lights.size(), scene.camera.width, scene.camera.height,
+             options.shadowmap_size, options.shadowmap_bias, options.shadowmap_slope, context->renderer());
+  fmt::print("  first light: {} lit, {} shadowed receiver pixels\n", lit, shadowed);
+  fmt::print("  seconds: upload {:.3f}, first frame {:.3f}; {:.2f} ms per frame ({} frames)\n", upload_seconds,
+             first_frame_seconds, frame_ms, kTimedFrames);
+  if (!options.json_file.empty()) {
+    write_json_file(options.json_file,
+                    {{"input", options.input},
+                     {"method", options.method},
+                     {"shadowmap", {{"size", options.shadowmap_size},
+                                    {"bias", options.shadowmap_bias},
+                                    {"slope", options.shadowmap_slope}}},
+                     {"size", {scene.camera.width, scene.camera.height}},
+                     {"renderer", context->renderer()},
+                     {"device", context->device()},
+                     {"lights", scene.lights.size()},
+                     {"lit_pixels", lit},
+                     {"shadowed_pixels", shadowed},
+                     {"frame_ms", frame_ms},
+                     {"seconds", seconds},
+                     {"stage_seconds", {{"upload", upload_seconds}, {"first_frame", first_frame_seconds}}}});
+  }
+  return kExitOk;
+}
+
 int run_render(const RenderOptions& options) {
+  if (options.method == "shadowmap") return run_shadowmap(options);
   const auto start = Clock::now();
   const bool pertri = options.method == "pertri";
-  const bool built_on_gpu = options.method == "cs" || pertri;  // cs and pertri build their volumes on the GPU
+  const bool gs = options.method == "gs";
+  const bool built_on_gpu = options.method == "cs" || pertri || gs;  // cs, pertri and gs build their volumes on the GPU
   if (options.method != "cpu" && !built_on_gpu)
-    throw CLI::ValidationError("--method", "only 'cpu', 'cs' and 'pertri' exist so far (gs, ts, shadowmap come later)");
+    throw CLI::ValidationError("--method", "only 'cpu', 'cs', 'pertri', 'gs' and 'shadowmap' exist so far (ts comes later)");
   if (options.zpass && options.zfail) throw CLI::ValidationError("--zpass", "excludes --zfail");
   Scene scene = load_scene_or_mesh(options.input);
   if (scene.lights.empty()) throw InputError(options.input, "the scene has no light");
@@ -156,12 +249,16 @@ int run_render(const RenderOptions& options) {
   std::optional<gpu::ComputeVolumeSoup> cs_soup;
   std::vector<std::unique_ptr<gpu::ComputeShadowVolume>> cs_volumes;
   std::vector<std::unique_ptr<gpu::PerTriangleShadowVolume>> pertri_volumes;  // Milet 2014 §2.1
+  std::vector<std::unique_ptr<gpu::GeometryShaderShadowVolume>> gs_volumes;
   std::vector<gpu::LightVolume> lights;
   if (built_on_gpu) cs_soup.emplace(canonical.soup, table);
   for (std::size_t i = 0; i < scene.lights.size(); ++i) {
     if (pertri) {
       pertri_volumes.push_back(std::make_unique<gpu::PerTriangleShadowVolume>(*cs_soup));
       lights.push_back({scene.lights[i], nullptr, pertri_volumes.back()->draw()});
+    } else if (gs) {
+      gs_volumes.push_back(std::make_unique<gpu::GeometryShaderShadowVolume>(*cs_soup, table));
+      lights.push_back({scene.lights[i], nullptr, gs_volumes.back()->draw()});
     } else if (built_on_gpu) {
       cs_volumes.push_back(std::make_unique<gpu::ComputeShadowVolume>(*cs_soup));
       lights.push_back({scene.lights[i], nullptr, cs_volumes.back()->draw()});
@@ -175,6 +272,7 @@ int run_render(const RenderOptions& options) {
   const auto build_cs_volumes = [&] {
     for (std::size_t i = 0; i < cs_volumes.size(); ++i) cs_volumes[i]->build(scene.lights[i]);
     for (std::size_t i = 0; i < pertri_volumes.size(); ++i) pertri_volumes[i]->build(scene.lights[i]);
+    for (std::size_t i = 0; i < gs_volumes.size(); ++i) gs_volumes[i]->build(scene.lights[i]);
   };
   const gpu::OffscreenTarget target(scene.camera.width, scene.camera.height);
   const gpu::StencilShadowRenderer renderer;
@@ -197,7 +295,9 @@ int run_render(const RenderOptions& options) {
     };
     check_capacity(cs_volumes);
     check_capacity(pertri_volumes);
+    check_capacity(gs_volumes);
     volume_triangles = (pertri ? pertri_volumes.front()->read_requested_vertices()
+                        : gs   ? gs_volumes.front()->read_requested_vertices()
                                : cs_volumes.front()->read_requested_vertices()) / 3;
   }
   const gpu::StencilShadowFrame frame = renderer.render(target, receivers, scene.camera, lights, render_options);
@@ -218,6 +318,7 @@ int run_render(const RenderOptions& options) {
   if (!options.capture.empty())  // what was drawn, so that certify --volume checks the GPU's own output
     write_capture(options.capture,
                   built_on_gpu ? captured_volume(pertri ? pertri_volumes.front()->read_triangles()
+                                              : gs  ? gs_volumes.front()->read_triangles()
                                               : cs_volumes.front()->read_triangles()) : captured_volume(geometries.front()),
                   options.input + ", method " + options.method + ", first light");
   const std::uint64_t lit = count_pixels(frame.colour, frame.first_stencil, true);
@@ -262,9 +363,11 @@ void add_render_command(CLI::App& app, int& exit_code) {
   cmd->add_option("input", options->input, "Mesh file (.obj .off .ply .stl) or scene (.json)")->required();
   cmd->add_option("--method", options->method,
                   "How the volume is built: cpu (the exact chain from exact/, drawn as is), cs (compute "
-                  "shader, float reference-edge multiplicities, rebuilt every frame; gpu/compute_volume.h) or "
+                  "shader, float reference-edge multiplicities, rebuilt every frame; gpu/compute_volume.h), "
                   "pertri (compute shader, every triangle's closed volume, no silhouette, rebuilt every frame; "
-                  "gpu/per_triangle_volume.h). gs, ts and shadowmap come in later sessions")
+                  "gpu/per_triangle_volume.h) or gs (geometry shader over edge records, float reference-edge "
+                  "multiplicities, captured by transform feedback, rebuilt every frame; "
+                  "gpu/geometry_shader_volume.h). shadowmap (no volume: a depth map from each light, --shadowmap-size/-bias/-slope; gpu/shadow_map_renderer.h); ts comes in a later session")
       ->capture_default_str();
   cmd->add_flag("--zfail", options->zfail, "Count faces behind the visible point (default; right with the eye in a volume)");
   cmd->add_flag("--zpass", options->zpass, "Count faces in front of the visible point (wrong with the eye in a volume)");
@@ -275,6 +378,16 @@ void add_render_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--json", options->json_file, "Write method, size, renderer, pixel counts and timings as JSON");
   cmd->add_option("--capture", options->capture,
                   "Write the first light's volume as drawn (.vol text; check it with certify --volume FILE)");
+  cmd->add_option("--shadowmap-size", options->shadowmap_size,
+                  "shadowmap: side of the square depth map in texels, at most 16384")
+      ->capture_default_str();
+  cmd->add_option("--shadowmap-bias", options->shadowmap_bias,
+                  "shadowmap: constant bias subtracted from the light-space depth (window units, [0, 1]) "
+                  "before the comparison; larger trades acne for detached shadows")
+      ->capture_default_str();
+  cmd->add_option("--shadowmap-slope", options->shadowmap_slope,
+                  "shadowmap: glPolygonOffset slope factor of the depth pass (for surfaces edge-on to the light)")
+      ->capture_default_str();
   cmd->add_option("--device", options->device, "Use EGL device N (default: a hardware device, else llvmpipe)");
   cmd->callback([options, &exit_code] { exit_code = run_render(*options); });
 }

@@ -193,6 +193,9 @@ TEST(CliCapture, CpuVolumeAsDrawn_IsClosed) { capture_and_certify("cpu"); }
 
 TEST(CliCapture, CsVolumeAsDrawn_IsClosed) { capture_and_certify("cs"); }
 
+// gs: the transform-feedback capture of the geometry shader (gpu/geometry_shader_volume.h).
+TEST(CliCapture, GsVolumeAsDrawn_IsClosed) { capture_and_certify("gs"); }
+
 TEST(CliCapture, PlantedFault_OneFaceDeleted_ExitsOneWithUnbalancedEdges) {
   const fs::path volume = temp_dir() / "capture_fault.vol";
   const RunResult render = run_cli("render " + kDefaultScene + " --method cs --size 64x48 --capture " + volume.string());

@@ -1,0 +1,51 @@
+#version 450 core
+// Scene pass of the shadow map (with shadow_scene.vert.glsl, so the ambient pass and the lit
+// pass rasterise to identical depths and GL_EQUAL holds).
+// Ambient pass (lambert_weight = 0): albedo * colour, alpha 1 marks covered pixels.
+// Lit pass (lambert_weight = 1): the visible point's light-space depth, less depth_bias, is
+// compared with the map (GL_COMPARE_REF_TO_TEXTURE, GL_LEQUAL: 1 = lit); shadowed fragments,
+// and those of a side facing away from the light,
+// are discarded so that neither their colour nor their stencil mark is written, lit ones add
+// albedo * colour * max(n . d, 0) (two-sided, as shadow_scene.frag.glsl).
+layout(location = 0) in vec3 world_position;
+layout(location = 1) in vec3 world_normal;
+layout(location = 2) in vec3 surface_albedo;
+layout(location = 1) uniform vec4 colour;
+layout(location = 2) uniform vec4 light;       // (l, w): w = 1 point, w = 0 directional
+layout(location = 3) uniform float lambert_weight;
+layout(location = 4) uniform mat4 light_to_clip;
+layout(location = 5) uniform float depth_bias;
+layout(binding = 0) uniform sampler2DShadow shadow_map;
+layout(location = 0) out vec4 fragment;
+
+void main() {
+  if (lambert_weight == 0.0) {
+    fragment = vec4(surface_albedo * colour.rgb, 1.0);
+    return;
+  }
+  float lambert = 0.0;
+  float n_length = length(world_normal);
+  if (n_length > 0.0) {
+    vec3 n = world_normal / n_length;
+    if (!gl_FrontFacing) n = -n;
+    vec3 to_light = light.w == 0.0 ? light.xyz : light.xyz - world_position;
+    float d_length = length(to_light);
+    if (d_length > 0.0) lambert = dot(n, to_light / d_length);
+    // The side of a surface turned away from the light is in its own shadow. The map cannot
+    // say so (that side is as near the light as the lit one), the volume methods do (the
+    // point is behind its own triangle's cap), and the lit masks must mean the same thing.
+    if (lambert <= 0.0) discard;
+  }
+  vec4 clip = light_to_clip * vec4(world_position, 1.0);
+  // The frustum is fitted to the scene's bounds, so every receiver point is inside it; a
+  // point outside (w <= 0 or beyond [-1, 1]) has nothing in the map to hide it: lit.
+  if (clip.w > 0.0) {
+    vec3 ndc = clip.xyz / clip.w;
+    if (all(lessThanEqual(abs(ndc), vec3(1.0)))) {
+      vec3 window = ndc * 0.5 + 0.5;  // glDepthRange(0, 1), the default
+      // textureLod: no derivatives needed (one level) in this non-uniform branch.
+      if (textureLod(shadow_map, vec3(window.xy, window.z - depth_bias), 0.0) < 0.5) discard;
+    }
+  }
+  fragment = vec4(surface_albedo * colour.rgb * lambert * lambert_weight, 0.0);
+}
