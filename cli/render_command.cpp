@@ -22,6 +22,7 @@
 #include "gpu/compute_volume.h"
 #include "gpu/egl_context.h"
 #include "gpu/geometry_shader_volume.h"
+#include "gpu/tessellation_volume.h"
 #include "gpu/gl_environment_error.h"
 #include "gpu/offscreen_target.h"
 #include "gpu/per_triangle_volume.h"
@@ -208,9 +209,10 @@ int run_render(const RenderOptions& options) {
   const auto start = Clock::now();
   const bool pertri = options.method == "pertri";
   const bool gs = options.method == "gs";
-  const bool built_on_gpu = options.method == "cs" || pertri || gs;  // cs, pertri and gs build their volumes on the GPU
+  const bool ts = options.method == "ts";
+  const bool built_on_gpu = options.method == "cs" || pertri || gs || ts;  // all but cpu build their volumes on the GPU
   if (options.method != "cpu" && !built_on_gpu)
-    throw CLI::ValidationError("--method", "only 'cpu', 'cs', 'pertri', 'gs' and 'shadowmap' exist so far (ts comes later)");
+    throw CLI::ValidationError("--method", "only 'cpu', 'cs', 'pertri', 'gs', 'ts' and 'shadowmap' exist");
   if (options.zpass && options.zfail) throw CLI::ValidationError("--zpass", "excludes --zfail");
   Scene scene = load_scene_or_mesh(options.input);
   if (scene.lights.empty()) throw InputError(options.input, "the scene has no light");
@@ -250,6 +252,7 @@ int run_render(const RenderOptions& options) {
   std::vector<std::unique_ptr<gpu::ComputeShadowVolume>> cs_volumes;
   std::vector<std::unique_ptr<gpu::PerTriangleShadowVolume>> pertri_volumes;  // Milet 2014 §2.1
   std::vector<std::unique_ptr<gpu::GeometryShaderShadowVolume>> gs_volumes;
+  std::vector<std::unique_ptr<gpu::TessellationShadowVolume>> ts_volumes;
   std::vector<gpu::LightVolume> lights;
   if (built_on_gpu) cs_soup.emplace(canonical.soup, table);
   for (std::size_t i = 0; i < scene.lights.size(); ++i) {
@@ -259,6 +262,9 @@ int run_render(const RenderOptions& options) {
     } else if (gs) {
       gs_volumes.push_back(std::make_unique<gpu::GeometryShaderShadowVolume>(*cs_soup, table));
       lights.push_back({scene.lights[i], nullptr, gs_volumes.back()->draw()});
+    } else if (ts) {
+      ts_volumes.push_back(std::make_unique<gpu::TessellationShadowVolume>(*cs_soup, table));
+      lights.push_back({scene.lights[i], nullptr, ts_volumes.back()->draw()});
     } else if (built_on_gpu) {
       cs_volumes.push_back(std::make_unique<gpu::ComputeShadowVolume>(*cs_soup));
       lights.push_back({scene.lights[i], nullptr, cs_volumes.back()->draw()});
@@ -273,6 +279,7 @@ int run_render(const RenderOptions& options) {
     for (std::size_t i = 0; i < cs_volumes.size(); ++i) cs_volumes[i]->build(scene.lights[i]);
     for (std::size_t i = 0; i < pertri_volumes.size(); ++i) pertri_volumes[i]->build(scene.lights[i]);
     for (std::size_t i = 0; i < gs_volumes.size(); ++i) gs_volumes[i]->build(scene.lights[i]);
+    for (std::size_t i = 0; i < ts_volumes.size(); ++i) ts_volumes[i]->build(scene.lights[i]);
   };
   const gpu::OffscreenTarget target(scene.camera.width, scene.camera.height);
   const gpu::StencilShadowRenderer renderer;
@@ -296,8 +303,10 @@ int run_render(const RenderOptions& options) {
     check_capacity(cs_volumes);
     check_capacity(pertri_volumes);
     check_capacity(gs_volumes);
+    check_capacity(ts_volumes);
     volume_triangles = (pertri ? pertri_volumes.front()->read_requested_vertices()
                         : gs   ? gs_volumes.front()->read_requested_vertices()
+                        : ts   ? ts_volumes.front()->read_requested_vertices()
                                : cs_volumes.front()->read_requested_vertices()) / 3;
   }
   const gpu::StencilShadowFrame frame = renderer.render(target, receivers, scene.camera, lights, render_options);
@@ -319,6 +328,7 @@ int run_render(const RenderOptions& options) {
     write_capture(options.capture,
                   built_on_gpu ? captured_volume(pertri ? pertri_volumes.front()->read_triangles()
                                               : gs  ? gs_volumes.front()->read_triangles()
+                                              : ts  ? ts_volumes.front()->read_triangles()
                                               : cs_volumes.front()->read_triangles()) : captured_volume(geometries.front()),
                   options.input + ", method " + options.method + ", first light");
   const std::uint64_t lit = count_pixels(frame.colour, frame.first_stencil, true);
@@ -365,9 +375,10 @@ void add_render_command(CLI::App& app, int& exit_code) {
                   "How the volume is built: cpu (the exact chain from exact/, drawn as is), cs (compute "
                   "shader, float reference-edge multiplicities, rebuilt every frame; gpu/compute_volume.h), "
                   "pertri (compute shader, every triangle's closed volume, no silhouette, rebuilt every frame; "
-                  "gpu/per_triangle_volume.h) or gs (geometry shader over edge records, float reference-edge "
+                  "gpu/per_triangle_volume.h), gs (geometry shader over edge records, float reference-edge "
                   "multiplicities, captured by transform feedback, rebuilt every frame; "
-                  "gpu/geometry_shader_volume.h). shadowmap (no volume: a depth map from each light, --shadowmap-size/-bias/-slope; gpu/shadow_map_renderer.h); ts comes in a later session")
+                  "gpu/geometry_shader_volume.h) or ts (tessellation over edge-record patches, the same "
+                  "multiplicities and capture; gpu/tessellation_volume.h). shadowmap (no volume: a depth map from each light, --shadowmap-size/-bias/-slope; gpu/shadow_map_renderer.h)")
       ->capture_default_str();
   cmd->add_flag("--zfail", options->zfail, "Count faces behind the visible point (default; right with the eye in a volume)");
   cmd->add_flag("--zpass", options->zpass, "Count faces in front of the visible point (wrong with the eye in a volume)");

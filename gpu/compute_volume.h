@@ -46,6 +46,7 @@ class ComputeVolumeSoup {
   friend class ComputeShadowVolume;
   friend class PerTriangleShadowVolume;  // pertri reads the same vertices and triangles
   friend class GeometryShaderShadowVolume;  // gs too (its edge records are its own)
+  friend class TessellationShadowVolume;  // ts too (edge and triangle records of its own)
   Buffer vertices_, edges_, first_opposite_, opposite_vertex_, triangles_;
   std::uint32_t edge_count_ = 0;
   std::uint32_t triangle_count_ = 0;

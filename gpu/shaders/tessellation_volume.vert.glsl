@@ -1,0 +1,10 @@
+#version 450 core
+// The `ts` volume (gpu/tessellation_volume.h): one patch of kRecordWords vertices per record;
+// each patch vertex is one word of the record (attribute 0, an unsigned integer), handed on
+// to the tessellation control shader as it is (Milet 2014, Figure 4: the patch is indices).
+layout(location = 0) in uint word;
+flat out uint record_word;
+
+void main() {
+  record_word = word;
+}
