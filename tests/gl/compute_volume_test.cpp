@@ -26,6 +26,7 @@
 #include "exact/edge_multiplicity.h"
 #include "exact/shadow_volume_chain.h"
 #include "gl_test_support.h"
+#include "volume_test_support.h"
 #include "gpu/offscreen_target.h"
 #include "gpu/shadow_volume_geometry.h"
 #include "gpu/stencil_shadow_renderer.h"
@@ -38,6 +39,7 @@ namespace shadowcert::gpu {
 namespace {
 
 using test::GlTest;
+using namespace test;
 
 // Pixels of default.json at its 1024x768 camera where the cs and cpu stencil counts may
 // differ. They can only differ on volume boundaries: the far vertices are rounded differently
@@ -47,63 +49,10 @@ using test::GlTest;
 // test's output (4 on llvmpipe); the bound leaves room for another rasteriser's ties.
 constexpr std::size_t kMaxBoundaryPixels = 64;
 
-const Light kPointLight{{1.5, 4.0, 2.5, 1.0}};
-const Light kDirectionalLight{{0.3, 1.0, 0.2, 0.0}};
-
-struct Prepared {
-  CanonicalSoup canonical;
-  EdgeTable table;
-};
-
-Prepared prepare(const Soup& soup) {
-  Prepared p{canonical_soup(soup), {}};
-  p.table = build_edge_table(p.canonical.soup);
-  return p;
-}
-
-Scene default_scene() {
-  return load_scene(std::string(SHADOWCERT_SOURCE_DIR) + "/data/scenes/default.json",
-                    [](const std::filesystem::path& file) -> Soup {
-                      throw std::runtime_error("default.json should need no mesh file: " + file.string());
-                    });
-}
-
-// As cli/scene_input.cpp's merged_soup: every mesh's vertices and triangles, one soup.
-Soup merged(const Scene& scene) {
-  Soup out;
-  for (const SceneMesh& mesh : scene.meshes) {
-    const auto offset = static_cast<std::uint32_t>(out.vertices.size());
-    out.vertices.insert(out.vertices.end(), mesh.soup.vertices.begin(), mesh.soup.vertices.end());
-    for (Triangle t : mesh.soup.triangles) out.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
-  }
-  return out;
-}
-
 std::vector<std::pair<std::string, Soup>> test_soups() {
   return {{"default scene", merged(default_scene())},
           {"uv sphere", uv_sphere({0.2, 0.1, -0.3}, 1.0, 32, 16)},
           {"fan of 100", nonmanifold_fan(100)}};
-}
-
-// Every directed edge (a, b) of the welded triangles minus its reverse: zero when closed.
-std::map<std::pair<std::uint32_t, std::uint32_t>, int> unbalanced_edges(const std::vector<VolumeTriangle>& triangles) {
-  std::map<std::array<std::uint32_t, 4>, std::uint32_t> ids;  // bitwise weld of vec4 vertices
-  auto id = [&ids](const Vec4f& x) {
-    const std::array<std::uint32_t, 4> bits{std::bit_cast<std::uint32_t>(x[0]), std::bit_cast<std::uint32_t>(x[1]),
-                                            std::bit_cast<std::uint32_t>(x[2]), std::bit_cast<std::uint32_t>(x[3])};
-    return ids.emplace(bits, static_cast<std::uint32_t>(ids.size())).first->second;
-  };
-  std::map<std::pair<std::uint32_t, std::uint32_t>, int> balance;
-  for (const VolumeTriangle& t : triangles) {
-    const std::array<std::uint32_t, 3> v{id(t[0]), id(t[1]), id(t[2])};
-    for (int k = 0; k < 3; ++k) {
-      const std::uint32_t a = v[k], b = v[(k + 1) % 3];
-      if (a == b) continue;  // a degenerate triangle's collapsed edge bounds nothing
-      balance[{std::min(a, b), std::max(a, b)}] += a < b ? 1 : -1;
-    }
-  }
-  std::erase_if(balance, [](const auto& entry) { return entry.second == 0; });
-  return balance;
 }
 
 TEST_F(GlTest, MultiplicitiesAndCapSignsEqualCpuRefedgeFloat32) {
@@ -164,27 +113,6 @@ TEST_F(GlTest, CapturedVolumeIsClosed) {
       EXPECT_TRUE(unbalanced_edges(triangles).empty());
     }
   }
-}
-
-// cli/render_command.cpp's to_geometry: exact/'s symbolic chain to homogeneous floats.
-ShadowVolumeGeometry to_geometry(const ShadowVolumeChain& chain, const Soup& canonical, const Light& light) {
-  ShadowVolumeGeometry g;
-  const auto& l = light.position;
-  for (const Vec3& x : canonical.vertices)
-    g.vertices.push_back({static_cast<float>(x[0]), static_cast<float>(x[1]), static_cast<float>(x[2]), 1.0f});
-  if (chain.directional) {
-    g.vertices.push_back({static_cast<float>(-l[0]), static_cast<float>(-l[1]), static_cast<float>(-l[2]), 0.0f});
-  } else {
-    for (const Vec3& x : canonical.vertices)
-      g.vertices.push_back({static_cast<float>(x[0] - l[0]), static_cast<float>(x[1] - l[1]),
-                            static_cast<float>(x[2] - l[2]), 0.0f});
-  }
-  for (const auto& t : chain.triangles) g.triangles.push_back(t);
-  for (const auto& q : chain.quads) {
-    g.triangles.push_back({q[0], q[1], q[2]});
-    g.triangles.push_back({q[0], q[2], q[3]});
-  }
-  return g;
 }
 
 TEST_F(GlTest, StencilCountsMatchCpuExceptOnBoundaries) {

@@ -20,6 +20,7 @@
 #include "exact/edge_multiplicity.h"
 #include "exact/shadow_volume_chain.h"
 #include "gl_test_support.h"
+#include "volume_test_support.h"
 #include "gpu/camera_transform.h"
 #include "gpu/shadow_volume_geometry.h"
 #include "gpu/stencil_shadow_renderer.h"
@@ -31,6 +32,7 @@ namespace shadowcert::gpu {
 namespace {
 
 using test::GlTest;
+using namespace test;
 
 // As tests/gl/stencil_shadow_renderer_test.cpp: a triangle at y = 1 over a floor at y = 0.
 constexpr std::array<Vec3, 3> kOccluder{{{-1.0, 1.0, -1.0}, {1.0, 1.0, -1.0}, {0.0, 1.0, 1.0}}};
@@ -116,44 +118,6 @@ TEST_F(GlTest, DirectionalLightShadowOfATriangleOnTheFloor) {
 TEST_F(GlTest, SizesOutsideTheRangeAreRejected) {
   EXPECT_THROW(ShadowMapRenderer(0), std::invalid_argument);
   EXPECT_THROW(ShadowMapRenderer(kMaxShadowMapSize + 1), std::invalid_argument);
-}
-
-Scene default_scene() {
-  return load_scene(std::string(SHADOWCERT_SOURCE_DIR) + "/data/scenes/default.json",
-                    [](const std::filesystem::path& file) -> Soup {
-                      throw std::runtime_error("default.json should need no mesh file: " + file.string());
-                    });
-}
-
-Soup merged(const Scene& scene) {
-  Soup out;
-  for (const SceneMesh& mesh : scene.meshes) {
-    const auto offset = static_cast<std::uint32_t>(out.vertices.size());
-    out.vertices.insert(out.vertices.end(), mesh.soup.vertices.begin(), mesh.soup.vertices.end());
-    for (Triangle t : mesh.soup.triangles) out.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
-  }
-  return out;
-}
-
-// cli/render_command.cpp's to_geometry: exact/'s symbolic chain to homogeneous floats.
-ShadowVolumeGeometry to_geometry(const ShadowVolumeChain& chain, const Soup& canonical, const Light& light) {
-  ShadowVolumeGeometry g;
-  const auto& l = light.position;
-  for (const Vec3& x : canonical.vertices)
-    g.vertices.push_back({static_cast<float>(x[0]), static_cast<float>(x[1]), static_cast<float>(x[2]), 1.0f});
-  if (chain.directional) {
-    g.vertices.push_back({static_cast<float>(-l[0]), static_cast<float>(-l[1]), static_cast<float>(-l[2]), 0.0f});
-  } else {
-    for (const Vec3& x : canonical.vertices)
-      g.vertices.push_back({static_cast<float>(x[0] - l[0]), static_cast<float>(x[1] - l[1]),
-                            static_cast<float>(x[2] - l[2]), 0.0f});
-  }
-  for (const auto& t : chain.triangles) g.triangles.push_back(t);
-  for (const auto& q : chain.quads) {
-    g.triangles.push_back({q[0], q[1], q[2]});
-    g.triangles.push_back({q[0], q[2], q[3]});
-  }
-  return g;
 }
 
 // The boundary band on default.json (1024x768, its point light) is a few pixels wide along
