@@ -9,7 +9,8 @@
 #   In script mode (cmake -P, run by that build step) it writes the header.
 #
 # A file `flat_colour.vert.glsl` becomes `flat_colour_vert`; the string holds the file bytes
-# verbatim (a raw literal whose delimiter is checked absent from the text).
+# verbatim (a raw literal whose delimiter is checked absent from the text), except that
+# `#include "name.glsl"` lines are replaced by that file (same folder).
 
 if(CMAKE_SCRIPT_MODE_FILE)
   # Script mode: OUTPUT, NAMESPACE, SOURCES (a ';'-list, passed with '|' separators).
@@ -21,6 +22,19 @@ if(CMAKE_SCRIPT_MODE_FILE)
     string(REGEX REPLACE "\\.glsl$" "" stem "${file_name}")
     string(MAKE_C_IDENTIFIER "${stem}" identifier)
     file(READ "${source}" body)
+    # GLSL has no #include: resolve `#include "name.glsl"` here, from the including file's
+    # folder, so shared snippets (light_side_formula.glsl) exist once in the sources.
+    get_filename_component(source_dir "${source}" DIRECTORY)
+    string(REGEX MATCH "#include \"([^\"]+)\"" directive "${body}")
+    while(directive)
+      set(included_file "${source_dir}/${CMAKE_MATCH_1}")
+      if(NOT EXISTS "${included_file}")
+        message(FATAL_ERROR "${source}: cannot include ${CMAKE_MATCH_1}")
+      endif()
+      file(READ "${included_file}" included)
+      string(REPLACE "${directive}" "${included}" body "${body}")
+      string(REGEX MATCH "#include \"([^\"]+)\"" directive "${body}")
+    endwhile()
     string(FIND "${body}" ")glsl\"" clash)
     if(NOT clash EQUAL -1)
       message(FATAL_ERROR "${source}: contains the raw-string delimiter )glsl\"")

@@ -20,23 +20,7 @@ flat in int line_multiplicity[];
 // Captured (GL_INTERLEAVED, one vec4 per vertex): what StencilShadowRenderer draws.
 layout(xfb_buffer = 0, xfb_offset = 0) out vec4 volume_vertex;
 
-// core/light_side_formula.h: X = C - A; Y = l - A w; N = X x Y; value = N . (B - A).
-float light_side_value(vec3 a, vec3 b, vec3 c) {
-  precise float x0 = c.x - a.x;
-  precise float x1 = c.y - a.y;
-  precise float x2 = c.z - a.z;
-  precise float y0 = light.x - a.x * light.w;
-  precise float y1 = light.y - a.y * light.w;
-  precise float y2 = light.z - a.z * light.w;
-  precise float n0 = x1 * y2 - x2 * y1;
-  precise float n1 = x2 * y0 - x0 * y2;
-  precise float n2 = x0 * y1 - x1 * y0;
-  precise float z0 = b.x - a.x;
-  precise float z1 = b.y - a.y;
-  precise float z2 = b.z - a.z;
-  precise float value = n0 * z0 + n1 * z1 + n2 * z2;
-  return value;
-}
+#include "light_side_formula.glsl"
 
 int sorted_side(uint a, uint b, uint c) {
   const float value = light_side_value(vertices[a].xyz, vertices[b].xyz, vertices[c].xyz);
