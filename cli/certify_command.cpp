@@ -13,7 +13,6 @@
 
 #include "cli/exit_code.h"
 #include "cli/output_file.h"
-#include "cli/point_file.h"
 #include "cli/scene_input.h"
 #include "core/input_error.h"
 #include "exact/captured_volume.h"
@@ -23,6 +22,7 @@
 #include "scene/edge_table.h"
 #include "exact/shadow_volume_chain.h"
 #include "scene/canonical_soup.h"
+#include "scene/point_file.h"
 
 namespace shadowcert::cli {
 namespace {

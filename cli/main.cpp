@@ -8,7 +8,9 @@
 #include <new>
 
 #include "cli/certify_command.h"
+#include "cli/diff_command.h"
 #include "cli/exit_code.h"
+#include "cli/fuzz_command.h"
 #include "cli/inspect_command.h"
 #include "cli/render_command.h"
 #include "core/input_error.h"
@@ -23,6 +25,8 @@ int main(int argc, char** argv) {
   add_inspect_command(app, exit_code);
   add_certify_command(app, exit_code);
   add_render_command(app, exit_code);
+  add_diff_command(app, exit_code);
+  add_fuzz_command(app, exit_code);
 
   try {
     app.parse(argc, argv);

@@ -1,12 +1,12 @@
 #include "cli/render_command.h"
 
-#include <epoxy/gl.h>
 #include <fmt/core.h>
 
 #include <array>
 #include <chrono>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <numeric>
 #include <optional>
 #include <string>
 #include <vector>
@@ -14,30 +14,30 @@
 #include "cli/exit_code.h"
 #include "cli/output_file.h"
 #include "cli/scene_input.h"
-#include "cli/volume_capture.h"
 #include "core/input_error.h"
+#include "exact/captured_volume.h"
+#include "exact/chain_mesh.h"
 #include "exact/edge_multiplicity.h"
-#include "scene/edge_table.h"
 #include "exact/shadow_volume_chain.h"
-#include "gpu/compute_volume.h"
 #include "gpu/egl_context.h"
-#include "gpu/geometry_shader_volume.h"
-#include "gpu/tessellation_volume.h"
+#include "gpu/frame_timing.h"
 #include "gpu/gl_environment_error.h"
 #include "gpu/offscreen_target.h"
-#include "gpu/per_triangle_volume.h"
 #include "gpu/png_image.h"
-#include "gpu/shadow_map_renderer.h"
-#include "gpu/shadow_volume_geometry.h"
-#include "gpu/stencil_shadow_renderer.h"
+#include "gpu/shadow_method_renderer.h"
 #include "scene/canonical_soup.h"
+#include "scene/edge_table.h"
 
 namespace shadowcert::cli {
 namespace {
 
 // Frames drawn (without readback, each ended by glFinish) for the ms-per-frame figure: one
 // frame alone would mostly time llvmpipe's first-use shader compilation.
-constexpr int kTimedFrames = 5;
+constexpr std::size_t kTimedFrames = 5;
+// --timing: untimed frames first (llvmpipe compiles shader variants on first use), then
+// --frames timed ones (default kDefaultTimingFrames) whose medians are reported.
+constexpr std::size_t kTimingWarmUpFrames = 2;
+constexpr std::size_t kDefaultTimingFrames = 20;
 
 // Mesh colours, in scene order (cycled): only a picture, nothing is decided from them.
 constexpr std::array<std::array<float, 3>, 4> kPalette{
@@ -56,10 +56,12 @@ struct RenderOptions {
   std::string capture;  // the first light's volume as drawn (.vol, exact/captured_volume.h)
   std::optional<int> device;
   // --method shadowmap only (gpu/shadow_map_renderer.h). The size is wide so that a value
-  // over the limit gets run_shadowmap's message rather than a parse error.
+  // over the limit gets validate()'s message rather than a parse error.
   long long shadowmap_size = gpu::kDefaultShadowMapSize;
   float shadowmap_bias = gpu::kDefaultShadowMapBias;
   float shadowmap_slope = gpu::kDefaultShadowMapSlope;
+  bool timing = false;  // GPU stage times (gpu/gpu_stage_timer.h) over `frames` frames
+  std::size_t frames = kDefaultTimingFrames;
 };
 
 using Clock = std::chrono::steady_clock;
@@ -85,30 +87,21 @@ void apply_size(const std::string& size, Camera& camera) {
   camera.height = static_cast<std::uint32_t>(h);
 }
 
-// exact/'s symbolic chain to homogeneous floats (exact/shadow_volume_chain.h): ids [0, n) are
-// the canonical vertices (w = 1); a point light's n + i is x_i's far vertex (x_i - l, 0), a
-// directional light's n is (-l, 0). x - l is formed in double and rounded once. Quads
-// (a, b, c, d) become (a, b, c) and (a, c, d), keeping the outward orientation.
-gpu::ShadowVolumeGeometry to_geometry(const ShadowVolumeChain& chain, const Soup& canonical, const Light& light) {
-  gpu::ShadowVolumeGeometry g;
-  const auto& l = light.position;
-  g.vertices.reserve(canonical.vertices.size() * 2);
-  for (const Vec3& x : canonical.vertices)
-    g.vertices.push_back({static_cast<float>(x[0]), static_cast<float>(x[1]), static_cast<float>(x[2]), 1.0f});
-  if (chain.directional) {
-    g.vertices.push_back({static_cast<float>(-l[0]), static_cast<float>(-l[1]), static_cast<float>(-l[2]), 0.0f});
-  } else {
-    for (const Vec3& x : canonical.vertices)
-      g.vertices.push_back({static_cast<float>(x[0] - l[0]), static_cast<float>(x[1] - l[1]),
-                            static_cast<float>(x[2] - l[2]), 0.0f});
+// The method, after the checks that need no input file.
+gpu::ShadowMethod validate(const RenderOptions& options) {
+  const std::optional<gpu::ShadowMethod> method = gpu::parse_shadow_method(options.method);
+  if (!method) throw CLI::ValidationError("--method", "only 'cpu', 'cs', 'pertri', 'gs', 'ts' and 'shadowmap' exist");
+  if (*method == gpu::ShadowMethod::shadowmap) {
+    if (options.shadowmap_size < 1 || options.shadowmap_size > gpu::kMaxShadowMapSize)
+      throw CLI::ValidationError("--shadowmap-size", fmt::format("must be in [1, {}] (a {}^2 depth texture), got {}",
+                                                                 gpu::kMaxShadowMapSize, gpu::kMaxShadowMapSize,
+                                                                 options.shadowmap_size));
+    if (options.zpass) throw CLI::ValidationError("--zpass", "is a stencil option; shadowmap counts no volume");
+    if (!options.capture.empty()) throw CLI::ValidationError("--capture", "shadowmap draws no volume to capture");
+  } else if (options.zpass && options.zfail) {
+    throw CLI::ValidationError("--zpass", "excludes --zfail");
   }
-  g.triangles.reserve(chain.triangles.size() + 2 * chain.quads.size());
-  for (const auto& t : chain.triangles) g.triangles.push_back(t);
-  for (const auto& q : chain.quads) {
-    g.triangles.push_back({q[0], q[1], q[2]});
-    g.triangles.push_back({q[0], q[2], q[3]});
-  }
-  return g;
+  return *method;
 }
 
 std::uint64_t count_pixels(const gpu::RgbaImage& colour, const gpu::GrayImage& stencil, bool lit) {
@@ -120,115 +113,72 @@ std::uint64_t count_pixels(const gpu::RgbaImage& colour, const gpu::GrayImage& s
   return n;
 }
 
-// --method shadowmap: no volume, one depth map per light (gpu/shadow_map_renderer.h). The
-// outputs keep the stencil methods' shape; the counts image holds 0 where the first light's
-// map comparison says lit and 1 where it says shadowed (a map has no counts).
-int run_shadowmap(const RenderOptions& options) {
-  const auto start = Clock::now();
-  if (options.shadowmap_size < 1 || options.shadowmap_size > gpu::kMaxShadowMapSize)
-    throw CLI::ValidationError("--shadowmap-size", fmt::format("must be in [1, {}] (a {}^2 depth texture), got {}",
-                                                               gpu::kMaxShadowMapSize, gpu::kMaxShadowMapSize,
-                                                               options.shadowmap_size));
-  if (options.zpass) throw CLI::ValidationError("--zpass", "is a stencil option; shadowmap counts no volume");
-  if (!options.capture.empty()) throw CLI::ValidationError("--capture", "shadowmap draws no volume to capture");
-  Scene scene = load_scene_or_mesh(options.input);
-  if (scene.lights.empty()) throw InputError(options.input, "the scene has no light");
-  apply_size(options.size, scene.camera);
-  const Soup merged = merged_soup(scene);
-  if (merged.triangles.empty()) throw InputError(options.input, "no triangle to render");
+nlohmann::json summary_json(const gpu::TimingSummary& s) {
+  return {{"median", s.median_ms}, {"min", s.min_ms}, {"max", s.max_ms}};
+}
 
-  std::optional<gpu::EglContext> context;
-  try {
-    context.emplace(gpu::EglContextOptions{options.device, gpu::kGlDebugByDefault});
-  } catch (const gpu::GlEnvironmentError& e) {
-    throw gpu::GlEnvironmentError(
-        "render needs OpenGL 4.5 core through headless EGL (a GPU driver or Mesa's llvmpipe: packages "
-        "libegl-mesa0 libgl1-mesa-dri); " + std::string(e.what()));
+// The "timing" object of --json (docs/cli.md): GPU ms per stage of the method and per frame,
+// CPU wall ms per frame (and per stage when stages were synchronised), each as median, min
+// and max over the timed frames.
+nlohmann::json timing_json(const gpu::FrameTiming& timing) {
+  const bool synchronised = timing.sync == gpu::StageSync::finish;
+  nlohmann::json gpu_ms = nlohmann::json::object();
+  nlohmann::json cpu_ms = nlohmann::json::object();
+  for (gpu::RenderStage stage : timing.stages) {
+    const std::string name(gpu::render_stage_name(stage));
+    gpu_ms[name] = summary_json(timing.gpu(stage));
+    if (synchronised) cpu_ms[name] = summary_json(timing.wall(stage));
   }
-  auto stage = Clock::now();
-  std::vector<gpu::ShadedSoupPart> parts;
-  for (std::size_t i = 0; i < scene.meshes.size(); ++i)
-    parts.push_back({&scene.meshes[i].soup, kPalette[i % kPalette.size()]});
-  const gpu::ShadedSoupMesh receivers(parts);
-  const gpu::OffscreenTarget target(scene.camera.width, scene.camera.height);
-  const gpu::ShadowMapRenderer renderer(static_cast<std::uint32_t>(options.shadowmap_size));
-  const gpu::SceneBounds bounds = gpu::soup_bounds(merged);
-  gpu::ShadowMapOptions render_options;
-  render_options.depth_bias = options.shadowmap_bias;
-  render_options.slope_scale = options.shadowmap_slope;
-  for (auto& c : render_options.light_colour) c /= static_cast<float>(scene.lights.size());
-  const double upload_seconds = seconds_since(stage);
+  gpu_ms["frame"] = summary_json(timing.frame_gpu);
+  cpu_ms["frame"] = summary_json(timing.frame_cpu);
+  return {{"warm_up_frames", kTimingWarmUpFrames},
+          {"frames", timing.frames},
+          {"stage_sync", synchronised ? "finish" : "none"},
+          {"gpu_ms", gpu_ms},
+          {"cpu_ms", cpu_ms}};
+}
 
-  stage = Clock::now();
-  const gpu::StencilShadowFrame frame = renderer.render(target, receivers, bounds, scene.camera, scene.lights, render_options);
-  const double first_frame_seconds = seconds_since(stage);
-  render_options.read_back = false;
-  stage = Clock::now();
-  for (int i = 0; i < kTimedFrames; ++i) {
-    (void)renderer.render(target, receivers, bounds, scene.camera, scene.lights, render_options);
-    glFinish();
-  }
-  const double frame_ms = 1000.0 * seconds_since(stage) / kTimedFrames;
-
-  for (const std::string& file : {options.out, options.counts, options.mask}) create_parent_directories(file);
-  if (!options.out.empty()) gpu::write_png(options.out, frame.colour);
-  if (!options.counts.empty()) gpu::write_png(options.counts, frame.first_stencil);
-  if (!options.mask.empty()) gpu::write_png(options.mask, frame.first_lit_mask);
-  const std::uint64_t lit = count_pixels(frame.colour, frame.first_stencil, true);
-  const std::uint64_t shadowed = count_pixels(frame.colour, frame.first_stencil, false);
-  const double seconds = seconds_since(start);
-
-  fmt::print("{}: {} triangles, {} lights, {}x{}, shadowmap {}^2 (bias {}, slope {}) on {}\n", options.input,
-             merged.triangles.size(), scene.lights.size(), scene.camera.width, scene.camera.height,
-             options.shadowmap_size, options.shadowmap_bias, options.shadowmap_slope, context->renderer());
-  fmt::print("  first light: {} lit, {} shadowed receiver pixels\n", lit, shadowed);
-  fmt::print("  seconds: upload {:.3f}, first frame {:.3f}; {:.2f} ms per frame ({} frames)\n", upload_seconds,
-             first_frame_seconds, frame_ms, kTimedFrames);
-  if (!options.json_file.empty()) {
-    write_json_file(options.json_file,
-                    {{"input", options.input},
-                     {"method", options.method},
-                     {"shadowmap", {{"size", options.shadowmap_size},
-                                    {"bias", options.shadowmap_bias},
-                                    {"slope", options.shadowmap_slope}}},
-                     {"size", {scene.camera.width, scene.camera.height}},
-                     {"renderer", context->renderer()},
-                     {"device", context->device()},
-                     {"lights", scene.lights.size()},
-                     {"lit_pixels", lit},
-                     {"shadowed_pixels", shadowed},
-                     {"frame_ms", frame_ms},
-                     {"seconds", seconds},
-                     {"stage_seconds", {{"upload", upload_seconds}, {"first_frame", first_frame_seconds}}}});
-  }
-  return kExitOk;
+void print_timing(const gpu::FrameTiming& timing) {
+  const bool synchronised = timing.sync == gpu::StageSync::finish;
+  fmt::print("  timing, ms over {} frames after {} warm-up{}:\n", timing.frames, kTimingWarmUpFrames,
+             synchronised ? " (stages bounded by glFinish: software renderer)" : "");
+  fmt::print("    {:<12} {:>10} {:>8} {:>8}   {:>10} {:>8} {:>8}\n", "stage", "gpu median", "min", "max",
+             "cpu median", "min", "max");
+  const auto row = [](std::string_view name, const gpu::TimingSummary& gpu, const gpu::TimingSummary* cpu) {
+    fmt::print("    {:<12} {:10.3f} {:8.3f} {:8.3f}", name, gpu.median_ms, gpu.min_ms, gpu.max_ms);
+    if (cpu != nullptr) fmt::print("   {:10.3f} {:8.3f} {:8.3f}", cpu->median_ms, cpu->min_ms, cpu->max_ms);
+    fmt::print("\n");
+  };
+  for (gpu::RenderStage stage : timing.stages)
+    row(gpu::render_stage_name(stage), timing.gpu(stage), synchronised ? &timing.wall(stage) : nullptr);
+  row("frame", timing.frame_gpu, &timing.frame_cpu);
 }
 
 int run_render(const RenderOptions& options) {
-  if (options.method == "shadowmap") return run_shadowmap(options);
   const auto start = Clock::now();
-  const bool pertri = options.method == "pertri";
-  const bool gs = options.method == "gs";
-  const bool ts = options.method == "ts";
-  const bool built_on_gpu = options.method == "cs" || pertri || gs || ts;  // all but cpu build their volumes on the GPU
-  if (options.method != "cpu" && !built_on_gpu)
-    throw CLI::ValidationError("--method", "only 'cpu', 'cs', 'pertri', 'gs', 'ts' and 'shadowmap' exist");
-  if (options.zpass && options.zfail) throw CLI::ValidationError("--zpass", "excludes --zfail");
+  const gpu::ShadowMethod method = validate(options);
+  const bool shadowmap = method == gpu::ShadowMethod::shadowmap;
   Scene scene = load_scene_or_mesh(options.input);
   if (scene.lights.empty()) throw InputError(options.input, "the scene has no light");
   apply_size(options.size, scene.camera);
   const Soup merged = merged_soup(scene);
   if (merged.triangles.empty()) throw InputError(options.input, "no triangle to render");
 
-  // The volumes: one exact chain per light (DESIGN.md §3); cs builds its own on the GPU from
-  // the same canonical soup and edge table (gpu/compute_volume.h).
+  // The volumes' inputs: the canonical soup and edge table (the GPU-built methods read them),
+  // and for cpu one exact chain per light (DESIGN.md §3) as homogeneous floats.
   auto stage = Clock::now();
-  const CanonicalSoup canonical = canonical_soup(merged);
-  const EdgeTable table = build_edge_table(canonical.soup);
-  std::vector<gpu::ShadowVolumeGeometry> geometries;
-  for (const Light& light : built_on_gpu ? std::vector<Light>{} : scene.lights) {
-    const EdgeMultiplicities m = exact_multiplicities(canonical.soup, table, light);
-    geometries.push_back(to_geometry(assemble_chain(canonical.soup, table, m, light), canonical.soup, light));
+  std::optional<CanonicalSoup> canonical;
+  EdgeTable table;
+  std::vector<HomogeneousMesh> cpu_volumes;
+  if (!shadowmap) {
+    canonical = canonical_soup(merged);
+    table = build_edge_table(canonical->soup);
+  }
+  if (method == gpu::ShadowMethod::cpu) {
+    for (const Light& light : scene.lights) {
+      const EdgeMultiplicities m = exact_multiplicities(canonical->soup, table, light);
+      cpu_volumes.push_back(chain_mesh(assemble_chain(canonical->soup, table, m, light), canonical->soup, light));
+    }
   }
   const double chain_seconds = seconds_since(stage);
 
@@ -246,118 +196,100 @@ int run_render(const RenderOptions& options) {
   std::vector<gpu::ShadedSoupPart> parts;
   for (std::size_t i = 0; i < scene.meshes.size(); ++i)
     parts.push_back({&scene.meshes[i].soup, kPalette[i % kPalette.size()]});
-  const gpu::ShadedSoupMesh receivers(parts);
-  std::vector<std::unique_ptr<gpu::ShadowVolumeMesh>> volumes;
-  std::optional<gpu::ComputeVolumeSoup> cs_soup;
-  std::vector<std::unique_ptr<gpu::ComputeShadowVolume>> cs_volumes;
-  std::vector<std::unique_ptr<gpu::PerTriangleShadowVolume>> pertri_volumes;  // Milet 2014 §2.1
-  std::vector<std::unique_ptr<gpu::GeometryShaderShadowVolume>> gs_volumes;
-  std::vector<std::unique_ptr<gpu::TessellationShadowVolume>> ts_volumes;
-  std::vector<gpu::LightVolume> lights;
-  if (built_on_gpu) cs_soup.emplace(canonical.soup, table);
-  for (std::size_t i = 0; i < scene.lights.size(); ++i) {
-    if (pertri) {
-      pertri_volumes.push_back(std::make_unique<gpu::PerTriangleShadowVolume>(*cs_soup));
-      lights.push_back({scene.lights[i], nullptr, pertri_volumes.back()->draw()});
-    } else if (gs) {
-      gs_volumes.push_back(std::make_unique<gpu::GeometryShaderShadowVolume>(*cs_soup, table));
-      lights.push_back({scene.lights[i], nullptr, gs_volumes.back()->draw()});
-    } else if (ts) {
-      ts_volumes.push_back(std::make_unique<gpu::TessellationShadowVolume>(*cs_soup, table));
-      lights.push_back({scene.lights[i], nullptr, ts_volumes.back()->draw()});
-    } else if (built_on_gpu) {
-      cs_volumes.push_back(std::make_unique<gpu::ComputeShadowVolume>(*cs_soup));
-      lights.push_back({scene.lights[i], nullptr, cs_volumes.back()->draw()});
-    } else {
-      volumes.push_back(std::make_unique<gpu::ShadowVolumeMesh>(geometries[i]));
-      lights.push_back({scene.lights[i], volumes.back().get()});
-    }
-  }
-  // cs rebuilds its volumes in every frame (a moving light costs nothing more), so its frame
-  // time includes the compute passes; cpu's chains are built once, before the frames.
-  const auto build_cs_volumes = [&] {
-    for (std::size_t i = 0; i < cs_volumes.size(); ++i) cs_volumes[i]->build(scene.lights[i]);
-    for (std::size_t i = 0; i < pertri_volumes.size(); ++i) pertri_volumes[i]->build(scene.lights[i]);
-    for (std::size_t i = 0; i < gs_volumes.size(); ++i) gs_volumes[i]->build(scene.lights[i]);
-    for (std::size_t i = 0; i < ts_volumes.size(); ++i) ts_volumes[i]->build(scene.lights[i]);
-  };
+  gpu::ShadowMethodScene method_scene;
+  method_scene.receivers = parts;
+  method_scene.lights = scene.lights;
+  if (canonical) method_scene.canonical = &canonical->soup;
+  method_scene.table = &table;
+  method_scene.cpu_volumes = cpu_volumes;
+  gpu::ShadowMethodOptions method_options;
+  method_options.stencil = options.zpass ? gpu::StencilMethod::zpass : gpu::StencilMethod::zfail;
+  if (shadowmap) method_options.shadow_map_size = static_cast<std::uint32_t>(options.shadowmap_size);
+  method_options.shadow_map_bias = options.shadowmap_bias;
+  method_options.shadow_map_slope = options.shadowmap_slope;
+  gpu::ShadowMethodRenderer renderer(method, method_scene, method_options);
   const gpu::OffscreenTarget target(scene.camera.width, scene.camera.height);
-  const gpu::StencilShadowRenderer renderer;
-  gpu::StencilShadowOptions render_options;
-  render_options.method = options.zpass ? gpu::StencilMethod::zpass : gpu::StencilMethod::zfail;
-  for (auto& c : render_options.light_colour) c /= static_cast<float>(scene.lights.size());
   const double upload_seconds = seconds_since(stage);
 
   stage = Clock::now();
-  build_cs_volumes();
-  std::uint64_t volume_triangles = built_on_gpu ? 0 : geometries.front().triangles.size();
-  if (built_on_gpu) {
-    // The output is sized for the worst case but clamped to one storage block: say so
-    // rather than draw a partial (open) volume.
-    const auto check_capacity = [&](const auto& gpu_volumes) {
-      for (const auto& v : gpu_volumes)
-        if (v->read_requested_vertices() > v->capacity_vertices())
-          throw InputError(options.input, "the " + options.method + " volume needs more vertices than its GL " +
-                                              "storage buffers hold (" + std::to_string(v->capacity_vertices()) + ")");
-    };
-    check_capacity(cs_volumes);
-    check_capacity(pertri_volumes);
-    check_capacity(gs_volumes);
-    check_capacity(ts_volumes);
-    volume_triangles = (pertri ? pertri_volumes.front()->read_requested_vertices()
-                        : gs   ? gs_volumes.front()->read_requested_vertices()
-                        : ts   ? ts_volumes.front()->read_requested_vertices()
-                               : cs_volumes.front()->read_requested_vertices()) / 3;
+  const gpu::StencilShadowFrame frame = renderer.render(target, scene.camera);
+  try {
+    // GPU-built volumes are sized for the worst case but clamped to what storage blocks
+    // address: say so rather than report the image of a partial (open) volume.
+    renderer.check_capacity();
+  } catch (const gpu::VolumeCapacityError& e) {
+    throw InputError(options.input, e.what());
   }
-  const gpu::StencilShadowFrame frame = renderer.render(target, receivers, scene.camera, lights, render_options);
+  const std::uint64_t volume_triangles = renderer.volume_triangles();
   const double first_frame_seconds = seconds_since(stage);
-  render_options.read_back = false;
-  stage = Clock::now();
-  for (int i = 0; i < kTimedFrames; ++i) {
-    build_cs_volumes();
-    (void)renderer.render(target, receivers, scene.camera, lights, render_options);
-    glFinish();
+
+  std::optional<gpu::FrameTiming> timing;
+  double frame_ms = 0.0;
+  std::size_t mean_frames = kTimedFrames;
+  if (options.timing) {
+    // A software renderer's timer queries do not time its stages (gpu/gpu_stage_timer.h):
+    // there each stage is bounded by glFinish and timed on the wall clock as well.
+    const gpu::StageSync sync = context->software() ? gpu::StageSync::finish : gpu::StageSync::none;
+    timing = renderer.time_frames(target, scene.camera, kTimingWarmUpFrames, options.frames, sync);
+    frame_ms = timing->mean_cpu_ms;
+    mean_frames = timing->frames;
+  } else {
+    const std::vector<double> wall_ms = renderer.render_frames(target, scene.camera, kTimedFrames);
+    frame_ms = std::accumulate(wall_ms.begin(), wall_ms.end(), 0.0) / static_cast<double>(wall_ms.size());
   }
-  const double frame_ms = 1000.0 * seconds_since(stage) / kTimedFrames;
 
   for (const std::string& file : {options.out, options.counts, options.mask}) create_parent_directories(file);
   if (!options.out.empty()) gpu::write_png(options.out, frame.colour);
   if (!options.counts.empty()) gpu::write_png(options.counts, frame.first_stencil);
   if (!options.mask.empty()) gpu::write_png(options.mask, frame.first_lit_mask);
-  if (!options.capture.empty())  // what was drawn, so that certify --volume checks the GPU's own output
-    write_capture(options.capture,
-                  built_on_gpu ? captured_volume(pertri ? pertri_volumes.front()->read_triangles()
-                                              : gs  ? gs_volumes.front()->read_triangles()
-                                              : ts  ? ts_volumes.front()->read_triangles()
-                                              : cs_volumes.front()->read_triangles()) : captured_volume(geometries.front()),
-                  options.input + ", method " + options.method + ", first light");
+  if (!options.capture.empty()) {  // what was drawn, so that certify --volume checks the GPU's own output
+    create_parent_directories(options.capture);
+    write_captured_volume(options.capture, renderer.first_volume(),
+                          options.input + ", method " + options.method + ", first light");
+  }
   const std::uint64_t lit = count_pixels(frame.colour, frame.first_stencil, true);
   const std::uint64_t shadowed = count_pixels(frame.colour, frame.first_stencil, false);
   const double seconds = seconds_since(start);
 
-  const char* method = options.zpass ? "zpass" : "zfail";
-  fmt::print("{}: {} triangles, {} lights, {}x{}, {}/{} on {}\n", options.input, merged.triangles.size(),
-             scene.lights.size(), scene.camera.width, scene.camera.height, options.method, method,
-             context->renderer());
-  fmt::print("  volume triangles (first light) {}\n", volume_triangles);
+  const char* stencil = options.zpass ? "zpass" : "zfail";
+  if (shadowmap) {
+    fmt::print("{}: {} triangles, {} lights, {}x{}, shadowmap {}^2 (bias {}, slope {}) on {}\n", options.input,
+               merged.triangles.size(), scene.lights.size(), scene.camera.width, scene.camera.height,
+               options.shadowmap_size, options.shadowmap_bias, options.shadowmap_slope, context->renderer());
+  } else {
+    fmt::print("{}: {} triangles, {} lights, {}x{}, {}/{} on {}\n", options.input, merged.triangles.size(),
+               scene.lights.size(), scene.camera.width, scene.camera.height, options.method, stencil,
+               context->renderer());
+    fmt::print("  volume triangles (first light) {}\n", volume_triangles);
+  }
   fmt::print("  first light: {} lit, {} shadowed receiver pixels\n", lit, shadowed);
-  fmt::print("  seconds: chains {:.3f}, upload {:.3f}, first frame {:.3f}; {:.2f} ms per frame ({} frames)\n",
-             chain_seconds, upload_seconds, first_frame_seconds, frame_ms, kTimedFrames);
+  fmt::print("  seconds: {}upload {:.3f}, first frame {:.3f}; {:.2f} ms per frame ({} frames)\n",
+             shadowmap ? "" : fmt::format("chains {:.3f}, ", chain_seconds), upload_seconds, first_frame_seconds,
+             frame_ms, mean_frames);
+  if (timing) print_timing(*timing);
+
   if (!options.json_file.empty()) {
-    write_json_file(options.json_file,
-                    {{"input", options.input},
-                     {"method", options.method},
-                     {"stencil", method},
-                     {"size", {scene.camera.width, scene.camera.height}},
-                     {"renderer", context->renderer()},
-                     {"device", context->device()},
-                     {"lights", scene.lights.size()},
-                     {"lit_pixels", lit},
-                     {"shadowed_pixels", shadowed},
-                     {"frame_ms", frame_ms},
-                     {"seconds", seconds},
-                     {"stage_seconds",
-                      {{"chains", chain_seconds}, {"upload", upload_seconds}, {"first_frame", first_frame_seconds}}}});
+    nlohmann::json report{{"input", options.input},
+                          {"method", options.method},
+                          {"size", {scene.camera.width, scene.camera.height}},
+                          {"renderer", context->renderer()},
+                          {"device", context->device()},
+                          {"lights", scene.lights.size()},
+                          {"lit_pixels", lit},
+                          {"shadowed_pixels", shadowed},
+                          {"frame_ms", frame_ms},
+                          {"seconds", seconds}};
+    if (shadowmap) {
+      report["shadowmap"] = {
+          {"size", options.shadowmap_size}, {"bias", options.shadowmap_bias}, {"slope", options.shadowmap_slope}};
+      report["stage_seconds"] = {{"upload", upload_seconds}, {"first_frame", first_frame_seconds}};
+    } else {
+      report["stencil"] = stencil;
+      report["stage_seconds"] = {
+          {"chains", chain_seconds}, {"upload", upload_seconds}, {"first_frame", first_frame_seconds}};
+    }
+    if (timing) report["timing"] = timing_json(*timing);
+    write_json_file(options.json_file, report);
   }
   return kExitOk;
 }
@@ -378,7 +310,8 @@ void add_render_command(CLI::App& app, int& exit_code) {
                   "gpu/per_triangle_volume.h), gs (geometry shader over edge records, float reference-edge "
                   "multiplicities, captured by transform feedback, rebuilt every frame; "
                   "gpu/geometry_shader_volume.h) or ts (tessellation over edge-record patches, the same "
-                  "multiplicities and capture; gpu/tessellation_volume.h). shadowmap (no volume: a depth map from each light, --shadowmap-size/-bias/-slope; gpu/shadow_map_renderer.h)")
+                  "multiplicities and capture; gpu/tessellation_volume.h). shadowmap (no volume: a depth map "
+                  "from each light, --shadowmap-size/-bias/-slope; gpu/shadow_map_renderer.h)")
       ->capture_default_str();
   cmd->add_flag("--zfail", options->zfail, "Count faces behind the visible point (default; right with the eye in a volume)");
   cmd->add_flag("--zpass", options->zpass, "Count faces in front of the visible point (wrong with the eye in a volume)");
@@ -398,6 +331,15 @@ void add_render_command(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   cmd->add_option("--shadowmap-slope", options->shadowmap_slope,
                   "shadowmap: glPolygonOffset slope factor of the depth pass (for surfaces edge-on to the light)")
+      ->capture_default_str();
+  CLI::Option* timing = cmd->add_flag(
+      "--timing", options->timing,
+      "Time each stage on the GPU (GL_TIME_ELAPSED: volume build, depth, stencil, lit; shadowmap: depth, "
+      "shadow_map, lit) and each frame (GPU and CPU wall), after 2 warm-up frames; print median, min and max, "
+      "and add them to --json under \"timing\"");
+  cmd->add_option("--frames", options->frames, "--timing: how many frames to time")
+      ->check(CLI::Range(std::size_t{1}, std::size_t{100000}))
+      ->needs(timing)
       ->capture_default_str();
   cmd->add_option("--device", options->device, "Use EGL device N (default: a hardware device, else llvmpipe)");
   cmd->callback([options, &exit_code] { exit_code = run_render(*options); });

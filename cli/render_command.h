@@ -1,9 +1,10 @@
 #pragma once
-// `shadowcert render SCENE --method cpu`: stencil shadow volumes drawn with OpenGL 4.5 core
-// through headless EGL (gpu/stencil_shadow_renderer.h, DESIGN.md §3, §5). The volume comes
-// from exact/'s chain; cli/ converts it to gpu/'s ShadowVolumeGeometry (gpu/ knows nothing
-// of exact/). Errors of the GL environment (no EGL, no 4.5 core) reach main as exceptions:
-// exit code 2.
+// `shadowcert render SCENE --method cpu|cs|gs|ts|pertri|shadowmap`: shadows drawn with OpenGL
+// 4.5 core through headless EGL (DESIGN.md §3, §5) by gpu/shadow_method_renderer.h. This file
+// only composes: it loads the scene, builds cpu's exact chains with exact/ (converted by
+// exact/chain_mesh.h: gpu/ knows nothing of exact/), and writes the images, the captured
+// volume, the JSON and, with --timing, the GPU stage times. Errors of the GL environment (no
+// EGL, no 4.5 core, no timer queries) reach main as exceptions: exit code 2.
 #include <CLI/CLI.hpp>
 
 namespace shadowcert::cli {

@@ -6,8 +6,11 @@
 #include <boost/property_map/property_map.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
+#include <utility>
 
 #include "exact/count_sampling.h"
 
@@ -119,6 +122,115 @@ class Reporting {
   bool going_ = true;
 };
 
+// A conservative slab test for the dilated and nearest-first queries: the line piece
+// from + t v, t in [0, t_max] (a ray: v its direction, t_max = infinity; a segment: v = to -
+// from, t_max = 1) against a box dilated by `slack`. It answers "may meet" for every box the
+// exact piece meets, in plain double arithmetic (no rounding-mode switch, the inner loop of
+// every query), by bounding each rounding error as in exact/light_orientation_filter.h:
+//   a slab parameter is A -+ B with A = fl(fl(x - from_k) * inv), B = fl(slack_k * |inv|) and
+//   inv = fl(1 / v_k) (v_k itself fl(to_k - from_k) for a segment): at most four roundings of
+//   relative error u = 2^-53 for A, three for B, one for their sum T, one more when the bound
+//   T -+ m is formed. So |T - exact| <= 4.01 u (|A| + B) + u |T|, and the margin
+//   m = (|A| + B + |T|) 2^-50 + 2^-1000 (8 u per term, plus an absolute term far above any
+//   underflow error) covers it with the last rounding. An axis whose inv overflows is left
+//   unconstrained (a superset). This is no tolerance: it only widens what may be visited.
+inline constexpr double kSlabRelativeMargin = 0x1p-50;
+inline constexpr double kSlabAbsoluteMargin = 0x1p-1000;
+
+class Slab {
+ public:
+  Slab(const Vec3& from, const Vec3& v, double t_max, const Vec3& slack)
+      : from_(from), t_max_(t_max), slack_(slack) {
+    for (int k = 0; k < 3; ++k) {
+      direction_[k] = v[k];
+      inverse_[k] = v[k] != 0.0 ? 1.0 / v[k] : 0.0;
+    }
+  }
+
+  // A lower bound of the entry parameter of the piece into b (dilated), or nullopt when the
+  // piece certainly misses it.
+  [[nodiscard]] std::optional<double> entry(const CGAL::Bbox_3& b) const {
+    double enter = 0.0;
+    double leave = t_max_;
+    for (int k = 0; k < 3; ++k) {
+      const double lo = b.min_coord(k), hi = b.max_coord(k), s = slack_[k];
+      if (direction_[k] == 0.0) {
+        // Parallel to the slab: certainly outside when lo - from_k > s (or from_k - hi > s);
+        // fl(lo - from_k) (1 - 2^-50) is below lo - from_k for a positive difference.
+        if ((lo - from_k(k)) * (1.0 - kSlabRelativeMargin) > s || (from_k(k) - hi) * (1.0 - kSlabRelativeMargin) > s)
+          return std::nullopt;
+        continue;
+      }
+      const double inv = inverse_[k];
+      if (!std::isfinite(inv)) continue;
+      const double a_lo = (lo - from_k(k)) * inv, a_hi = (hi - from_k(k)) * inv, widen = s * std::fabs(inv);
+      const bool forward = inv > 0.0;
+      const double a_near = forward ? a_lo : a_hi, a_far = forward ? a_hi : a_lo;
+      const double near = a_near - widen, far = a_far + widen;
+      const double near_margin = (std::fabs(a_near) + widen + std::fabs(near)) * kSlabRelativeMargin + kSlabAbsoluteMargin;
+      const double far_margin = (std::fabs(a_far) + widen + std::fabs(far)) * kSlabRelativeMargin + kSlabAbsoluteMargin;
+      const double near_bound = near - near_margin, far_bound = far + far_margin;
+      if (std::isfinite(near_bound)) enter = std::max(enter, near_bound);
+      if (std::isfinite(far_bound)) leave = std::min(leave, far_bound);
+    }
+    if (enter > leave) return std::nullopt;
+    return enter;
+  }
+
+ private:
+  [[nodiscard]] double from_k(int k) const { return from_[static_cast<std::size_t>(k)]; }
+  Vec3 from_;
+  Vec3 direction_{};
+  Vec3 inverse_{};
+  double t_max_;
+  Vec3 slack_;
+};
+
+// Traversal traits over a Slab: visits every leaf whose box the piece may meet; with a bound,
+// only those it may enter at t <= *bound, and (traversal_with_priority) the child it enters
+// first before the other.
+template <typename Callback>
+class SlabTraversal {
+ public:
+  using Priority = double;
+
+  SlabTraversal(const std::vector<CGAL::Bbox_3>& boxes, const Slab& slab, const double* bound, void* visit,
+                Callback callback)
+      : boxes_(boxes), slab_(slab), bound_(bound), visit_(visit), callback_(callback) {}
+
+  [[nodiscard]] bool go_further() const { return going_; }
+  template <typename Query>
+  void intersection(const Query&, const BoxPrimitive& primitive) {
+    if (!going_ || !within(slab_.entry(boxes_[primitive.id()]))) return;
+    going_ = callback_(visit_, primitive.id());
+  }
+  template <typename Query>
+  [[nodiscard]] bool do_intersect(const Query&, const CGAL::AABB_node<Traits>& node) const {
+    return within(slab_.entry(node.bbox()));
+  }
+  template <typename Query>
+  [[nodiscard]] std::pair<bool, Priority> do_intersect_with_priority(const Query&,
+                                                                     const CGAL::AABB_node<Traits>& node) const {
+    const std::optional<double> t = slab_.entry(node.bbox());
+    return {within(t), t ? -*t : 0.0};
+  }
+
+ private:
+  [[nodiscard]] bool within(const std::optional<double>& t) const {
+    return t.has_value() && (bound_ == nullptr || *t <= *bound_);
+  }
+
+  const std::vector<CGAL::Bbox_3>& boxes_;
+  const Slab& slab_;
+  const double* bound_;
+  void* visit_;
+  Callback callback_;
+  bool going_ = true;
+};
+
+// The query object CGAL's traversal passes through; the traits above carry the geometry.
+struct SlabQuery {};
+
 Kernel::Point_3 point_3(const Vec3& p) { return {p[0], p[1], p[2]}; }
 
 }  // namespace
@@ -160,6 +272,29 @@ void BoxTree::ray_query(const Vec3& from, const Vec3& direction, void* visit, Ca
                                                ray_box(from, direction), visit, callback);
   impl_->tree.traversal(Kernel::Ray_3(point_3(from), Kernel::Direction_3(direction[0], direction[1], direction[2])),
                         reporting);
+}
+
+void BoxTree::dilated_segment_query(const Vec3& from, const Vec3& to, const Vec3& slack, void* visit,
+                                    Callback callback) const {
+  const Slab slab(from, {to[0] - from[0], to[1] - from[1], to[2] - from[2]}, 1.0, slack);
+  SlabTraversal<Callback> traversal(impl_->boxes, slab, nullptr, visit, callback);
+  impl_->tree.traversal(SlabQuery{}, traversal);
+}
+
+void BoxTree::dilated_ray_query(const Vec3& from, const Vec3& direction, const Vec3& slack, void* visit,
+                                Callback callback) const {
+  const Slab slab(from, direction, std::numeric_limits<double>::infinity(), slack);
+  SlabTraversal<Callback> traversal(impl_->boxes, slab, nullptr, visit, callback);
+  impl_->tree.traversal(SlabQuery{}, traversal);
+}
+
+void BoxTree::nearest_first_ray_query(const Vec3& from, const Vec3& direction, const double* bound, void* visit,
+                                      Callback callback) const {
+  if (direction[0] == 0.0 && direction[1] == 0.0 && direction[2] == 0.0)
+    throw std::invalid_argument("BoxTree::nearest_first_ray_query: zero direction");
+  const Slab slab(from, direction, std::numeric_limits<double>::infinity(), Vec3{});
+  SlabTraversal<Callback> traversal(impl_->boxes, slab, bound, visit, callback);
+  impl_->tree.traversal_with_priority(SlabQuery{}, traversal);
 }
 
 }  // namespace shadowcert::detail

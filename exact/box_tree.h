@@ -7,7 +7,9 @@
 // whose own exact test is cheaper than one more box test.
 //
 // The occluder count (casting triangles, exact/occluder_counter.cpp) and the chain crossings
-// (caps and side pieces, exact/chain_crossings.cpp) both search with it.
+// (caps and side pieces, exact/chain_crossings.cpp) both search with it; the exact image
+// (exact/exact_image.cpp) finds first hits with its nearest-first ray query and counts from
+// hit points known only as exact rationals with its dilated queries.
 #include <array>
 #include <cstdint>
 #include <memory>
@@ -46,6 +48,34 @@ class BoxTree {
     ray_query(from, direction, erase(visit), &call<std::remove_reference_t<Visit>>);
   }
 
+  // The same queries for a segment (or ray) whose start is known only to lie in the box
+  // from +- slack (slack >= 0 per axis, e.g. an interval enclosure of an exact rational point):
+  // every box that the segment from any such start to `to` (or the ray along `direction`)
+  // meets is reported. Those segments lie in the segment from -> to dilated by [-slack, slack]
+  // per axis, so each box is dilated by slack, its bounds rounded outwards, and tested
+  // exactly against the given segment: a superset, never a missed box.
+  template <typename Visit>
+  void dilated_segment_query(const Vec3& from, const Vec3& to, const Vec3& slack, Visit&& visit) const {
+    dilated_segment_query(from, to, slack, erase(visit), &call<std::remove_reference_t<Visit>>);
+  }
+  template <typename Visit>
+  void dilated_ray_query(const Vec3& from, const Vec3& direction, const Vec3& slack, Visit&& visit) const {
+    dilated_ray_query(from, direction, slack, erase(visit), &call<std::remove_reference_t<Visit>>);
+  }
+
+  // First-hit search along the ray from + t direction, t >= 0 (direction nonzero): calls
+  // visit(id) for the boxes the ray meets, the subtree whose box the ray enters first visited
+  // first, and skips every subtree whose box the ray can only enter at a parameter t > *bound.
+  // The visitor lowers *bound (through its own pointer) as it finds hits, and returns false to
+  // stop. Entry and exit parameters are enclosed in interval arithmetic (round-to-nearest is
+  // restored before each visit), so every box the ray meets at some t <= *bound is visited:
+  // a superset (boxes the ray just misses may come too), never a missed box. *bound may be
+  // +infinity.
+  template <typename Visit>
+  void nearest_first_ray_query(const Vec3& from, const Vec3& direction, const double* bound, Visit&& visit) const {
+    nearest_first_ray_query(from, direction, bound, erase(visit), &call<std::remove_reference_t<Visit>>);
+  }
+
  private:
   // The visitor travels as a pointer and a function that calls it (no CGAL in this header).
   using Callback = bool (*)(void* visit, std::uint32_t id);
@@ -59,6 +89,12 @@ class BoxTree {
   }
   void segment_query(const Vec3& from, const Vec3& to, void* visit, Callback callback) const;
   void ray_query(const Vec3& from, const Vec3& direction, void* visit, Callback callback) const;
+  void dilated_segment_query(const Vec3& from, const Vec3& to, const Vec3& slack, void* visit,
+                             Callback callback) const;
+  void dilated_ray_query(const Vec3& from, const Vec3& direction, const Vec3& slack, void* visit,
+                         Callback callback) const;
+  void nearest_first_ray_query(const Vec3& from, const Vec3& direction, const double* bound, void* visit,
+                               Callback callback) const;
 
   struct Impl;
   std::unique_ptr<Impl> impl_;

@@ -109,10 +109,10 @@ void write_captured_volume(const std::filesystem::path& file, const CapturedVolu
   if (!out) throw InputError(file.string(), "write failed");
 }
 
-CapturedVolume read_captured_volume(const std::filesystem::path& file) {
-  const std::string name = file.string();
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw InputError(name, "cannot open");
+namespace {
+
+// The records of a .vol text, from any stream; `name` is the file named in messages.
+CapturedVolume read_records(std::istream& in, const std::string& name) {
   CapturedVolume volume;
   struct Face {
     std::vector<std::uint64_t> indices;
@@ -165,6 +165,20 @@ CapturedVolume read_captured_volume(const std::filesystem::path& file) {
                                   static_cast<std::uint32_t>(face.indices[k + 1])});
   }
   return volume;
+}
+
+}  // namespace
+
+CapturedVolume read_captured_volume(const std::filesystem::path& file) {
+  const std::string name = file.string();
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw InputError(name, "cannot open");
+  return read_records(in, name);
+}
+
+CapturedVolume parse_captured_volume(std::string_view text, const std::string& file_name) {
+  std::istringstream in(std::string(text), std::ios::binary);
+  return read_records(in, file_name);
 }
 
 CapturedClosure certify_captured_closure(const CapturedVolume& volume) {

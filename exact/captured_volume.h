@@ -14,17 +14,17 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <string>
 #include <string_view>
 #include <vector>
 
+#include "core/homogeneous_mesh.h"
 #include "exact/closure_certificate.h"
 
 namespace shadowcert {
 
-struct CapturedVolume {
-  std::vector<std::array<float, 4>> vertices;            // homogeneous, w in {0, 1}
-  std::vector<std::array<std::uint32_t, 3>> triangles;   // 0-based in memory
-};
+// Homogeneous vertices (w in {0, 1}) and 0-based triangles in memory.
+using CapturedVolume = HomogeneousMesh;
 
 // Merges vertices whose four floats are bitwise equal after mapping -0 to +0 (the GPU may
 // emit either for one point), keeping first-seen order and bits, and renumbers the triangles.
@@ -39,6 +39,9 @@ void write_captured_volume(const std::filesystem::path& file, const CapturedVolu
 // Reads and validates a .vol file (finite coordinates, w in {0, 1}, indices in range,
 // at least 3 per face); throws InputError naming file:line otherwise. Not welded.
 [[nodiscard]] CapturedVolume read_captured_volume(const std::filesystem::path& file);
+// The same on the file's text already in memory (the fuzz harness, fuzz/); messages name
+// `file_name`.
+[[nodiscard]] CapturedVolume parse_captured_volume(std::string_view text, const std::string& file_name);
 
 // Closure of the volume as drawn: welds (as weld_captured_volume) and balances directed
 // edges exactly as certify_closure. UnbalancedEdge ids index `welded`.

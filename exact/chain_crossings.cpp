@@ -208,7 +208,8 @@ class CrossableFaces {
     if ((*range)[1] < (*range)[0]) return;  // entirely outside the clip box
     const std::size_t pieces = piece_count(pu, pv, *range, target);
     // Breakpoints by one formula, so that consecutive pieces share theirs bit for bit.
-    const auto [first, last] = *range;
+    // Named doubles, not a structured binding: clang 14 (the sanitizer build) cannot capture one.
+    const double first = (*range)[0], last = (*range)[1];
     auto breakpoint = [&](std::size_t j) {
       return j == pieces ? last : first + (last - first) * double(j) / double(pieces);
     };

@@ -22,6 +22,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <system_error>
 #include <vector>
 
@@ -91,15 +92,18 @@ std::string load(const fs::path& file, const std::string& name) {
   std::string data(size > 0 ? static_cast<std::size_t>(size) : 0, '\0');
   in.seekg(0);
   if (size < 0 || !in.read(data.data(), size)) detail::fail(name, 0, "cannot read the file");
-  if (data.empty()) detail::fail(name, 0, "empty file");
-  if (data.find_first_not_of(" \t\r\n\v\f") == std::string::npos)
-    detail::fail(name, 0, "empty file (only whitespace)");
   return data;
 }
 
+void check_not_blank(std::string_view data, const std::string& name) {
+  if (data.empty()) detail::fail(name, 0, "empty file");
+  if (data.find_first_not_of(" \t\r\n\v\f") == std::string_view::npos)
+    detail::fail(name, 0, "empty file (only whitespace)");
+}
+
 // A stream over the file's bytes in the classic locale, whatever the global one is.
-std::istringstream stream_of(const std::string& data) {
-  std::istringstream in(data, std::ios::in | std::ios::binary);
+std::istringstream stream_of(std::string_view data) {
+  std::istringstream in(std::string(data), std::ios::in | std::ios::binary);
   in.imbue(std::locale::classic());
   return in;
 }
@@ -112,7 +116,7 @@ std::istringstream stream_of(const std::string& data) {
 
 // ------------------------------------------------------------------------- per format
 
-PolygonSoup read_obj(const std::string& data, const std::string& name) {
+PolygonSoup read_obj(std::string_view data, const std::string& name) {
   PolygonSoup soup;
   soup.lines = detail::check_obj_text(data, name);
   std::istringstream in = stream_of(data);
@@ -121,7 +125,7 @@ PolygonSoup read_obj(const std::string& data, const std::string& name) {
   return soup;
 }
 
-PolygonSoup read_off(const std::string& data, const std::string& name) {
+PolygonSoup read_off(std::string_view data, const std::string& name) {
   PolygonSoup soup;
   soup.lines = detail::check_off_text(data, name);
   std::istringstream in = stream_of(data);
@@ -141,7 +145,7 @@ float to_float(double value) {
 
 // CGAL's polygon-soup PLY reader drops vertex normals; its point-set reader reads them
 // (a second pass, only for files that have normals).
-std::vector<Normal> read_ply_normals(const std::string& data, const std::string& name) {
+std::vector<Normal> read_ply_normals(std::string_view data, const std::string& name) {
   using Vector = Kernel::Vector_3;
   std::vector<Vector> vectors;
   std::istringstream in = stream_of(data);
@@ -154,7 +158,7 @@ std::vector<Normal> read_ply_normals(const std::string& data, const std::string&
   return normals;
 }
 
-PolygonSoup read_ply(const std::string& data, const std::string& name) {
+PolygonSoup read_ply(std::string_view data, const std::string& name) {
   PolygonSoup soup;
   const detail::PlyHeader header = detail::read_ply_header(data, name);
   if (header.format == detail::PlyFormat::ascii)
@@ -169,7 +173,7 @@ PolygonSoup read_ply(const std::string& data, const std::string& name) {
   return soup;
 }
 
-PolygonSoup read_stl(const std::string& data, const std::string& name) {
+PolygonSoup read_stl(std::string_view data, const std::string& name) {
   PolygonSoup soup;
   std::istringstream in = stream_of(data);
   bool read = false;
@@ -187,7 +191,7 @@ PolygonSoup read_stl(const std::string& data, const std::string& name) {
   return soup;
 }
 
-PolygonSoup read_polygons(Format format, const std::string& data, const std::string& name) {
+PolygonSoup read_polygons(Format format, std::string_view data, const std::string& name) {
   switch (format) {
     case Format::obj: return read_obj(data, name);
     case Format::off: return read_off(data, name);
@@ -268,6 +272,16 @@ Soup triangulate(const PolygonSoup& polygons) {
   return soup;
 }
 
+// The bytes of a file of a known format, checked and read, as read_soup returns them.
+Soup soup_of(Format format, std::string_view data, const std::string& name) {
+  check_not_blank(data, name);
+  const PolygonSoup polygons = read_polygons(format, data, name);
+  check_agreement(polygons, name);
+  check_points(polygons, name);
+  check_polygons(polygons, name);
+  return triangulate(polygons);
+}
+
 // ---------------------------------------------------------------------------- writing
 
 void check_writable(const Soup& soup) {
@@ -341,12 +355,11 @@ Soup read_soup(const fs::path& file) {
   const std::string name = file.string();
   check_is_file(file, name);
   const Format format = readable_format(file, name);
-  const std::string data = load(file, name);
-  const PolygonSoup polygons = read_polygons(format, data, name);
-  check_agreement(polygons, name);
-  check_points(polygons, name);
-  check_polygons(polygons, name);
-  return triangulate(polygons);
+  return soup_of(format, load(file, name), name);
+}
+
+Soup parse_soup(std::string_view data, const std::string& file_name) {
+  return soup_of(readable_format(fs::path(file_name), file_name), data, file_name);
 }
 
 void write_soup(const fs::path& file, const Soup& soup) {

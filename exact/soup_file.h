@@ -10,12 +10,19 @@
 // faces with fewer than three vertices, no triangle at all.
 // Write: .off .obj .ply (ASCII, with max_digits10 so that values round-trip bitwise).
 #include <filesystem>
+#include <string>
+#include <string_view>
 
 #include "core/soup.h"
 
 namespace shadowcert {
 
 [[nodiscard]] Soup read_soup(const std::filesystem::path& file);
+
+// The same on a file's bytes already in memory (the fuzz harnesses, fuzz/): `file_name`'s
+// extension picks the format, as read_soup's path does, and messages name `file_name`.
+// Everything read_soup rejects after opening the file is rejected alike, with the same message.
+[[nodiscard]] Soup parse_soup(std::string_view data, const std::string& file_name);
 
 void write_soup(const std::filesystem::path& file, const Soup& soup);
 

@@ -173,14 +173,52 @@ class ObjChecker {
 // ---------------------------------------------------------------------------------- OFF
 
 // CGAL's keywords for polygon OFF files: [ST][C][N][4]OFF (nOFF, SKEL and BINARY are not
-// polygon soups in text). Returns whether the coordinates are homogeneous (4OFF).
-std::optional<bool> off_keyword_is_homogeneous(std::string_view keyword) {
-  for (const std::string_view prefix : {"ST", "C", "N"})
-    if (keyword.starts_with(prefix)) keyword.remove_prefix(prefix.size());
-  const bool homogeneous = keyword.starts_with("4");
-  if (homogeneous) keyword.remove_prefix(1);
+// polygon soups in text). Each letter adds values to a vertex line, in this order:
+// x y z [w], then [N] nx ny nz [nw], then [C] a color of 1, 3 or 4 values, then
+// [ST] s t [w]; [C] also lets a face line end with a color.
+struct OffKeyword {
+  bool textures = false;     // ST
+  bool colors = false;       // C
+  bool normals = false;      // N
+  bool homogeneous = false;  // 4: every point (and normal, texture point) has a w
+};
+
+std::optional<OffKeyword> read_off_keyword(std::string_view keyword) {
+  const auto take = [&keyword](std::string_view prefix) {
+    const bool found = keyword.starts_with(prefix);
+    if (found) keyword.remove_prefix(prefix.size());
+    return found;
+  };
+  OffKeyword result;
+  result.textures = take("ST");
+  result.colors = take("C");
+  result.normals = take("N");
+  result.homogeneous = take("4");
   if (keyword != "OFF") return std::nullopt;
-  return homogeneous;
+  return result;
+}
+
+// CGAL's OFF scanner casts each value of a 3- or 4-value color to unsigned char, as an integer
+// when all three are integral and times 255 otherwise (undefined behaviour outside the range),
+// and looks a 1-value color up in its 149-entry color map (read out of bounds past it).
+std::optional<std::string> off_color_error(std::span<const std::string_view> values) {
+  constexpr double kLastColorIndex = 148;
+  if (values.size() != 1 && values.size() != 3 && values.size() != 4)
+    return "a color has 1, 3 or 4 values, found " + std::to_string(values.size());
+  std::array<double, 3> v{};
+  for (std::size_t i = 0; i < std::min<std::size_t>(values.size(), 3); ++i) (void)finite_number_error(values[i], v[i]);
+  const auto integral = [](double x) { return std::floor(x) == x; };
+  if (values.size() == 1) {
+    if (!integral(v[0]) || v[0] < 0 || v[0] > kLastColorIndex)
+      return "color index " + quoted(values[0]) + " is not an integer in [0, 148] (CGAL's color map)";
+    return std::nullopt;
+  }
+  const double top = integral(v[0]) && integral(v[1]) && integral(v[2]) ? 255 : 1;
+  for (const double x : v)
+    if (x < 0 || x > top)
+      return "color " + quoted(values[0]) + " " + quoted(values[1]) + " " + quoted(values[2]) +
+             " is neither three integers in [0, 255] nor three numbers in [0, 1]";
+  return std::nullopt;
 }
 
 class OffChecker {
@@ -200,11 +238,15 @@ class OffChecker {
  private:
   void read_header() {
     if (!records_.next()) fail(file_, records_.line(), "no OFF header (only blank lines and comments)");
-    const auto homogeneous = off_keyword_is_homogeneous(records_.tokens()[0]);
-    if (!homogeneous)
-      records_.fail_here("expected the OFF header keyword (OFF, COFF, NOFF, STOFF, 4OFF...), found " +
+    const auto keyword = read_off_keyword(records_.tokens()[0]);
+    if (!keyword)
+      records_.fail_here("expected the OFF header keyword (OFF, COFF, NOFF, STCOFF, 4OFF...), found " +
                          quoted(records_.tokens()[0]));
-    homogeneous_ = *homogeneous;
+    // CGAL finds texture coordinates after the color, whose offset only a C sets.
+    if (keyword->textures && !keyword->colors)
+      records_.fail_here("texture coordinates without colors (" + std::string(records_.tokens()[0]) +
+                         "): CGAL's OFF reader reads them from an uninitialised offset (write STCOFF)");
+    keyword_ = *keyword;
     std::size_t first_count = 1;
     if (records_.tokens().size() == 1) {
       if (!records_.next()) fail(file_, records_.line(), "unexpected end of file: no vertex and face counts");
@@ -239,14 +281,36 @@ class OffChecker {
 
   void check_vertex(std::size_t k) {
     next_record("vertex", k, vertex_count_);
-    const std::size_t needed = homogeneous_ ? 4 : 3;
+    const std::size_t point = keyword_.homogeneous ? 4 : 3;
     const std::size_t found = records_.tokens().size();
-    if (found < needed)
-      records_.fail_here(element_name("vertex", k) + "expected " + std::to_string(needed) +
+    if (found < point)
+      records_.fail_here(element_name("vertex", k) + "expected " + std::to_string(point) +
                          " coordinates, found " + std::to_string(found));
     // Beyond the coordinates come colors, normals or texture coordinates: numbers too.
     check_finite_numbers(records_, 0, found, element_name("vertex", k));
+    const std::size_t normal = keyword_.normals ? point : 0;
+    const std::size_t texture = keyword_.textures ? point - 1 : 0;
+    if (found < point + normal + texture)
+      records_.fail_here(element_name("vertex", k) + "expected " + std::to_string(point + normal + texture) +
+                         " numbers (the point" + (normal > 0 ? ", its normal" : "") +
+                         (texture > 0 ? ", its texture coordinates" : "") + "), found " + std::to_string(found));
+    if (keyword_.colors)
+      check_color("vertex", k, point + normal, found - point - normal - texture, vertex_colored_);
     result_.vertex.push_back(records_.line());
+  }
+
+  // The color of record k of a C file (`kind`: vertex or face): `count` values from token
+  // `first`. CGAL reads a color on every record after the first one that has one (`colored`).
+  void check_color(const std::string& kind, std::size_t k, std::size_t first, std::size_t count, bool& colored) {
+    if (count == 0) {
+      if (colored)
+        records_.fail_here(element_name(kind, k) + "no color, but an earlier " + kind +
+                           " has one (CGAL would read one anyway)");
+      return;
+    }
+    colored = true;
+    if (const auto error = off_color_error(std::span(records_.tokens()).subspan(first, count)))
+      records_.fail_here(element_name(kind, k) + *error);
   }
 
   void check_face(std::size_t j) {
@@ -262,6 +326,8 @@ class OffChecker {
                          std::to_string(tokens.size() - 1));
     for (std::size_t t = 1; t <= corner_count; ++t) check_index(name, tokens[t]);
     check_finite_numbers(records_, corner_count + 1, tokens.size(), name);  // a face color
+    // CGAL reads a face's color only in a C file.
+    if (keyword_.colors) check_color("face", j, corner_count + 1, tokens.size() - 1 - corner_count, face_colored_);
     result_.face.push_back(records_.line());
   }
 
@@ -276,7 +342,9 @@ class OffChecker {
 
   Records records_;
   const std::string& file_;
-  bool homogeneous_ = false;
+  OffKeyword keyword_;
+  bool vertex_colored_ = false;
+  bool face_colored_ = false;
   std::size_t vertex_count_ = 0;
   std::size_t face_count_ = 0;
   RecordLines result_;

@@ -1,39 +1,45 @@
 #include "gpu/camera_transform.h"
 
-#include <glm/gtc/matrix_transform.hpp>
-
 #include <cmath>
 #include <stdexcept>
+
+#include "core/pixel_ray.h"
 
 namespace shadowcert::gpu {
 namespace {
 
 glm::dvec3 to_glm(const Vec3& v) { return {v[0], v[1], v[2]}; }
 
-void check(const Camera& camera, const char* function) {
-  const glm::dvec3 forward = to_glm(camera.target) - to_glm(camera.eye);
-  if (glm::length(forward) == 0.0) throw std::invalid_argument(std::string(function) + ": eye == target");
-  if (glm::length(glm::cross(forward, to_glm(camera.up))) == 0.0) {
-    throw std::invalid_argument(std::string(function) + ": up is parallel to the view direction");
-  }
-  if (!(camera.fov_y_degrees > 0.0 && camera.fov_y_degrees < 180.0)) {
-    throw std::invalid_argument(std::string(function) + ": fov_y_degrees outside (0, 180)");
-  }
-  if (camera.width == 0 || camera.height == 0) throw std::invalid_argument(std::string(function) + ": empty image");
-}
-
 }  // namespace
 
+// GLM's lookAt matrix (rows right, up, -forward; the eye at the origin), built from
+// core/pixel_ray.h's frame so that the exact image's pixel rays are this camera's.
 glm::dmat4 view_matrix(const Camera& camera) {
-  check(camera, "view_matrix");
-  return glm::lookAt(to_glm(camera.eye), to_glm(camera.target), to_glm(camera.up));
+  const CameraFrame f = camera_frame(camera, "view_matrix");
+  glm::dmat4 m(1.0);
+  for (int k = 0; k < 3; ++k) {
+    m[k][0] = f.right[k];
+    m[k][1] = f.up[k];
+    m[k][2] = -f.forward[k];
+  }
+  m[3][0] = -shadowcert::detail::dot(f.right, f.eye);
+  m[3][1] = -shadowcert::detail::dot(f.up, f.eye);
+  m[3][2] = shadowcert::detail::dot(f.forward, f.eye);
+  return m;
 }
 
+// GLM's infinitePerspective (right-handed, clip z in [-w, w]) with the frame's half extents:
+// view-space x / -z = half_width maps to NDC x = 1, as pixel_ray assumes.
 glm::dmat4 projection_matrix(const Camera& camera, double z_near) {
-  check(camera, "projection_matrix");
+  const CameraFrame f = camera_frame(camera, "projection_matrix");
   if (!(z_near > 0.0)) throw std::invalid_argument("projection_matrix: z_near must be > 0");
-  const double aspect = static_cast<double>(camera.width) / static_cast<double>(camera.height);
-  return glm::infinitePerspective(glm::radians(camera.fov_y_degrees), aspect, z_near);
+  glm::dmat4 m(0.0);
+  m[0][0] = 1.0 / f.half_width;
+  m[1][1] = 1.0 / f.half_height;
+  m[2][2] = -1.0;
+  m[2][3] = -1.0;
+  m[3][2] = -2.0 * z_near;
+  return m;
 }
 
 glm::dvec2 project_to_image(const Camera& camera, const Vec3& point) {

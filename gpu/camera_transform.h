@@ -5,6 +5,9 @@
 //   coordinates; its centre is (i + 0.5, r + 0.5). In GL window coordinates (origin at the
 //   bottom left) that centre is (i + 0.5, height - r - 0.5): GL samples exactly there, and
 //   readback (gpu/offscreen_target.h) flips rows so that row 0 is the top one.
+// Both matrices are built from core/pixel_ray.h's camera_frame, the basis the exact image
+// (exact/exact_image.h) casts its pixel rays with: the two sides share one camera by
+// construction (tests/gl/camera_transform_test.cpp).
 #include <glm/glm.hpp>
 
 #include "core/camera.h"
@@ -23,8 +26,7 @@ inline constexpr double kDefaultNearPlane = 0.01;
 [[nodiscard]] glm::dmat4 projection_matrix(const Camera& camera, double z_near = kDefaultNearPlane);
 
 // Where a world point lands in image coordinates (x right, y DOWN, pixel (i, r)'s centre at
-// (i + 0.5, r + 0.5)); for tests and for the exact side's pixel rays. The point must be in
-// front of the camera.
+// (i + 0.5, r + 0.5)); for tests. The point must be in front of the camera.
 [[nodiscard]] glm::dvec2 project_to_image(const Camera& camera, const Vec3& point);
 
 }  // namespace shadowcert::gpu

@@ -126,6 +126,11 @@ void GeometryShaderShadowVolume::build(const Light& light) {
   glEndTransformFeedback();
   glEndQueryIndexed(GL_PRIMITIVES_GENERATED, 0);
   glBindVertexArray(0);
+  // Unbind the capture program before the finish program is made current: Mesa (llvmpipe,
+  // Debian 12) keeps a compute program made current straight after a graphics program
+  // referenced after glUseProgram(0), so the deleted finish program stayed alive (glIsProgram
+  // true) once this object was destroyed (tests/gl/gl_resource_test.cpp).
+  glUseProgram(0);
   glDisable(GL_RASTERIZER_DISCARD);
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(previous_framebuffer));
   glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, kCaptureBinding, 0);

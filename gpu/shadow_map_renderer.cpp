@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -189,13 +190,17 @@ StencilShadowFrame ShadowMapRenderer::render(const OffscreenTarget& target, cons
   glProgramUniform1f(scene, kLambertWeightLocation, 0.0f);
   glProgramUniform4f(scene, kColourLocation, options.ambient[0], options.ambient[1], options.ambient[2], 1.0f);
   glBindVertexArray(receivers.vertex_array());
-  glDrawArrays(GL_TRIANGLES, 0, receivers.vertex_count());
+  {
+    const ScopedStage stage(options.timer, RenderStage::depth);
+    glDrawArrays(GL_TRIANGLES, 0, receivers.vertex_count());
+  }
 
   for (std::size_t i = 0; i < lights.size(); ++i) {
     const glm::mat4 to_light_clip(light_to_clip(lights[i], bounds));
 
     // 2. Depth pass from the light. Only the slope term of glPolygonOffset: the constant
     //    bias is applied in the comparison (depth_bias), in depth units the user can read.
+    std::optional<ScopedStage> stage(std::in_place, options.timer, RenderStage::shadow_map);
     glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.name());
     glViewport(0, 0, static_cast<GLsizei>(size_), static_cast<GLsizei>(size_));
     glDisable(GL_STENCIL_TEST);
@@ -208,9 +213,11 @@ StencilShadowFrame ShadowMapRenderer::render(const OffscreenTarget& target, cons
     glPolygonOffset(options.slope_scale, 0.0f);
     glDrawArrays(GL_TRIANGLES, 0, receivers.vertex_count());
     glDisable(GL_POLYGON_OFFSET_FILL);
+    stage.reset();
 
     // 3. Lit pass on the visible surface only; the first light clears the shadowed mark
     //    where its comparison says lit (shadowed fragments are discarded in the shader).
+    stage.emplace(options.timer, RenderStage::lit);
     target.bind();
     glUseProgram(scene);
     glBindTextureUnit(kShadowMapUnit, depth_.name());
@@ -232,6 +239,7 @@ StencilShadowFrame ShadowMapRenderer::render(const OffscreenTarget& target, cons
     glDrawArrays(GL_TRIANGLES, 0, receivers.vertex_count());
     glDisable(GL_BLEND);
     glBindTextureUnit(kShadowMapUnit, 0);
+    stage.reset();
   }
 
   glBindVertexArray(0);

@@ -22,6 +22,7 @@
 #include "core/light.h"
 #include "core/soup.h"
 #include "gpu/gl_object.h"
+#include "gpu/gpu_stage_timer.h"
 #include "gpu/offscreen_target.h"
 #include "gpu/stencil_shadow_renderer.h"
 
@@ -65,6 +66,9 @@ struct ShadowMapOptions {
   std::array<float, 3> ambient{0.15f, 0.15f, 0.15f};
   std::array<float, 3> light_colour{0.85f, 0.85f, 0.85f};
   bool read_back = true;  // off for timing: render() returns only what was drawn
+  // When set (and a frame of it open), the depth pre-pass, each light's shadow_map pass and
+  // lit pass are timed as its stages (gpu/gpu_stage_timer.h); readbacks stay outside them.
+  GpuStageTimer* timer = nullptr;
 };
 
 class ShadowMapRenderer {

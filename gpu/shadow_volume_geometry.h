@@ -1,25 +1,19 @@
 #pragma once
 // A shadow-volume chain as the GPU draws it (DESIGN.md §3): homogeneous vertices and
-// outward-oriented triangles. gpu/ does not build chains (exact/ or, later, the float
-// methods do); cli/ converts exact/'s symbolic chain into this form.
+// outward-oriented triangles (core/homogeneous_mesh.h). gpu/ does not build exact chains:
+// exact/chain_mesh.h converts exact/'s symbolic chain into this form and the caller uploads it.
 //
 // Vertices: w = 1 for finite points x; w = 0 for points at infinity, x_inf = (x - l, 0) for
 // a point light at l and (-l, 0) for a directional light towards l. The projection's far
 // plane is at infinity (gpu/camera_transform.h) and GL_DEPTH_CLAMP is on while volumes are
 // drawn, so w = 0 vertices are never clipped: caps at infinity reach depth 1.
 // Triangles: oriented outwards (normal by the right-hand rule), side quads split in two.
-#include <array>
-#include <cstdint>
-#include <vector>
-
+#include "core/homogeneous_mesh.h"
 #include "gpu/gl_object.h"
 
 namespace shadowcert::gpu {
 
-struct ShadowVolumeGeometry {
-  std::vector<std::array<float, 4>> vertices;
-  std::vector<std::array<std::uint32_t, 3>> triangles;
-};
+using ShadowVolumeGeometry = HomogeneousMesh;
 
 // The geometry in a vertex array (attribute 0 = vec4 position), ready for glDrawElements.
 class ShadowVolumeMesh {

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -125,12 +126,16 @@ StencilShadowFrame StencilShadowRenderer::render(const OffscreenTarget& target, 
   glProgramUniform1f(program, kLambertWeightLocation, 0.0f);
   set_uniform_colour(program, options.ambient);
   glBindVertexArray(receivers.vertex_array());
-  glDrawArrays(GL_TRIANGLES, 0, receivers.vertex_count());
+  {
+    const ScopedStage stage(options.timer, RenderStage::depth);
+    glDrawArrays(GL_TRIANGLES, 0, receivers.vertex_count());
+  }
 
   StencilShadowFrame frame;
   for (std::size_t i = 0; i < lights.size(); ++i) {
     const LightVolume& lv = lights[i];
     // 2. Volume pass: counts only, nothing else written.
+    std::optional<ScopedStage> stage(std::in_place, options.timer, RenderStage::stencil);
     glStencilMask(0xFF);
     glClear(GL_STENCIL_BUFFER_BIT);
     glEnable(GL_STENCIL_TEST);
@@ -156,12 +161,14 @@ StencilShadowFrame StencilShadowRenderer::render(const OffscreenTarget& target, 
       glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
     }
     glDisable(GL_DEPTH_CLAMP);
+    stage.reset();
     if (i == 0 && options.read_back) {
       frame.first_stencil = target.read_stencil();
       frame.first_lit_mask = lit_mask(frame.first_stencil);
     }
 
     // 3. Lit pass: this light's Lambert term where the count is 0, on the visible surface only.
+    stage.emplace(options.timer, RenderStage::lit);
     glStencilFunc(GL_EQUAL, 0, 0xFF);
     glStencilOpSeparate(GL_FRONT_AND_BACK, GL_KEEP, GL_KEEP, GL_KEEP);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
@@ -177,6 +184,7 @@ StencilShadowFrame StencilShadowRenderer::render(const OffscreenTarget& target, 
     glDrawArrays(GL_TRIANGLES, 0, receivers.vertex_count());
     glDisable(GL_BLEND);
     glProgramUniform1f(program, kLambertWeightLocation, 0.0f);
+    stage.reset();
   }
 
   glBindVertexArray(0);

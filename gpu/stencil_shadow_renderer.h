@@ -22,6 +22,7 @@
 #include "core/light.h"
 #include "core/soup.h"
 #include "gpu/gl_object.h"
+#include "gpu/gpu_stage_timer.h"
 #include "gpu/image.h"
 #include "gpu/offscreen_target.h"
 #include "gpu/shadow_volume_geometry.h"
@@ -75,6 +76,9 @@ struct StencilShadowOptions {
   // Each light's colour; several lights share 1 so that the sum stays in range.
   std::array<float, 3> light_colour{0.85f, 0.85f, 0.85f};
   bool read_back = true;  // off for timing: render() returns only what was drawn
+  // When set (and a frame of it open), the depth, stencil and lit passes are timed as its
+  // stages (gpu/gpu_stage_timer.h); readbacks stay outside them.
+  GpuStageTimer* timer = nullptr;
 };
 
 struct StencilShadowFrame {

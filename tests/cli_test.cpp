@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace {
 
@@ -235,4 +236,181 @@ TEST(CliCapture, CertifyWithoutInputOrVolume_ExitsTwo) {
   const RunResult r = run_cli("certify");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.output.find("--volume"), std::string::npos) << r.output;
+}
+
+namespace {
+
+// render --timing (docs/cli.md): the medians of a frame's stages are parts of that frame, but
+// medians of parts need not add up to the median of the whole (one slow stage in one frame,
+// another in the next, on a shared machine); this much slack over the frame's median absorbs it.
+constexpr double kStageSumTolerance = 0.25;
+
+// Checks a {"median", "min", "max"} object: non-negative and ordered. Returns the median.
+double checked_summary(const nlohmann::json& s, const std::string& what) {
+  EXPECT_TRUE(s.contains("median") && s.contains("min") && s.contains("max")) << what << ": " << s.dump();
+  const double median = s.value("median", -1.0), min = s.value("min", -1.0), max = s.value("max", -1.0);
+  EXPECT_GE(min, 0.0) << what;
+  EXPECT_LE(min, median) << what;
+  EXPECT_LE(median, max) << what;
+  return median;
+}
+
+// Checks render's "timing" object (docs/cli.md) for the method's `stages`: exactly those and
+// the frame on the GPU side; the frame (and the stages, when bounded by glFinish) on the CPU
+// side; every summary ordered and non-negative; stage medians adding up to about the frame.
+void check_timing(const nlohmann::json& t, const std::vector<std::string>& stages) {
+  EXPECT_EQ(t["frames"], 5);
+  EXPECT_EQ(t["warm_up_frames"], 2);
+  const std::string sync = t["stage_sync"];
+  EXPECT_TRUE(sync == "none" || sync == "finish") << sync;
+  ASSERT_EQ(t["gpu_ms"].size(), stages.size() + 1) << t.dump(2);
+  ASSERT_EQ(t["cpu_ms"].size(), sync == "finish" ? stages.size() + 1 : 1) << t.dump(2);
+  double gpu_sum = 0.0, cpu_sum = 0.0;
+  for (const std::string& stage : stages) {
+    ASSERT_TRUE(t["gpu_ms"].contains(stage)) << stage;
+    gpu_sum += checked_summary(t["gpu_ms"][stage], "gpu " + stage);
+    if (sync == "finish") cpu_sum += checked_summary(t["cpu_ms"][stage], "cpu " + stage);
+  }
+  const double gpu_frame = checked_summary(t["gpu_ms"]["frame"], "gpu frame");
+  const double cpu_frame = checked_summary(t["cpu_ms"]["frame"], "cpu frame");
+  EXPECT_LE(gpu_sum, gpu_frame * (1.0 + kStageSumTolerance)) << t.dump(2);
+  EXPECT_LE(cpu_sum, cpu_frame * (1.0 + kStageSumTolerance)) << t.dump(2);
+}
+
+// `render default.json --timing --frames 5` at a small size, its JSON report.
+struct TimedRender {
+  RunResult run;
+  nlohmann::json report;
+};
+TimedRender render_timed(const std::string& method) {
+  const fs::path json = temp_dir() / ("timing_" + method + ".json");
+  TimedRender r{run_cli("render " + kDefaultScene + " --method " + method + " --size 128x96 --timing --frames 5 " +
+                        "--json " + json.string()),
+                nullptr};
+  if (r.run.exit_code == 0) r.report = read_json(json);
+  return r;
+}
+
+}  // namespace
+
+TEST(CliTiming, VolumeMethod_GpuStagesAndFrameInJson) {
+  const TimedRender r = render_timed("cs");
+  if (render_unavailable(r.run)) GTEST_SKIP() << r.run.output;
+  ASSERT_EQ(r.run.exit_code, 0) << r.run.output;
+  EXPECT_NE(r.run.output.find("frame"), std::string::npos) << r.run.output;  // the printed table
+  EXPECT_GE(r.report["frame_ms"].get<double>(), 0.0);
+  check_timing(r.report["timing"], {"volume", "depth", "stencil", "lit"});
+}
+
+TEST(CliTiming, CpuMethod_VolumeStageIsEmpty) {
+  const TimedRender r = render_timed("cpu");
+  if (render_unavailable(r.run)) GTEST_SKIP() << r.run.output;
+  ASSERT_EQ(r.run.exit_code, 0) << r.run.output;
+  const nlohmann::json& t = r.report["timing"];
+  check_timing(t, {"volume", "depth", "stencil", "lit"});
+  EXPECT_EQ(t["gpu_ms"]["volume"]["max"], 0.0);  // cpu's volume is built before the frames
+  if (t["stage_sync"] == "finish") {
+    EXPECT_EQ(t["cpu_ms"]["volume"]["max"], 0.0);
+  }
+}
+
+TEST(CliTiming, ShadowMap_DepthShadowMapAndLitStages) {
+  const TimedRender r = render_timed("shadowmap");
+  if (render_unavailable(r.run)) GTEST_SKIP() << r.run.output;
+  ASSERT_EQ(r.run.exit_code, 0) << r.run.output;
+  check_timing(r.report["timing"], {"depth", "shadow_map", "lit"});
+}
+
+TEST(CliTiming, FramesWithoutTimingOrZero_ExitsTwo) {
+  EXPECT_EQ(run_cli("render " + kDefaultScene + " --frames 3").exit_code, 2);
+  EXPECT_EQ(run_cli("render " + kDefaultScene + " --timing --frames 0").exit_code, 2);
+}
+
+// ---- shadowcert fuzz -----------------------------------------------------------------------
+
+TEST(CliFuzz, TinyCampaign_ExitsZeroJsonHasCasesSecondsAndEveryMethod) {
+  const fs::path dir = temp_dir() / "fuzz";
+  const fs::path json = dir / "fuzz.json";
+  const RunResult r = run_cli("fuzz --seed 3 --cases 60 --triangles 30 --out " + (dir / "out").string() + " --json " +
+                              json.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("refedge-float"), std::string::npos) << r.output;  // the summary table
+  const nlohmann::json j = read_json(json);
+  EXPECT_EQ(j["cases"], 60);
+  EXPECT_EQ(j["triangles"], 30);
+  EXPECT_GE(j["seconds"].get<double>(), 0.0);
+  EXPECT_GT(j["cases_per_second"].get<double>(), 0.0);
+  for (const char* run :
+       {"exact", "kim-float", "kim-double", "peciva-float", "peciva-double", "refedge-float", "refedge-double"}) {
+    ASSERT_TRUE(j["methods"].contains(run)) << run;
+    const nlohmann::json& m = j["methods"][run];
+    for (const char* key : {"failures", "closure_failures", "count_failures", "exact_mismatch_cases",
+                            "sign_disagreement_cases", "light_on_triangle_cases", "must_not_fail"})
+      EXPECT_TRUE(m.contains(key)) << run << "." << key;
+    EXPECT_LE(m["closure_failures"].get<std::uint64_t>(), m["failures"].get<std::uint64_t>()) << run;
+    if (m["must_not_fail"].get<bool>()) {
+      EXPECT_EQ(m["failures"], 0) << run;
+    }
+  }
+  std::uint64_t families = 0;
+  for (const auto& [name, count] : j["families"].items()) families += count.get<std::uint64_t>();
+  EXPECT_EQ(families, 60u);
+  EXPECT_EQ(j["must_not_fail_failed"], false);
+  EXPECT_FALSE(fs::exists(dir / "out"));  // no failure, no reproducer
+}
+
+TEST(CliFuzz, SameSeed_SameFiguresWhateverTheThreads) {
+  const fs::path dir = temp_dir() / "fuzz_threads";
+  const std::string common = "fuzz --seed 9 --cases 40 --triangles 20 --out " + (dir / "out").string();
+  ASSERT_EQ(run_cli(common + " --threads 1 --json " + (dir / "one.json").string()).exit_code, 0);
+  ASSERT_EQ(run_cli(common + " --threads 2 --json " + (dir / "two.json").string()).exit_code, 0);
+  nlohmann::json one = read_json(dir / "one.json"), two = read_json(dir / "two.json");
+  EXPECT_EQ(one["methods"], two["methods"]);
+  EXPECT_EQ(one["samples"], two["samples"]);
+}
+
+TEST(CliFuzz, ShrinkFindings_KimReproducersThatCertifyReplays) {
+  const fs::path dir = temp_dir() / "fuzz_findings";
+  const RunResult r = run_cli("fuzz --seed 1 --cases 30 --methods exact,kim-float --shrink-findings --max-reproducers 1 "
+                              "--out " + (dir / "out").string() + " --json " + (dir / "f.json").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;  // kim may fail: a finding, not an error
+  const nlohmann::json j = read_json(dir / "f.json");
+  ASSERT_EQ(j["reproducers"].size(), 1u) << r.output;
+  const nlohmann::json& rep = j["reproducers"][0];
+  EXPECT_EQ(rep["run"], "kim-float");
+  EXPECT_EQ(rep["replayed"], true);
+  EXPECT_LT(rep["triangles"].get<int>(), rep["original_triangles"].get<int>());
+  // The printed command, run as printed (its first word is the program), shows the open chain.
+  std::string command = rep["command"].get<std::string>();
+  ASSERT_EQ(command.rfind("shadowcert certify ", 0), 0u) << command;
+  const fs::path certified = dir / "certify.json";
+  const RunResult replay = run_cli(command.substr(std::string("shadowcert ").size()) + " --json " + certified.string());
+  ASSERT_EQ(replay.exit_code, 0) << replay.output;
+  EXPECT_EQ(read_json(certified)["methods"]["kim"]["closed"], false);
+}
+
+TEST(CliFuzz, BadOptions_ExitTwo) {
+  EXPECT_EQ(run_cli("fuzz --gl --cases 1").exit_code, 2);  // GL methods not wired in yet
+  EXPECT_NE(run_cli("fuzz --gl --cases 1").output.find("not yet"), std::string::npos);
+  EXPECT_EQ(run_cli("fuzz --cases 0").exit_code, 2);
+  EXPECT_EQ(run_cli("fuzz --triangles 0").exit_code, 2);
+  EXPECT_EQ(run_cli("fuzz --methods refedge-half --cases 1").exit_code, 2);
+  EXPECT_EQ(run_cli("fuzz --bogus").exit_code, 2);
+}
+
+TEST(CliFuzz, RegressionReproducer_CertifyReplaysItsRecordedCommand) {
+  // Every reproducer's command is relative to its folder (tests/regressions/README.md).
+  const fs::path folder = fs::path(kSource) / "tests" / "regressions";
+  const nlohmann::json rep = read_json(folder / "refedge-double-light-on-triangle-s1-c105.json");
+  std::string command = rep["command"].get<std::string>().substr(std::string("shadowcert ").size());
+  const std::string name = " refedge-double-light-on-triangle-s1-c105.";
+  for (std::size_t at = command.find(name); at != std::string::npos; at = command.find(name, at + 1))
+    command.replace(at, name.size(), " " + (folder / name.substr(1)).string());
+  const fs::path certified = temp_dir() / "regression.json";
+  const RunResult r = run_cli(command + " --json " + certified.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const nlohmann::json j = read_json(certified);
+  EXPECT_EQ(j["methods"]["refedge"]["closed"], true);
+  EXPECT_EQ(j["methods"]["refedge"]["count_checks"], 2);
+  EXPECT_EQ(j["methods"]["refedge"]["count_failures"], 2);  // the documented light-on-triangle error
 }

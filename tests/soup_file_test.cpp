@@ -196,6 +196,62 @@ TEST(ReadSoup, UppercaseExtension_ReadLikeLowercase) {
   EXPECT_EQ(read_soup(scratch / "CUBE.OBJ").triangles, kCubeTriangles);
 }
 
+// OFF's optional per-vertex values (N normals, C colors of 1, 3 or 4 values, ST texture
+// coordinates after the color) and C face colors are read over; the points stay the file's.
+TEST(ReadSoup, OffVariantsWithColorsNormalsTextures_SamePointsAndTriangle) {
+  const std::vector<Vec3> points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  const std::map<std::string, std::string> files = {
+      {"plain", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"},
+      {"indexed colors", "COFF\n3 1 0\n0 0 0 0\n1 0 0 148\n0 1 0 7\n3 0 1 2 5\n"},
+      {"integer and float colors", "COFF\n3 1 0\n0 0 0 255 0 0\n1 0 0 0.5 1 0\n0 1 0 0 0 255 128\n"
+                                   "3 0 1 2 0 0.25 1 1\n"},
+      {"late colors", "COFF\n3 1 0\n0 0 0\n1 0 0 1 2 3\n0 1 0 4 5 6\n3 0 1 2\n"},
+      {"normals and colors", "CNOFF\n3 1 0\n0 0 0 0 0 1 9 9 9\n1 0 0 0 0 1 9 9 9\n0 1 0 0 0 1 9 9 9\n3 0 1 2\n"},
+      {"textures and colors", "STCOFF\n3 1 0\n0 0 0 1 0 0\n1 0 0 2 1 0\n0 1 0 3 0 1\n3 0 1 2\n"},
+      {"homogeneous", "4OFF\n3 1 0\n0 0 0 1\n2 0 0 2\n0 1 0 1\n3 0 1 2\n"},
+  };
+  for (const auto& [what, text] : files) {
+    SCOPED_TRACE(what);
+    const Soup soup = parse_soup(text, what + ".off");
+    EXPECT_EQ(soup.vertices, points);
+    EXPECT_EQ(soup.triangles, (std::vector<Triangle>{{0, 1, 2}}));
+  }
+}
+
+std::string file_bytes(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  return bytes.str();
+}
+
+TEST(ParseSoup, EveryGoodFile_SameSoupAsReadSoup) {
+  std::size_t files = 0;
+  for (const auto& entry : fs::directory_iterator(kTestData / "good")) {
+    SCOPED_TRACE(entry.path().filename().string());
+    const Soup from_file = read_soup(entry.path());
+    const Soup from_bytes = parse_soup(file_bytes(entry.path()), entry.path().filename().string());
+    expect_bitwise_equal(from_file, from_bytes);
+    EXPECT_EQ(from_file.normals, from_bytes.normals);
+    ++files;
+  }
+  EXPECT_GE(files, 9U);
+}
+
+TEST(ParseSoup, Bytes_FormatFromTheNameAndMessagesNameIt) {
+  const std::string obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  EXPECT_EQ(parse_soup(obj, "dir/MESH.OBJ").triangles.size(), 1U);
+  try {
+    (void)parse_soup(obj, "mesh.off");  // OBJ bytes under an OFF name are read as OFF
+    FAIL() << "not rejected";
+  } catch (const InputError& error) {
+    EXPECT_EQ(error.file(), "mesh.off");
+    EXPECT_EQ(error.line(), 1U);
+  }
+  EXPECT_THROW((void)parse_soup(obj, "mesh.xyz"), InputError);
+  EXPECT_THROW((void)parse_soup("", "mesh.obj"), InputError);
+}
+
 // z of (b - a) x (c - a): positive iff the triangle turns counter-clockwise seen from +z.
 double normal_z(const Soup& soup, const Triangle& t) {
   const Vec3& a = soup.vertices[t[0]];
@@ -250,6 +306,25 @@ TEST(ReadSoup, BadCorpus_EveryFileThrowsItsExpectedMessage) {
       const std::string what = error.what();
       EXPECT_NE(what.find(name), std::string::npos) << what;
       EXPECT_NE(what.find(expected), std::string::npos) << "expected '" << expected << "' in: " << what;
+    }
+  }
+}
+
+// The bytes of every bad file, given under its path, fail with read_soup's message.
+TEST(ParseSoup, BadCorpus_SameMessageAsReadSoup) {
+  for (const auto& [name, expected] : read_manifest()) {
+    SCOPED_TRACE(name);
+    std::string from_file;
+    try {
+      (void)read_soup(kBad / name);
+    } catch (const InputError& error) {
+      from_file = error.what();
+    }
+    try {
+      (void)parse_soup(file_bytes(kBad / name), (kBad / name).string());
+      ADD_FAILURE() << "parse_soup accepted it";
+    } catch (const InputError& error) {
+      EXPECT_EQ(error.what(), from_file);
     }
   }
 }

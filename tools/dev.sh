@@ -1,9 +1,13 @@
 #!/usr/bin/env bash
-# The project's two entry points (see README.md):
-#   tools/dev.sh demo   install what is missing, build Release, run the main job on the
-#                       bundled default scene, outputs under out/
-#   tools/dev.sh test   install what is missing, build Release, run every test (ctest)
-# Both are idempotent: packages already installed are not touched, the build is incremental.
+# The project's entry points (see README.md):
+#   tools/dev.sh demo       install what is missing, build Release, run the main job on the
+#                           bundled default scene, outputs under out/
+#   tools/dev.sh test       install what is missing, build Release, run every test (ctest)
+#   tools/dev.sh sanitize   install what is missing (clang too), build one clang tree with
+#                           ASan + UBSan and the libFuzzer harnesses (build-san/), run every
+#                           test under the sanitizers, then each harness for a bounded time
+#                           (docs/fuzzing-parsers.md)
+# All are idempotent: packages already installed are not touched, the builds are incremental.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -16,9 +20,14 @@ PACKAGES=(
   libegl-dev libepoxy-dev libpng-dev libglm-dev libgl1-mesa-dri libegl-mesa0
 )
 
+# Only `sanitize` needs these: clang 14, its sanitizer and libFuzzer runtimes
+# (libclang_rt.fuzzer-x86_64.a), and llvm-symbolizer for readable reports.
+SANITIZE_PACKAGES=(clang-14 libclang-rt-14-dev llvm-14)
+
+# Installs those of the named packages that are missing.
 install_missing() {
   local missing=()
-  for p in "${PACKAGES[@]}"; do
+  for p in "$@"; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
   done
   [ ${#missing[@]} -eq 0 ] && return 0
@@ -50,8 +59,80 @@ demo() {
   echo "== outputs under out/: inspect.json certify.json volume_<method>.off render.png counts.png mask.png render.json"
 }
 
+# ---------------------------------------------------------------------------- sanitize
+
+SAN_BUILD_DIR=${SHADOWCERT_SAN_BUILD_DIR:-build-san}
+FUZZ_SECONDS=${SHADOWCERT_FUZZ_SECONDS:-30}
+LLVM_BIN=/usr/lib/llvm-14/bin
+
+# One clang tree for both: the tests and the harnesses share the instrumented libraries.
+# Release keeps CGAL fast enough under ASan; line tables make the reports point at lines.
+# No benchmarks: they are neither tests nor harnesses.
+build_sanitized() {
+  cmake -S . -B "$SAN_BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+    -DCMAKE_CXX_COMPILER=clang++-14 \
+    -DCMAKE_CXX_FLAGS=-gline-tables-only -DSHADOWCERT_SANITIZE=ON -DSHADOWCERT_FUZZ=ON \
+    -DSHADOWCERT_BUILD_BENCH=OFF >/dev/null
+  cmake --build "$SAN_BUILD_DIR" -j "$JOBS"
+}
+
+# Any report fails the program (the build has -fno-sanitize-recover=all). LeakSanitizer skips
+# only the leaks tools/sanitizer.supp names, all inside Mesa's driver stack.
+export_sanitizer_options() {
+  export ASAN_SYMBOLIZER_PATH="$LLVM_BIN/llvm-symbolizer"
+  export ASAN_OPTIONS=detect_leaks=1:check_initialization_order=1:strict_init_order=1
+  export UBSAN_OPTIONS=print_stacktrace=1
+  export LSAN_OPTIONS="suppressions=$PWD/tools/sanitizer.supp:print_suppressions=0"
+}
+
+# Each harness for FUZZ_SECONDS over a scratch corpus (new inputs go there, never into
+# fuzz/corpus/) and its seeds, JOBS at a time. Fails on any crash, leak, sanitizer report,
+# timeout (an input over 10 s) or input over 1 GiB of RSS; the input is kept under
+# $SAN_BUILD_DIR/fuzz-runs/ (crash-*, leak-*, timeout-*, oom-*).
+fuzz_harnesses() {
+  local runs="$SAN_BUILD_DIR/fuzz-runs"
+  rm -rf "$runs"
+  mkdir -p "$runs"
+  local harnesses=()
+  for binary in "$SAN_BUILD_DIR"/fuzz/*_fuzzer; do harnesses+=("$(basename "$binary" _fuzzer)"); done
+  echo "== fuzzing ${#harnesses[@]} harnesses, ${FUZZ_SECONDS} s each, $JOBS at a time"
+  for name in "${harnesses[@]}"; do
+    while [ "$(jobs -rp | wc -l)" -ge "$JOBS" ]; do wait -n || true; done
+    mkdir -p "$runs/$name"
+    (
+      set +e
+      "$SAN_BUILD_DIR/fuzz/${name}_fuzzer" -max_total_time="$FUZZ_SECONDS" -rss_limit_mb=1024 -timeout=10 \
+        -print_final_stats=1 -artifact_prefix="$runs/$name-" "$runs/$name" "fuzz/corpus/$name" >"$runs/$name.log" 2>&1
+      echo $? >"$runs/$name.rc"
+    ) &
+  done
+  wait
+  local failed=0
+  for name in "${harnesses[@]}"; do
+    local runs_done
+    runs_done=$(sed -n 's/^stat::number_of_executed_units: *//p' "$runs/$name.log")
+    if [ "$(cat "$runs/$name.rc")" = 0 ]; then
+      echo "   $name: ${runs_done:-?} executions, no crash"
+    else
+      failed=1
+      echo "   $name: FAILED (log: $runs/$name.log)" >&2
+      grep -E "^(==[0-9]+==ERROR|SUMMARY|.*runtime error)|Test unit written" "$runs/$name.log" | head -5 >&2 || true
+    fi
+  done
+  return "$failed"
+}
+
+sanitize() {
+  build_sanitized
+  export_sanitizer_options
+  echo "== ctest under ASan + UBSan ($SAN_BUILD_DIR)"
+  ctest --test-dir "$SAN_BUILD_DIR" --output-on-failure -j "$JOBS"
+  fuzz_harnesses
+}
+
 case "${1:-}" in
-  demo) install_missing; build; demo ;;
-  test) install_missing; build; ctest --test-dir "$BUILD_DIR" --output-on-failure -j "$JOBS" ;;
-  *) echo "usage: tools/dev.sh demo|test" >&2; exit 2 ;;
+  demo) install_missing "${PACKAGES[@]}"; build; demo ;;
+  test) install_missing "${PACKAGES[@]}"; build; ctest --test-dir "$BUILD_DIR" --output-on-failure -j "$JOBS" ;;
+  sanitize) install_missing "${PACKAGES[@]}" "${SANITIZE_PACKAGES[@]}"; sanitize ;;
+  *) echo "usage: tools/dev.sh demo|test|sanitize" >&2; exit 2 ;;
 esac

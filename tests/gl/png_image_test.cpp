@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <png.h>
 
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <stdexcept>
@@ -52,6 +53,26 @@ TEST(PngImage, GrayStencilCountsRoundTripBitwise) {
   EXPECT_EQ(read_png(path, PNG_FORMAT_GRAY, w, h), counts.pixels);
   EXPECT_EQ(w, 256u);
   EXPECT_EQ(h, 3u);
+  std::filesystem::remove(path);
+}
+
+// encode_png gives the bytes write_png writes: same file, read back bitwise.
+TEST(PngImage, EncodedInMemory_IsTheFilesBytes) {
+  RgbaImage image(5, 3);
+  for (std::size_t i = 0; i < image.pixels.size(); ++i) image.pixels[i] = static_cast<std::uint8_t>(i * 13 + 1);
+  const std::string path = temp_path("encoded.png");
+  write_png(path, image);
+  const std::uintmax_t size = std::filesystem::file_size(path);
+  std::vector<std::uint8_t> file(size);
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  ASSERT_NE(f, nullptr);
+  ASSERT_EQ(std::fread(file.data(), 1, file.size(), f), file.size());
+  std::fclose(f);
+  EXPECT_EQ(encode_png(image), file);
+  GrayImage gray(4, 4);
+  gray.pixels[5] = 200;
+  EXPECT_GT(encode_png(gray).size(), 8u);
+  EXPECT_THROW((void)encode_png(RgbaImage()), std::runtime_error);
   std::filesystem::remove(path);
 }
 

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "core/scene.h"
+#include "exact/chain_mesh.h"
 #include "exact/shadow_volume_chain.h"
 #include "gpu/compute_volume.h"
 #include "gpu/shadow_volume_geometry.h"
@@ -77,25 +78,9 @@ inline std::map<std::pair<std::uint32_t, std::uint32_t>, int> unbalanced_edges(c
   return balance;
 }
 
-// cli/render_command.cpp's to_geometry: exact/'s symbolic chain to homogeneous floats.
+// The cpu reference volume: exact/chain_mesh.h's conversion, the one render --method cpu draws.
 inline ShadowVolumeGeometry to_geometry(const ShadowVolumeChain& chain, const Soup& canonical, const Light& light) {
-  ShadowVolumeGeometry g;
-  const auto& l = light.position;
-  for (const Vec3& x : canonical.vertices)
-    g.vertices.push_back({static_cast<float>(x[0]), static_cast<float>(x[1]), static_cast<float>(x[2]), 1.0f});
-  if (chain.directional) {
-    g.vertices.push_back({static_cast<float>(-l[0]), static_cast<float>(-l[1]), static_cast<float>(-l[2]), 0.0f});
-  } else {
-    for (const Vec3& x : canonical.vertices)
-      g.vertices.push_back({static_cast<float>(x[0] - l[0]), static_cast<float>(x[1] - l[1]),
-                            static_cast<float>(x[2] - l[2]), 0.0f});
-  }
-  for (const auto& t : chain.triangles) g.triangles.push_back(t);
-  for (const auto& q : chain.quads) {
-    g.triangles.push_back({q[0], q[1], q[2]});
-    g.triangles.push_back({q[0], q[2], q[3]});
-  }
-  return g;
+  return chain_mesh(chain, canonical, light);
 }
 
 }  // namespace shadowcert::gpu::test

@@ -1,0 +1,129 @@
+// Speed of the exact image (exact/exact_image.h, DESIGN.md §5): target under 20 s at 1024x768
+// for a 100K-triangle scene on 2 cores. Two scenes, each over a floor with one point light:
+//   - sphere_grid(100'000) (Milet 2014's 10 x 10 spheres), camera and light of
+//     data/scenes/sphere_grid_1m.json;
+//   - the largest mesh of ../shared/data (soups/ogre.obj, 124K triangles), framed by its box.
+// Counters split the time: tree (casting signs and box tree), hits (first hit of every centre
+// and corner ray), counts (n(P) where it matters, and the ambiguity), per image.
+// Run one size with --benchmark_filter, e.g. 'SphereGrid100k/1024/768'.
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <vector>
+
+#include "exact/exact_image.h"
+#include "exact/soup_file.h"
+#include "scene/procedural_mesh.h"
+
+namespace {
+
+using namespace shadowcert;
+
+void append(Soup& to, const Soup& from) {
+  const auto base = static_cast<std::uint32_t>(to.vertices.size());
+  to.vertices.insert(to.vertices.end(), from.vertices.begin(), from.vertices.end());
+  for (const Triangle& t : from.triangles) to.triangles.push_back({base + t[0], base + t[1], base + t[2]});
+}
+
+struct BenchScene {
+  Soup soup;
+  std::vector<Light> lights;
+  Camera camera;
+};
+
+const BenchScene& sphere_grid_scene() {
+  static const BenchScene scene = [] {
+    BenchScene s;
+    s.soup = floor_quad(16.0);  // the grid spans x, z in [-12.25, 12.25], resting on y = 0
+    s.soup.normals.clear();
+    append(s.soup, sphere_grid(100'000));
+    s.lights = {Light{{4.0, 30.0, 8.0, 1.0}}};
+    s.camera.eye = {0.0, 24.0, 32.0};
+    s.camera.target = {0.0, 0.0, 0.0};
+    return s;
+  }();
+  return scene;
+}
+
+// ogre.obj over a floor just below it, seen from the front and above, lit from above.
+const BenchScene* shared_mesh_scene() {
+  static const std::filesystem::path file = std::filesystem::path(SHADOWCERT_SHARED_DATA) / "soups" / "ogre.obj";
+  static const BenchScene scene = [] {
+    BenchScene s;
+    if (!std::filesystem::exists(file)) return s;
+    const Soup mesh = read_soup(file);
+    Vec3 lo = mesh.vertices.front(), hi = lo;
+    for (const Vec3& v : mesh.vertices)
+      for (int k = 0; k < 3; ++k) {
+        lo[k] = std::min(lo[k], v[k]);
+        hi[k] = std::max(hi[k], v[k]);
+      }
+    const Vec3 c{(lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, (lo[2] + hi[2]) / 2};
+    const double size = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+    s.soup = floor_quad(1.5 * size);
+    s.soup.normals.clear();
+    for (Vec3& v : s.soup.vertices) v = {v[0] + c[0], lo[1] - 0.01 * size, v[2] + c[2]};
+    append(s.soup, mesh);
+    s.lights = {Light{{c[0] + 0.4 * size, c[1] + 2.0 * size, c[2] + 0.6 * size, 1.0}}};
+    s.camera.eye = {c[0], c[1] + 0.8 * size, c[2] + 1.6 * size};
+    s.camera.target = c;
+    return s;
+  }();
+  return scene.soup.triangles.empty() ? nullptr : &scene;
+}
+
+void run(benchmark::State& state, const BenchScene& scene) {
+  Camera camera = scene.camera;
+  camera.width = static_cast<std::uint32_t>(state.range(0));
+  camera.height = static_cast<std::uint32_t>(state.range(1));
+  ExactImageStats stats;
+  std::uint64_t ambiguous = 0, shadowed = 0;
+  for (auto _ : state) {
+    const ExactImage image = exact_image(scene.soup, scene.lights, camera);
+    stats = image.stats;
+    ambiguous = shadowed = 0;
+    for (std::size_t p = 0; p < image.hit_triangles.size(); ++p) {
+      ambiguous += image.lights[0].ambiguity[p] != 0;
+      shadowed += image.lights[0].counts[p] != kNoHit && image.lights[0].counts[p] != 0;
+    }
+  }
+  state.counters["triangles"] = static_cast<double>(scene.soup.triangles.size());
+  state.counters["rays"] = static_cast<double>(stats.rays);
+  state.counters["counts"] = static_cast<double>(stats.counts);
+  state.counters["tree_s"] = stats.tree_seconds;
+  state.counters["hits_s"] = stats.hit_seconds;
+  state.counters["footprints_s"] = stats.footprint_seconds;
+  state.counters["counts_s"] = stats.count_seconds;
+  state.counters["ambiguous_px"] = static_cast<double>(ambiguous);
+  state.counters["shadowed_px"] = static_cast<double>(shadowed);
+}
+
+void BM_ExactImage_SphereGrid100k(benchmark::State& state) { run(state, sphere_grid_scene()); }
+BENCHMARK(BM_ExactImage_SphereGrid100k)
+    ->Args({256, 192})
+    ->Args({1024, 768})
+    ->ArgNames({"w", "h"})
+    ->Unit(benchmark::kSecond)
+    ->UseRealTime()
+    ->Iterations(1);
+
+void BM_ExactImage_OgreOverFloor(benchmark::State& state) {
+  const BenchScene* scene = shared_mesh_scene();
+  if (scene == nullptr) {
+    state.SkipWithError("../shared/data/soups/ogre.obj not found");
+    return;
+  }
+  run(state, *scene);
+}
+BENCHMARK(BM_ExactImage_OgreOverFloor)
+    ->Args({256, 192})
+    ->Args({1024, 768})
+    ->ArgNames({"w", "h"})
+    ->Unit(benchmark::kSecond)
+    ->UseRealTime()
+    ->Iterations(1);
+
+}  // namespace
+
+BENCHMARK_MAIN();

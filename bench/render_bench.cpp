@@ -1,0 +1,270 @@
+// Issue 4's rendering benchmark: ms per frame of every method (cpu, cs, gs, ts, pertri,
+// shadowmap; gpu/shadow_method_renderer.h) and of each stage of its frame, on Milet 2014's
+// sphere grid (scene/procedural_mesh.h) over a floor, one point light, a camera that sees the
+// whole grid. Target (docs/gpu.md): the silhouette methods at least 2x faster than pertri at
+// 1M triangles; on NVIDIA, ts and cs under 2 ms at 1M.
+//
+//   render_bench [--triangles=32000,128000,512000,1000000] [--resolution=1024x768]
+//                [--stage-sync=auto|finish|none] [Google Benchmark flags]
+//   render_bench --benchmark_filter=render/pertri/      # one method
+//   render_bench --triangles=1000000,2000000,4000000 --resolution=1920x1080   # the NVIDIA run
+//
+// One benchmark per (triangles, method), named render/METHOD/TRIANGLES and run in size order.
+// Each iteration is one frame (volumes rebuilt for the GPU methods, no readback, glFinish),
+// timed on the wall clock (manual time: the Time column is the mean ms per frame). Counters,
+// medians over the iterations, in ms: each stage of the method (volume, depth, stencil, lit;
+// shadowmap: depth, shadow_map, lit), frame_ms (wall) and gpu_frame_ms (GL timestamps), and
+// tris / vol_tris, the scene's and the first light's volume triangles. Stage figures are GPU
+// timer queries on a GPU; on a software renderer (llvmpipe), whose queries do not time its
+// stages (gpu/gpu_stage_timer.h), every stage is bounded by glFinish and timed on the wall
+// clock (--stage-sync=auto picks this).
+#include <benchmark/benchmark.h>
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "core/camera.h"
+#include "core/light.h"
+#include "core/soup.h"
+#include "exact/chain_mesh.h"
+#include "exact/edge_multiplicity.h"
+#include "exact/shadow_volume_chain.h"
+#include "gpu/camera_transform.h"
+#include "gpu/egl_context.h"
+#include "gpu/frame_timing.h"
+#include "gpu/gl_environment_error.h"
+#include "gpu/offscreen_target.h"
+#include "gpu/shadow_method_renderer.h"
+#include "scene/canonical_soup.h"
+#include "scene/edge_table.h"
+#include "scene/procedural_mesh.h"
+
+namespace {
+
+using namespace shadowcert;
+
+const std::vector<std::uint64_t> kDefaultTriangles{32'000, 128'000, 512'000, 1'000'000};
+// The floor under the grid (x, z in [-12.25, 12.25]): wide enough to catch every shadow of the
+// light below, which stands above the grid's corner as in data/scenes/sphere_grid_1m.json.
+constexpr double kFloorHalfSize = 16.0;
+const Light kLight{{4.0, 30.0, 8.0, 1.0}};
+// Frames per benchmark: a frame of pertri at 1M triangles takes ~46 s on llvmpipe, so large
+// sizes get the fewest frames that still give a median. One more frame before them is untimed
+// (llvmpipe compiles shader variants on first use).
+constexpr std::uint64_t kLargeScene = 400'000;
+constexpr std::uint64_t kMidScene = 100'000;
+constexpr benchmark::IterationCount kLargeFrames = 3;
+constexpr benchmark::IterationCount kMidFrames = 5;
+constexpr benchmark::IterationCount kSmallFrames = 10;
+
+struct Settings {
+  std::vector<std::uint64_t> triangles = kDefaultTriangles;
+  std::uint32_t width = 1024;
+  std::uint32_t height = 768;
+  std::string stage_sync = "auto";
+};
+
+// The scene of one size and what every method needs of it; only one size is kept at a time.
+struct GridScene {
+  std::uint64_t requested = 0;
+  Soup soup;  // the grid with the floor appended: the one caster and receiver soup
+  std::vector<Light> lights{kLight};
+  Camera camera;
+  CanonicalSoup canonical;
+  EdgeTable table;
+  std::vector<HomogeneousMesh> cpu_volumes;  // built on first use by cpu
+};
+
+// The grid with floor_quad(kFloorHalfSize) appended, the floor's vertices shaded with its own
+// normal (+y) so that the soup keeps one normal per vertex.
+Soup over_floor(Soup soup) {
+  const Soup floor = floor_quad(kFloorHalfSize);
+  const auto offset = static_cast<std::uint32_t>(soup.vertices.size());
+  soup.vertices.insert(soup.vertices.end(), floor.vertices.begin(), floor.vertices.end());
+  soup.normals.resize(soup.vertices.size(), Normal{0.0f, 1.0f, 0.0f});
+  for (const Triangle& t : floor.triangles) soup.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+  return soup;
+}
+
+Camera grid_camera(std::uint32_t width, std::uint32_t height) {
+  Camera camera;
+  camera.eye = {0.0, 24.0, 32.0};
+  camera.target = {0.0, 0.0, 0.0};
+  camera.fov_y_degrees = 45.0;
+  camera.width = width;
+  camera.height = height;
+  return camera;
+}
+
+// Throws when a corner of the grid's bounding box falls outside the image: the benchmark's
+// premise is that every sphere, hence every volume, is on screen.
+void check_grid_in_view(const Soup& grid, const Camera& camera) {
+  Vec3 lo = grid.vertices.front(), hi = lo;
+  for (const Vec3& v : grid.vertices)
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::min(lo[k], v[k]);
+      hi[k] = std::max(hi[k], v[k]);
+    }
+  for (int corner = 0; corner < 8; ++corner) {
+    const Vec3 p{corner & 1 ? hi[0] : lo[0], corner & 2 ? hi[1] : lo[1], corner & 4 ? hi[2] : lo[2]};
+    const glm::dvec2 xy = gpu::project_to_image(camera, p);
+    if (xy.x < 0.0 || xy.y < 0.0 || xy.x > camera.width || xy.y > camera.height)
+      throw std::runtime_error(fmt::format("render_bench: the grid's corner ({}, {}, {}) is outside the {}x{} image",
+                                           p[0], p[1], p[2], camera.width, camera.height));
+  }
+}
+
+GridScene& grid_scene(std::uint64_t triangles, const Settings& settings) {
+  static std::unique_ptr<GridScene> current;
+  if (current && current->requested == triangles) return *current;
+  current.reset();  // free the previous size first: the 1M grid's data is hundreds of MiB
+  auto s = std::make_unique<GridScene>();
+  s->requested = triangles;
+  s->camera = grid_camera(settings.width, settings.height);
+  Soup grid = sphere_grid(triangles);
+  check_grid_in_view(grid, s->camera);
+  s->soup = over_floor(std::move(grid));
+  s->canonical = canonical_soup(s->soup);
+  s->table = build_edge_table(s->canonical.soup);
+  current = std::move(s);
+  return *current;
+}
+
+const std::vector<HomogeneousMesh>& cpu_volumes(GridScene& s) {
+  if (s.cpu_volumes.empty()) {
+    for (const Light& light : s.lights) {
+      const EdgeMultiplicities m = exact_multiplicities(s.canonical.soup, s.table, light);
+      s.cpu_volumes.push_back(
+          chain_mesh(assemble_chain(s.canonical.soup, s.table, m, light), s.canonical.soup, light));
+    }
+  }
+  return s.cpu_volumes;
+}
+
+void run_method(benchmark::State& state, gpu::ShadowMethod method, std::uint64_t triangles, const Settings& settings,
+                gpu::StageSync sync) {
+  GridScene& s = grid_scene(triangles, settings);
+  const std::array<gpu::ShadedSoupPart, 1> receivers{gpu::ShadedSoupPart{&s.soup}};
+  gpu::ShadowMethodScene inputs{receivers, s.lights, &s.canonical.soup, &s.table, {}};
+  if (method == gpu::ShadowMethod::cpu) inputs.cpu_volumes = cpu_volumes(s);
+  gpu::ShadowMethodRenderer renderer(method, inputs);
+  const gpu::OffscreenTarget target(s.camera.width, s.camera.height);
+  (void)renderer.render_frames(target, s.camera, 1);  // warm-up: shader variants
+  renderer.check_capacity();
+  const std::uint64_t volume_triangles = renderer.volume_triangles();
+
+  gpu::GpuStageTimer timer(sync);
+  std::vector<double> wall_ms;
+  for (auto _ : state) {
+    const double ms = renderer.render_frames(target, s.camera, 1, &timer).front();
+    state.SetIterationTime(ms / 1000.0);
+    wall_ms.push_back(ms);
+  }
+  const gpu::FrameTiming t = gpu::summarize_frames(gpu::method_stages(method), sync, timer.collect(), wall_ms);
+  for (gpu::RenderStage stage : t.stages)
+    state.counters[std::string(gpu::render_stage_name(stage)) + "_ms"] =
+        sync == gpu::StageSync::finish ? t.wall(stage).median_ms : t.gpu(stage).median_ms;
+  state.counters["frame_ms"] = t.frame_cpu.median_ms;
+  state.counters["gpu_frame_ms"] = t.frame_gpu.median_ms;
+  state.counters["tris"] = static_cast<double>(s.soup.triangles.size());
+  state.counters["vol_tris"] = static_cast<double>(volume_triangles);
+}
+
+// Parses and removes this program's own flags (Google Benchmark rejects flags it does not know).
+Settings take_settings(int& argc, char** argv) {
+  Settings settings;
+  int kept = 1;
+  for (int i = 1; i < argc; ++i) {
+    const std::string_view arg = argv[i];
+    const auto value = [&](std::string_view flag) -> std::optional<std::string> {
+      if (arg.substr(0, flag.size()) != flag) return std::nullopt;
+      return std::string(arg.substr(flag.size()));
+    };
+    if (const auto list = value("--triangles=")) {
+      settings.triangles.clear();
+      for (std::size_t begin = 0; begin <= list->size();) {
+        const std::size_t end = std::min(list->find(',', begin), list->size());
+        settings.triangles.push_back(std::stoull(list->substr(begin, end - begin)));
+        begin = end + 1;
+      }
+    } else if (const auto size = value("--resolution=")) {
+      const std::size_t x = size->find('x');
+      if (x == std::string::npos) throw std::invalid_argument("--resolution expects WxH, e.g. 1920x1080");
+      settings.width = static_cast<std::uint32_t>(std::stoul(size->substr(0, x)));
+      settings.height = static_cast<std::uint32_t>(std::stoul(size->substr(x + 1)));
+    } else if (const auto sync = value("--stage-sync=")) {
+      if (*sync != "auto" && *sync != "finish" && *sync != "none")
+        throw std::invalid_argument("--stage-sync expects auto, finish or none");
+      settings.stage_sync = *sync;
+    } else {
+      argv[kept++] = argv[i];
+    }
+  }
+  argc = kept;
+  return settings;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Settings settings;
+  try {
+    settings = take_settings(argc, argv);
+  } catch (const std::exception& e) {
+    std::cerr << "render_bench: " << e.what() << '\n';
+    return 2;
+  }
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 2;
+
+  std::optional<gpu::EglContext> context;
+  try {
+    context.emplace(gpu::EglContextOptions{});
+  } catch (const gpu::GlEnvironmentError& e) {
+    std::cerr << "render_bench: needs OpenGL 4.5 core through headless EGL: " << e.what() << '\n';
+    return 2;
+  }
+  const gpu::StageSync sync = settings.stage_sync == "finish" ? gpu::StageSync::finish
+                              : settings.stage_sync == "none" ? gpu::StageSync::none
+                              : context->software()           ? gpu::StageSync::finish
+                                                              : gpu::StageSync::none;
+  benchmark::AddCustomContext("renderer", context->renderer());
+  benchmark::AddCustomContext("resolution", fmt::format("{}x{}", settings.width, settings.height));
+  benchmark::AddCustomContext("stage_sync", sync == gpu::StageSync::finish ? "finish (stages: wall ms)"
+                                                                           : "none (stages: GPU query ms)");
+
+  for (std::uint64_t triangles : settings.triangles) {
+    for (gpu::ShadowMethod method : gpu::kShadowMethods) {
+      const benchmark::IterationCount frames = triangles > kLargeScene ? kLargeFrames
+                                               : triangles > kMidScene ? kMidFrames
+                                                                       : kSmallFrames;
+      benchmark::RegisterBenchmark(
+          fmt::format("render/{}/{}", gpu::shadow_method_name(method), triangles).c_str(),
+          [method, triangles, &settings, sync](benchmark::State& state) {
+            try {
+              run_method(state, method, triangles, settings, sync);
+            } catch (const std::exception& e) {  // e.g. a volume past its buffers: that row only
+              state.SkipWithError(e.what());
+            }
+          })
+          ->Iterations(frames)
+          ->UseManualTime()
+          ->Unit(benchmark::kMillisecond);
+    }
+  }
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

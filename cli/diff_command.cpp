@@ -1,0 +1,438 @@
+#include "cli/diff_command.h"
+
+#include <fmt/core.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <numeric>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cli/diff_report.h"
+#include "cli/exit_code.h"
+#include "cli/image_size.h"
+#include "cli/mesh_palette.h"
+#include "cli/output_file.h"
+#include "cli/scene_input.h"
+#include "core/input_error.h"
+#include "exact/captured_volume.h"
+#include "exact/chain_mesh.h"
+#include "exact/edge_multiplicity.h"
+#include "exact/exact_image.h"
+#include "exact/pixel_comparison.h"
+#include "exact/shadow_volume_chain.h"
+#include "gpu/egl_context.h"
+#include "gpu/gl_environment_error.h"
+#include "gpu/offscreen_target.h"
+#include "gpu/png_image.h"
+#include "gpu/shadow_method_renderer.h"
+#include "scene/canonical_soup.h"
+#include "scene/edge_table.h"
+
+namespace shadowcert::cli {
+namespace {
+
+// Frames drawn without readback (each ended by glFinish) after the compared one, for the
+// ms-per-frame figure: one frame alone would mostly time llvmpipe's first-use compilation.
+constexpr std::size_t kTimedFrames = 5;
+
+struct DiffOptions {
+  std::string input;
+  std::string methods;  // comma-separated; empty: every method
+  bool zpass = false;
+  bool zfail = false;
+  std::string size;
+  std::string out;
+  std::string json_file;
+  std::string report;
+  std::optional<int> device;
+  long long shadowmap_size = gpu::kDefaultShadowMapSize;
+};
+
+// Robust methods must show zero hard errors and closed volumes (DESIGN.md §5); the shadow map
+// is the baseline whose errors are its speed-against-error figures (§7).
+bool robust(gpu::ShadowMethod method) { return method != gpu::ShadowMethod::shadowmap; }
+
+std::vector<gpu::ShadowMethod> parse_methods(const std::string& list) {
+  if (list.empty()) return {gpu::kShadowMethods.begin(), gpu::kShadowMethods.end()};
+  std::vector<gpu::ShadowMethod> methods;
+  std::size_t start = 0;
+  while (start <= list.size()) {
+    const std::size_t comma = std::min(list.find(',', start), list.size());
+    const std::string name = list.substr(start, comma - start);
+    const std::optional<gpu::ShadowMethod> method = gpu::parse_shadow_method(name);
+    if (!method)
+      throw CLI::ValidationError("--methods", "unknown method '" + name + "': use cpu, cs, gs, ts, pertri, shadowmap");
+    if (std::find(methods.begin(), methods.end(), *method) == methods.end()) methods.push_back(*method);
+    start = comma + 1;
+  }
+  return methods;
+}
+
+// The exact image's progress as a bar on stderr when stderr is a terminal; nothing otherwise
+// (logs and pipes get no carriage returns).
+ExactImageOptions progress_bar() {
+  ExactImageOptions options;
+  if (isatty(fileno(stderr)) == 0) return options;
+  options.progress = [](std::string_view stage, std::uint64_t done, std::uint64_t total) {
+    constexpr int kBarWidth = 32;
+    const double fraction = total == 0 ? 1.0 : static_cast<double>(done) / static_cast<double>(total);
+    const auto filled = static_cast<std::size_t>(fraction * kBarWidth);
+    fmt::print(stderr, "\rexact image, {:<6} [{}{}] {:3.0f}%", stage, std::string(filled, '#'),
+               std::string(kBarWidth - filled, '.'), 100.0 * fraction);
+    if (done >= total) fmt::print(stderr, "\n");
+    std::fflush(stderr);
+  };
+  return options;
+}
+
+// One method against one light.
+struct LightRun {
+  PixelComparison comparison;
+  gpu::StencilShadowFrame frame;
+  std::optional<ClosureCertificate> closure;  // volume methods
+  std::uint64_t volume_triangles = 0;
+  double gl_ms = 0.0;
+  std::string capacity_error;  // a GPU-built volume overflowed its buffers (then drawn open)
+};
+
+struct MethodRun {
+  gpu::ShadowMethod method = gpu::ShadowMethod::cpu;
+  std::vector<LightRun> lights;
+
+  [[nodiscard]] std::uint64_t sum(std::uint64_t PixelComparison::*figure) const {
+    std::uint64_t n = 0;
+    for (const LightRun& l : lights) n += l.comparison.*figure;
+    return n;
+  }
+  [[nodiscard]] std::optional<bool> closed() const {
+    if (!gpu::draws_volume(method)) return std::nullopt;
+    return std::all_of(lights.begin(), lights.end(), [](const LightRun& l) { return l.closure->closed; });
+  }
+  [[nodiscard]] double gl_ms() const {
+    return std::accumulate(lights.begin(), lights.end(), 0.0, [](double s, const LightRun& l) { return s + l.gl_ms; });
+  }
+  [[nodiscard]] bool failed() const {
+    return robust(method) && (sum(&PixelComparison::hard_errors) > 0 || closed() == false);
+  }
+};
+
+// The frame's coverage (alpha) and the method's lit mask, gated by coverage.
+std::vector<std::uint8_t> coverage(const gpu::RgbaImage& colour) {
+  std::vector<std::uint8_t> c(std::size_t{colour.width} * colour.height);
+  for (std::size_t p = 0; p < c.size(); ++p) c[p] = colour.pixels[4 * p + 3] != 0 ? 255 : 0;
+  return c;
+}
+
+gpu::GrayImage gl_mask(const gpu::StencilShadowFrame& frame) {
+  gpu::GrayImage mask(frame.first_lit_mask.width, frame.first_lit_mask.height);
+  for (std::size_t p = 0; p < mask.pixels.size(); ++p)
+    mask.pixels[p] = frame.colour.pixels[4 * p + 3] != 0 && frame.first_lit_mask.pixels[p] != 0 ? 255 : 0;
+  return mask;
+}
+
+gpu::GrayImage exact_mask(const ExactImage& image, std::size_t light) {
+  gpu::GrayImage mask(image.width, image.height);
+  mask.pixels = image.lights[light].lit;
+  return mask;
+}
+
+// n(P) modulo 256, as the stencil holds it (no hit and undefined counts: 0).
+gpu::GrayImage exact_counts(const ExactImage& image, std::size_t light) {
+  gpu::GrayImage counts(image.width, image.height);
+  const std::vector<std::uint32_t>& n = image.lights[light].counts;
+  for (std::size_t p = 0; p < n.size(); ++p)
+    counts.pixels[p] = n[p] == kNoHit || n[p] == kUndefinedCount ? 0 : static_cast<std::uint8_t>(n[p] % 256);
+  return counts;
+}
+
+gpu::GrayImage ambiguity_image(const ExactImage& image, std::size_t light) {
+  gpu::GrayImage out(image.width, image.height);
+  for (std::size_t p = 0; p < out.pixels.size(); ++p) out.pixels[p] = image.lights[light].ambiguity[p] != 0 ? 255 : 0;
+  return out;
+}
+
+// Hard errors red, ambiguous pixels tinted yellow, over the rendered frame (made opaque).
+gpu::RgbaImage overlay(const gpu::RgbaImage& colour, const PixelComparison& comparison) {
+  gpu::RgbaImage out = colour;
+  for (std::size_t p = 0; p < comparison.verdicts.size(); ++p) {
+    std::uint8_t* px = out.pixels.data() + 4 * p;
+    switch (comparison.verdicts[p]) {
+      case PixelVerdict::agree:
+        break;
+      case PixelVerdict::ambiguous:
+        px[0] = static_cast<std::uint8_t>((px[0] + 255) / 2);
+        px[1] = static_cast<std::uint8_t>((px[1] + 255) / 2);
+        px[2] = static_cast<std::uint8_t>(px[2] / 2);
+        break;
+      case PixelVerdict::hard_error:
+        px[0] = 255;
+        px[1] = 0;
+        px[2] = 0;
+        break;
+    }
+    px[3] = 255;
+  }
+  return out;
+}
+
+// "" for a single light, "_light<k>" with several: the output files' suffix.
+std::string light_suffix(std::size_t light, std::size_t lights) {
+  return lights > 1 ? fmt::format("_light{}", light) : std::string();
+}
+
+nlohmann::json comparison_json(const PixelComparison& c) {
+  return {{"hard_errors", c.hard_errors},   {"ambiguous", c.ambiguous},   {"agree", c.agree},
+          {"coverage_errors", c.coverage_errors}, {"lit_errors", c.lit_errors}, {"count_errors", c.count_errors}};
+}
+
+nlohmann::json method_json(const MethodRun& run, const DiffOptions& options) {
+  nlohmann::json j{{"robust", robust(run.method)},
+                   {"hard_errors", run.sum(&PixelComparison::hard_errors)},
+                   {"ambiguous", run.sum(&PixelComparison::ambiguous)},
+                   {"agree", run.sum(&PixelComparison::agree)},
+                   {"coverage_errors", run.sum(&PixelComparison::coverage_errors)},
+                   {"lit_errors", run.sum(&PixelComparison::lit_errors)},
+                   {"count_errors", run.sum(&PixelComparison::count_errors)},
+                   {"closed", nullptr},
+                   {"gl_ms", run.gl_ms()},
+                   {"failed", run.failed()}};
+  if (const std::optional<bool> closed = run.closed()) j["closed"] = *closed;
+  if (run.method == gpu::ShadowMethod::shadowmap) j["shadow_map_size"] = options.shadowmap_size;
+  nlohmann::json per_light = nlohmann::json::array();
+  for (const LightRun& l : run.lights) {
+    nlohmann::json lj = comparison_json(l.comparison);
+    lj["gl_ms"] = l.gl_ms;
+    if (l.closure) {
+      lj["closed"] = l.closure->closed;
+      lj["unbalanced_edges"] = l.closure->unbalanced.size();
+      lj["volume_triangles"] = l.volume_triangles;
+    }
+    if (!l.capacity_error.empty()) lj["capacity_error"] = l.capacity_error;
+    per_light.push_back(lj);
+  }
+  j["per_light"] = per_light;
+  return j;
+}
+
+int run_diff(const DiffOptions& options) {
+  const std::vector<gpu::ShadowMethod> methods = parse_methods(options.methods);
+  if (options.zpass && options.zfail) throw CLI::ValidationError("--zpass", "excludes --zfail");
+  if (options.shadowmap_size < 1 || options.shadowmap_size > gpu::kMaxShadowMapSize)
+    throw CLI::ValidationError("--shadowmap-size", fmt::format("must be in [1, {}], got {}", gpu::kMaxShadowMapSize,
+                                                               options.shadowmap_size));
+  Scene scene = load_scene_or_mesh(options.input);
+  if (scene.lights.empty()) throw InputError(options.input, "the scene has no light");
+  apply_image_size(options.size, scene.camera);
+  const Soup merged = merged_soup(scene);
+  if (merged.triangles.empty()) throw InputError(options.input, "no triangle to render");
+  const std::size_t light_count = scene.lights.size();
+
+  // The reference: every triangle of the scene receives and casts, as in the GL methods.
+  const ExactImage exact = exact_image(merged, scene.lights, scene.camera, progress_bar());
+
+  // The volume methods' inputs (as in render): canonical soup, edge table, cpu's exact chains.
+  const bool any_volume = std::any_of(methods.begin(), methods.end(), gpu::draws_volume);
+  std::optional<CanonicalSoup> canonical;
+  EdgeTable table;
+  std::vector<HomogeneousMesh> cpu_volumes;
+  if (any_volume) {
+    canonical = canonical_soup(merged);
+    table = build_edge_table(canonical->soup);
+  }
+  if (std::find(methods.begin(), methods.end(), gpu::ShadowMethod::cpu) != methods.end())
+    for (const Light& light : scene.lights) {
+      const EdgeMultiplicities m = exact_multiplicities(canonical->soup, table, light);
+      cpu_volumes.push_back(chain_mesh(assemble_chain(canonical->soup, table, m, light), canonical->soup, light));
+    }
+
+  std::optional<gpu::EglContext> context;
+  try {
+    context.emplace(gpu::EglContextOptions{options.device, gpu::kGlDebugByDefault});
+  } catch (const gpu::GlEnvironmentError& e) {
+    throw gpu::GlEnvironmentError(
+        "diff needs OpenGL 4.5 core through headless EGL (a GPU driver or Mesa's llvmpipe: packages "
+        "libegl-mesa0 libgl1-mesa-dri); " + std::string(e.what()));
+  }
+  const std::vector<gpu::ShadedSoupPart> parts = shaded_parts(scene);
+  const gpu::OffscreenTarget target(scene.camera.width, scene.camera.height);
+  gpu::ShadowMethodOptions method_options;
+  method_options.stencil = options.zpass ? gpu::StencilMethod::zpass : gpu::StencilMethod::zfail;
+  method_options.shadow_map_size = static_cast<std::uint32_t>(options.shadowmap_size);
+
+  // Each method renders each light alone (its stencil and mask are that light's), so that
+  // every light is compared, not only the first.
+  std::vector<MethodRun> runs;
+  for (gpu::ShadowMethod method : methods) {
+    MethodRun run{method, {}};
+    for (std::size_t k = 0; k < light_count; ++k) {
+      gpu::ShadowMethodScene method_scene;
+      method_scene.receivers = parts;
+      method_scene.lights = std::span<const Light>(&scene.lights[k], 1);
+      if (canonical) method_scene.canonical = &canonical->soup;
+      method_scene.table = &table;
+      if (method == gpu::ShadowMethod::cpu) method_scene.cpu_volumes = std::span<const HomogeneousMesh>(&cpu_volumes[k], 1);
+      gpu::ShadowMethodRenderer renderer(method, method_scene, method_options);
+      LightRun l;
+      l.frame = renderer.render(target, scene.camera);
+      try {
+        renderer.check_capacity();
+      } catch (const gpu::VolumeCapacityError& e) {
+        l.capacity_error = e.what();  // what was drawn is still compared and certified (open)
+      }
+      const std::vector<std::uint8_t> covered = coverage(l.frame.colour);
+      RenderedPixels rendered{scene.camera.width, scene.camera.height, covered, l.frame.first_lit_mask.pixels, {}};
+      if (gpu::draws_volume(method)) rendered.counts = l.frame.first_stencil.pixels;
+      l.comparison = compare_pixels(exact, k, rendered);
+      if (gpu::draws_volume(method)) {
+        l.closure = certify_captured_closure(renderer.first_volume()).certificate;
+        l.volume_triangles = renderer.volume_triangles();
+      }
+      const std::vector<double> ms = renderer.render_frames(target, scene.camera, kTimedFrames);
+      l.gl_ms = std::accumulate(ms.begin(), ms.end(), 0.0) / static_cast<double>(ms.size());
+      run.lights.push_back(std::move(l));
+    }
+    runs.push_back(std::move(run));
+  }
+  const bool passed = std::none_of(runs.begin(), runs.end(), [](const MethodRun& r) { return r.failed(); });
+
+  // Images: the exact masks and counts, and per method its mask and overlay.
+  const auto exact_images = [&](std::size_t k) {
+    const std::string s = light_suffix(k, light_count);
+    return std::vector<std::pair<std::string, gpu::GrayImage>>{
+        {"exact_mask" + s, exact_mask(exact, k)},
+        {"exact_counts" + s, exact_counts(exact, k)},
+        {"exact_ambiguous" + s, ambiguity_image(exact, k)}};
+  };
+  if (!options.out.empty()) {
+    const std::filesystem::path dir(options.out);
+    create_parent_directories(dir / "summary.json");
+    for (std::size_t k = 0; k < light_count; ++k) {
+      for (const auto& [name, image] : exact_images(k)) gpu::write_png((dir / (name + ".png")).string(), image);
+      for (const MethodRun& run : runs) {
+        const std::string name(gpu::shadow_method_name(run.method));
+        const std::string s = light_suffix(k, light_count);
+        gpu::write_png((dir / (name + "_mask" + s + ".png")).string(), gl_mask(run.lights[k].frame));
+        gpu::write_png((dir / (name + "_overlay" + s + ".png")).string(),
+                       overlay(run.lights[k].frame.colour, run.lights[k].comparison));
+      }
+    }
+  }
+
+  // The summary.
+  nlohmann::json ambiguous = nlohmann::json::array(), lit = nlohmann::json::array();
+  for (const ExactLightImage& l : exact.lights) {
+    ambiguous.push_back(std::count_if(l.ambiguity.begin(), l.ambiguity.end(), [](std::uint8_t a) { return a != 0; }));
+    lit.push_back(std::count_if(l.lit.begin(), l.lit.end(), [](std::uint8_t a) { return a != 0; }));
+  }
+  nlohmann::json summary{
+      {"input", options.input},
+      {"size", {scene.camera.width, scene.camera.height}},
+      {"stencil", options.zpass ? "zpass" : "zfail"},
+      {"renderer", context->renderer()},
+      {"device", context->device()},
+      {"lights", light_count},
+      {"triangles", merged.triangles.size()},
+      {"exact_seconds", exact.stats.seconds},
+      {"exact",
+       {{"tree_seconds", exact.stats.tree_seconds},
+        {"hit_seconds", exact.stats.hit_seconds},
+        {"count_seconds", exact.stats.count_seconds},
+        {"rays", exact.stats.rays},
+        {"counts", exact.stats.counts},
+        {"ambiguous_pixels", ambiguous},
+        {"lit_pixels", lit},
+        {"no_hit_pixels", std::count(exact.hit_triangles.begin(), exact.hit_triangles.end(), kNoHit)}}},
+      {"methods", nlohmann::json::object()},
+      {"passed", passed}};
+  for (const MethodRun& run : runs) summary["methods"][std::string(gpu::shadow_method_name(run.method))] = method_json(run, options);
+  if (!options.out.empty()) write_json_file(std::filesystem::path(options.out) / "summary.json", summary);
+  if (!options.json_file.empty()) write_json_file(options.json_file, summary);
+
+  if (!options.report.empty()) {
+    DiffReport report;
+    report.title = "shadowcert diff: " + options.input;
+    report.passed = passed;
+    report.facts = {{"image", fmt::format("{}x{}, {} light(s), {} triangles", scene.camera.width, scene.camera.height,
+                                          light_count, merged.triangles.size())},
+                    {"stencil", options.zpass ? "z-pass" : "z-fail"},
+                    {"renderer", context->renderer()},
+                    {"exact image", fmt::format("{:.2f} s (tree {:.2f}, hits {:.2f}, counts {:.2f}), {} rays, {} counts",
+                                                exact.stats.seconds, exact.stats.tree_seconds, exact.stats.hit_seconds,
+                                                exact.stats.count_seconds, exact.stats.rays, exact.stats.counts)}};
+    for (const MethodRun& run : runs)
+      report.rows.push_back({std::string(gpu::shadow_method_name(run.method)), robust(run.method),
+                             run.sum(&PixelComparison::hard_errors), run.sum(&PixelComparison::ambiguous),
+                             run.sum(&PixelComparison::agree), run.closed(), run.gl_ms(),
+                             run.method == gpu::ShadowMethod::shadowmap
+                                 ? fmt::format("{0}x{0} depth map", options.shadowmap_size)
+                                 : std::string()});
+    for (std::size_t k = 0; k < light_count; ++k) {
+      const std::string s = light_count > 1 ? fmt::format(", light {}", k) : std::string();
+      for (const auto& [name, image] : exact_images(k)) report.exact_images.push_back({name + s, gpu::encode_png(image)});
+      for (const MethodRun& run : runs) {
+        const std::string name(gpu::shadow_method_name(run.method));
+        report.method_images.push_back(
+            {name + s,
+             {{name + " overlay" + s, gpu::encode_png(overlay(run.lights[k].frame.colour, run.lights[k].comparison))},
+              {name + " lit mask" + s, gpu::encode_png(gl_mask(run.lights[k].frame))},
+              {"exact lit mask" + s, gpu::encode_png(exact_mask(exact, k))}}});
+      }
+    }
+    write_diff_report(options.report, report);
+  }
+
+  fmt::print("{}: {} triangles, {} light(s), {}x{}, {} on {}\n", options.input, merged.triangles.size(), light_count,
+             scene.camera.width, scene.camera.height, options.zpass ? "zpass" : "zfail", context->renderer());
+  fmt::print("  exact image: {:.2f} s (tree {:.2f}, hits {:.2f}, counts {:.2f}); ambiguous pixels {}\n",
+             exact.stats.seconds, exact.stats.tree_seconds, exact.stats.hit_seconds, exact.stats.count_seconds,
+             ambiguous.dump());
+  fmt::print("  {:<10} {:>11} {:>10} {:>10} {:>7} {:>9}\n", "method", "hard errors", "ambiguous", "agree", "closed",
+             "gl ms");
+  for (const MethodRun& run : runs) {
+    const std::optional<bool> closed = run.closed();
+    fmt::print("  {:<10} {:>11} {:>10} {:>10} {:>7} {:>9.2f}{}\n", gpu::shadow_method_name(run.method),
+               run.sum(&PixelComparison::hard_errors), run.sum(&PixelComparison::ambiguous),
+               run.sum(&PixelComparison::agree), closed ? (*closed ? "yes" : "NO") : "-", run.gl_ms(),
+               robust(run.method) ? (run.failed() ? "  FAILED" : "") : "  (baseline)");
+  }
+  fmt::print("  {}\n", passed ? "passed: no robust method has a hard error or an open volume"
+                              : "FAILED: a robust method has a hard error or an open volume");
+  return passed ? kExitOk : kExitCheckFailed;
+}
+
+}  // namespace
+
+void add_diff_command(CLI::App& app, int& exit_code) {
+  auto options = std::make_shared<DiffOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "diff",
+      "Certify GL shadow methods against the exact image (DESIGN.md 5): per method and light, hard errors, "
+      "ambiguous and agreeing pixels, and the exact closure of each volume method's captured volume. Exit 1 "
+      "when a robust method (cpu, cs, gs, ts, pertri) has a hard error or an open volume");
+  cmd->add_option("input", options->input, "Mesh file (.obj .off .ply .stl) or scene (.json)")->required();
+  cmd->add_option("--methods", options->methods,
+                  "Comma-separated methods to compare: cpu, cs, gs, ts, pertri, shadowmap (default: all)");
+  cmd->add_flag("--zfail", options->zfail, "Volume methods count faces behind the visible point (default)");
+  cmd->add_flag("--zpass", options->zpass, "Volume methods count faces in front of the visible point");
+  cmd->add_option("--size", options->size, "Image size WxH (default: the scene camera's)");
+  cmd->add_option("--out", options->out,
+                  "Write into this folder: exact_mask/_counts/_ambiguous.png, METHOD_mask.png and "
+                  "METHOD_overlay.png (hard errors red, ambiguous yellow; _lightK suffixes with several lights) "
+                  "and summary.json");
+  cmd->add_option("--json", options->json_file, "Write the summary (per method hard_errors, ambiguous, agree, "
+                                                "closed, gl_ms; exact_seconds) as JSON");
+  cmd->add_option("--report", options->report,
+                  "Write one self-contained HTML page (images inlined) with the images side by side and the table");
+  cmd->add_option("--shadowmap-size", options->shadowmap_size, "shadowmap: side of the depth map in texels")
+      ->capture_default_str();
+  cmd->add_option("--device", options->device, "Use EGL device N (default: a hardware device, else llvmpipe)");
+  cmd->callback([options, &exit_code] { exit_code = run_diff(*options); });
+}
+
+}  // namespace shadowcert::cli

@@ -1,0 +1,17 @@
+#pragma once
+// `shadowcert diff SCENE [--methods LIST] [--zpass|--zfail] [--size WxH] [--out DIR]
+//                        [--json FILE] [--report FILE.html]`
+// What users run to certify a renderer (DESIGN.md §5, docs/diff.md): the exact image
+// (exact/exact_image.h) against every chosen GL method (gpu/shadow_method_renderer.h), light
+// by light, pixel by pixel (exact/pixel_comparison.h), plus the exact closure of each volume
+// method's captured volume (exact/captured_volume.h). Exit 1 when a robust method (cpu, cs,
+// gs, ts, pertri) has a hard error or an open volume; the shadow map is a baseline whose
+// errors are reported, never a failure.
+#include <CLI/CLI.hpp>
+
+namespace shadowcert::cli {
+
+// Registers the subcommand; when it runs, it stores its exit code in `exit_code`.
+void add_diff_command(CLI::App& app, int& exit_code);
+
+}  // namespace shadowcert::cli

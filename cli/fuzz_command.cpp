@@ -1,0 +1,297 @@
+#include "cli/fuzz_command.h"
+
+#include <fmt/core.h>
+#include <tbb/global_control.h>
+#include <tbb/info.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <future>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cli/exit_code.h"
+#include "cli/output_file.h"
+#include "exact/fuzz_campaign.h"
+#include "exact/fuzz_reproducer.h"
+#include "exact/fuzz_run.h"
+
+namespace shadowcert::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+// How often progress is shown: a terminal line is redrawn in place every quarter second; a
+// log (stderr not a terminal) gets one line per second, so short runs print none.
+constexpr std::chrono::milliseconds kTerminalProgressPeriod{250};
+constexpr std::chrono::milliseconds kLogProgressPeriod{1000};
+// Triangles per case beyond which a campaign is no longer a fuzz campaign but a benchmark.
+constexpr std::uint32_t kMaxTriangles = 1'000'000;
+
+struct FuzzOptions {
+  std::uint64_t seed = 1;
+  std::uint64_t cases = 10'000;
+  std::uint32_t triangles = 100;
+  std::string methods = "all";
+  bool gl = false;
+  std::string out_dir = "fuzz-reproducers";
+  std::string json_file;
+  unsigned threads = 0;  // 0: every core
+  std::size_t max_reproducers = 4;
+  bool shrink_findings = false;
+};
+
+using Clock = std::chrono::steady_clock;
+
+// Runs the campaign on another thread and shows its progress on stderr meanwhile.
+FuzzCampaignResult run_with_progress(FuzzCampaignOptions& campaign) {
+  std::atomic<std::uint64_t> done{0};
+  campaign.progress = &done;
+  const auto start = Clock::now();
+  std::future<FuzzCampaignResult> future =
+      std::async(std::launch::async, [&campaign] { return run_fuzz_campaign(campaign); });
+  const bool terminal = isatty(fileno(stderr)) != 0;
+  const auto period = terminal ? kTerminalProgressPeriod : kLogProgressPeriod;
+  bool shown = false;
+  while (future.wait_for(period) != std::future_status::ready) {
+    const std::uint64_t n = done.load();
+    const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    const double rate = seconds > 0.0 ? static_cast<double>(n) / seconds : 0.0;
+    const double left = rate > 0.0 ? static_cast<double>(campaign.cases - n) / rate : 0.0;
+    const std::string line = fmt::format("fuzz: {}/{} cases, {:.0f} cases/s, {:.0f} s left", n, campaign.cases,
+                                         rate, left);
+    if (terminal)
+      fmt::print(stderr, "\r{:<70}", line);
+    else
+      fmt::print(stderr, "{}\n", line);
+    std::fflush(stderr);
+    shown = true;
+  }
+  if (shown && terminal) fmt::print(stderr, "\r{:<70}\r", "");
+  return future.get();
+}
+
+std::string family_list(const std::vector<std::uint64_t>& counts) {
+  std::string s;
+  for (std::size_t i = 0; i < counts.size(); ++i)
+    s += fmt::format("{}{} {}", i ? ", " : "", family_name(static_cast<SoupFamily>(i)), counts[i]);
+  return s;
+}
+
+std::string placement_list(const std::vector<std::uint64_t>& counts) {
+  std::string s;
+  for (std::size_t i = 0; i < counts.size(); ++i)
+    s += fmt::format("{}{} {}", i ? ", " : "", placement_name(static_cast<LightPlacement>(i)), counts[i]);
+  return s;
+}
+
+void print_summary(const FuzzOptions& options, const FuzzCampaignOptions& campaign, const FuzzCampaignResult& result,
+                   unsigned threads) {
+  fmt::print("shadowcert fuzz: seed {}, {} cases of {} triangles, {} runs, {} threads\n", campaign.seed,
+             result.cases, campaign.triangles, campaign.runs.size(), threads);
+  fmt::print("  families: {}\n", family_list(result.cases_by_family));
+  fmt::print("  lights:   {}\n", placement_list(result.cases_by_placement));
+  fmt::print("  {:<16}{:>5}{:>10}{:>9}{:>8}{:>9}{:>11}{:>14}{:>16}\n", "run", "must", "failures", "closure", "counts",
+             "decided", "sign-diff", "light-on-tri", "exact-mismatch");
+  for (std::size_t r = 0; r < campaign.runs.size(); ++r) {
+    const FuzzRunTally& t = result.runs[r];
+    fmt::print("  {:<16}{:>5}{:>10}{:>9}{:>8}{:>9}{:>11}{:>14}{:>16}\n", fuzz_run_name(campaign.runs[r]),
+               must_not_fail(campaign.runs[r]) ? "yes" : "no", t.failures, t.closure_failures, t.count_failures,
+               t.decided_sign_error_cases, t.sign_disagreement_cases, t.light_on_triangle_cases,
+               t.exact_mismatch_cases);
+  }
+  const double rate = result.seconds > 0.0 ? static_cast<double>(result.cases) / result.seconds : 0.0;
+  const std::uint64_t checks = result.runs.empty() ? 0 : result.runs.front().checks;
+  fmt::print("  (cases per column; counts = a pair whose crossings miss the run's claimed count, or a sign its\n"
+             "   precision decides wrong; exact-mismatch = crossings != n(B) - n(A), docs/fuzzing.md)\n");
+  fmt::print("{} cases in {:.2f} s: {:.0f} cases/s on {} threads; {:.1f} sample points and {:.1f} compared pairs "
+             "per case\n",
+             result.cases, result.seconds, rate, threads,
+             result.cases ? static_cast<double>(result.samples) / static_cast<double>(result.cases) : 0.0,
+             result.cases ? static_cast<double>(checks) / static_cast<double>(result.cases) : 0.0);
+  (void)options;
+}
+
+// One reproducer per shrunk failure: written, read back and replayed as `certify` would.
+struct WrittenReproducer {
+  std::string run;
+  std::uint64_t case_index = 0;
+  std::string failure;
+  std::size_t original_triangles = 0, triangles = 0;
+  fs::path json;
+  std::string command;
+  bool replayed = false;
+};
+
+WrittenReproducer write_reproducer(const FuzzOptions& options, const FuzzCampaignOptions& campaign,
+                                   const ShrunkFailure& shrunk) {
+  const FuzzRun& run = campaign.runs[shrunk.failure.run];
+  FuzzReproducer r;
+  r.soup = shrunk.soup;
+  r.light = shrunk.original.light;
+  r.method = run.method;
+  r.precision = run.precision;
+  r.failure = shrunk.failure.kind == FuzzFailureKind::closure ? "closure" : "counts";
+  if (shrunk.failure.kind == FuzzFailureKind::counts) {
+    const std::optional<CheckedPair>& pair =
+        shrunk.verdict.first_exact_mismatch ? shrunk.verdict.first_exact_mismatch : shrunk.verdict.first_count_failure;
+    if (pair) r.points = {pair->from, pair->to};
+  }
+  r.status = must_not_fail(run) ? "open" : "finding";
+  r.seed = campaign.seed;
+  r.case_index = shrunk.failure.index;
+  r.family = std::string(family_name(shrunk.original.kind.family));
+  r.placement = std::string(placement_name(shrunk.original.kind.light));
+  r.original_triangles = shrunk.original.soup.triangles.size();
+  const std::string name = fmt::format("{}-s{}-c{}", fuzz_run_name(run), campaign.seed, shrunk.failure.index);
+  WrittenReproducer w;
+  w.run = fuzz_run_name(run);
+  w.case_index = shrunk.failure.index;
+  w.failure = r.failure;
+  w.original_triangles = r.original_triangles;
+  w.triangles = r.soup.triangles.size();
+  w.json = write_fuzz_reproducer(options.out_dir, name, r);
+  w.command = certify_command(r, fs::path(options.out_dir) / (name + ".off"), fs::path(options.out_dir) / (name + ".points"));
+  // Bit for bit: what was written reads back as the very soup and light, and fails the same way.
+  const FuzzReproducer back = read_fuzz_reproducer(w.json);
+  w.replayed = back.soup.vertices == r.soup.vertices && back.soup.triangles == r.soup.triangles &&
+               back.light.position == r.light.position && replay_fuzz_reproducer(back).reproduces;
+  return w;
+}
+
+nlohmann::json tally_json(const FuzzRun& run, const FuzzRunTally& t) {
+  nlohmann::json by_family = nlohmann::json::object(), by_placement = nlohmann::json::object();
+  for (std::size_t i = 0; i < t.failures_by_family.size(); ++i)
+    by_family[std::string(family_name(static_cast<SoupFamily>(i)))] = t.failures_by_family[i];
+  for (std::size_t i = 0; i < t.failures_by_placement.size(); ++i)
+    by_placement[std::string(placement_name(static_cast<LightPlacement>(i)))] = t.failures_by_placement[i];
+  return {{"must_not_fail", must_not_fail(run)},
+          {"failures", t.failures},
+          {"closure_failures", t.closure_failures},
+          {"count_failures", t.count_failures},
+          {"decided_sign_error_cases", t.decided_sign_error_cases},
+          {"sign_disagreement_cases", t.sign_disagreement_cases},
+          {"light_on_triangle_cases", t.light_on_triangle_cases},
+          {"exact_mismatch_cases", t.exact_mismatch_cases},
+          {"checks", t.checks},
+          {"skipped_checks", t.skipped},
+          {"inconclusive_checks", t.inconclusive},
+          {"failures_by_family", by_family},
+          {"failures_by_placement", by_placement}};
+}
+
+int run_fuzz(const FuzzOptions& options) {
+  if (options.gl)
+    throw CLI::ValidationError("--gl", "not yet: the GL methods' captured volumes are not wired into fuzz yet");
+  FuzzCampaignOptions campaign;
+  campaign.seed = options.seed;
+  campaign.cases = options.cases;
+  campaign.triangles = options.triangles;
+  try {
+    campaign.runs = parse_fuzz_runs(options.methods);
+  } catch (const std::invalid_argument& e) {
+    throw CLI::ValidationError("--methods", e.what());
+  }
+  campaign.max_shrunk_per_run = options.max_reproducers;
+  campaign.shrink_findings = options.shrink_findings;
+  const unsigned threads =
+      options.threads > 0 ? options.threads : static_cast<unsigned>(tbb::info::default_concurrency());
+  const tbb::global_control parallelism(tbb::global_control::max_allowed_parallelism, threads);
+
+  const FuzzCampaignResult result = run_with_progress(campaign);
+  print_summary(options, campaign, result, threads);
+
+  std::vector<WrittenReproducer> written;
+  for (const ShrunkFailure& shrunk : result.shrunk) written.push_back(write_reproducer(options, campaign, shrunk));
+  for (const WrittenReproducer& w : written) {
+    fmt::print("{} {} case {}: {}, shrunk {} -> {} triangles ({}), replays with\n  {}\n",
+               w.failure == "closure" ? "OPEN CHAIN" : "WRONG COUNTS", w.run, w.case_index, w.failure,
+               w.original_triangles, w.triangles, w.replayed ? "replayed bit for bit" : "REPLAY DID NOT REPRODUCE",
+               w.command);
+  }
+  if (!result.shrunk.empty())
+    fmt::print("shrunk {} failures in {:.2f} s; reproducers in {}\n", result.shrunk.size(), result.shrink_seconds,
+               options.out_dir);
+
+  bool must_not_fail_failed = false;
+  for (std::size_t r = 0; r < campaign.runs.size(); ++r)
+    if (must_not_fail(campaign.runs[r]) && result.runs[r].failures > 0) must_not_fail_failed = true;
+
+  if (!options.json_file.empty()) {
+    nlohmann::json methods = nlohmann::json::object();
+    for (std::size_t r = 0; r < campaign.runs.size(); ++r)
+      methods[fuzz_run_name(campaign.runs[r])] = tally_json(campaign.runs[r], result.runs[r]);
+    nlohmann::json families = nlohmann::json::object(), placements = nlohmann::json::object();
+    for (std::size_t i = 0; i < result.cases_by_family.size(); ++i)
+      families[std::string(family_name(static_cast<SoupFamily>(i)))] = result.cases_by_family[i];
+    for (std::size_t i = 0; i < result.cases_by_placement.size(); ++i)
+      placements[std::string(placement_name(static_cast<LightPlacement>(i)))] = result.cases_by_placement[i];
+    nlohmann::json reproducers = nlohmann::json::array();
+    for (const WrittenReproducer& w : written)
+      reproducers.push_back({{"run", w.run},
+                             {"case", w.case_index},
+                             {"failure", w.failure},
+                             {"original_triangles", w.original_triangles},
+                             {"triangles", w.triangles},
+                             {"file", w.json.string()},
+                             {"command", w.command},
+                             {"replayed", w.replayed}});
+    write_json_file(options.json_file,
+                    {{"seed", campaign.seed},
+                     {"cases", result.cases},
+                     {"triangles", campaign.triangles},
+                     {"threads", threads},
+                     {"seconds", result.seconds},
+                     {"cases_per_second", result.seconds > 0.0 ? static_cast<double>(result.cases) / result.seconds : 0.0},
+                     {"shrink_seconds", result.shrink_seconds},
+                     {"samples", result.samples},
+                     {"redrawn_samples", result.redrawn},
+                     {"lost_samples", result.lost},
+                     {"families", families},
+                     {"placements", placements},
+                     {"methods", methods},
+                     {"must_not_fail_failed", must_not_fail_failed},
+                     {"reproducers", reproducers}});
+  }
+  if (must_not_fail_failed) {
+    fmt::print(stderr, "shadowcert: a method that must not fail (exact, peciva, refedge) failed: see the reproducers\n");
+    return kExitCheckFailed;
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+void add_fuzz_command(CLI::App& app, int& exit_code) {
+  auto options = std::make_shared<FuzzOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "fuzz", "Random soups and adversarial lights: certify every method, shrink failures (docs/fuzzing.md)");
+  cmd->add_option("--seed", options->seed, "Campaign seed: case i is a function of (seed, i) alone")
+      ->capture_default_str();
+  cmd->add_option("--cases", options->cases, "Number of cases")->capture_default_str()->check(CLI::PositiveNumber);
+  cmd->add_option("--triangles", options->triangles, "Triangles per soup")
+      ->capture_default_str()
+      ->check(CLI::Range(std::uint32_t{1}, kMaxTriangles));
+  cmd->add_option("--methods", options->methods,
+                  "Comma-separated runs: exact, kim, peciva, refedge (both precisions), a run such as "
+                  "refedge-float, or all")
+      ->capture_default_str();
+  cmd->add_flag("--gl", options->gl, "Also the GL methods' captured volumes (not yet: a usage error for now)");
+  cmd->add_option("--out", options->out_dir, "Folder for shrunk reproducers (written only on failures)")
+      ->capture_default_str();
+  cmd->add_option("--json", options->json_file, "Write the summary as a JSON object to FILE");
+  cmd->add_option("--threads", options->threads, "Worker threads (0: every core)")->capture_default_str();
+  cmd->add_option("--max-reproducers", options->max_reproducers, "Failing cases shrunk and written per run")
+      ->capture_default_str();
+  cmd->add_flag("--shrink-findings", options->shrink_findings,
+                "Also shrink and write failures of runs allowed to fail (kim), as findings");
+  cmd->callback([options, &exit_code] { exit_code = run_fuzz(*options); });
+}
+
+}  // namespace shadowcert::cli

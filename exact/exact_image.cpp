@@ -1,0 +1,499 @@
+// exact_image of exact/exact_image.h: three passes over the pixel grid (DESIGN.md §5).
+//   1. hits: every centre ray and every corner ray is followed to its first hit with the box
+//      tree's nearest-first query and exact ray/triangle tests (exact/ray_hit.h);
+//   2. counts, per light: n(P) at every centre hit, and at the corner hits that can still
+//      decide a pixel (a pixel whose footprint already sees two triangles, or whose hit
+//      triangle is a terminator, is ambiguous whatever its corners count);
+//   3. per pixel and light: the lit mask and the ambiguity bits.
+// Every decision is an exact sign; the only doubles that are not inputs are interval bounds
+// that enclose exact values (filters and box-tree queries), never a decision by themselves.
+#include "exact/exact_image.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <mutex>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+#include "core/pixel_ray.h"
+#include "exact/box_tree.h"
+#include "exact/edge_multiplicity.h"
+#include "exact/light_orientation.h"
+#include "exact/pixel_footprint.h"
+#include "exact/ray_hit.h"
+#include "scene/canonical_soup.h"
+#include "scene/edge_table.h"
+
+namespace shadowcert {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+// A ray's first hit. `degenerate`: the first contact is at a zero sign (an edge, a vertex, the
+// eye on the triangle, a tie between triangles, a contact along the ray in a triangle's plane).
+struct RayHit {
+  std::uint32_t triangle = kNoHit;
+  bool degenerate = false;
+  Sign eye_side = Sign::zero;        // orient(h, e): nonzero for a non-degenerate hit
+  Sign direction_side = Sign::zero;  // orient(h, (d, 0)): nonzero for a non-degenerate hit
+};
+
+[[nodiscard]] bool countable(const RayHit& hit) { return hit.triangle != kNoHit && !hit.degenerate; }
+
+// A light's silhouette edges: the edges of nonzero multiplicity (DESIGN.md §3), whose side
+// faces are the shadow volume chain's only finite faces besides the casters themselves.
+struct Silhouette {
+  std::vector<std::array<Vec3, 2>> edges;
+  detail::BoxTree tree;
+};
+
+// What every ray is tested against: the soup, its box tree, and per light the exact s(t) and
+// the silhouette.
+struct ImageGeometry {
+  const Soup& soup;
+  std::vector<HomogeneousPoint> lights;
+  std::vector<std::vector<Sign>> light_sides;  // [light][triangle]: s(t) of DESIGN.md §2
+  std::vector<std::unique_ptr<Silhouette>> silhouettes;
+  detail::BoxTree tree;
+
+  [[nodiscard]] const Vec3& vertex(std::uint32_t triangle, int k) const {
+    return soup.vertices[soup.triangles[triangle][static_cast<std::size_t>(k)]];
+  }
+};
+
+void validate(const Soup& soup, std::span<const Light> lights) {
+  for (const Triangle& t : soup.triangles)
+    for (std::uint32_t i : t) {
+      if (i >= soup.vertices.size()) throw std::invalid_argument("exact_image: triangle index out of range");
+      for (double x : soup.vertices[i])
+        if (!std::isfinite(x)) throw std::invalid_argument("exact_image: non-finite vertex coordinate");
+    }
+  if (soup.triangles.size() >= kUndefinedCount) throw std::invalid_argument("exact_image: too many triangles");
+  for (const Light& light : lights) {
+    const auto& l = light.position;
+    if (!std::isfinite(l[0]) || !std::isfinite(l[1]) || !std::isfinite(l[2]) || (l[3] != 0.0 && l[3] != 1.0))
+      throw std::invalid_argument("exact_image: a light needs finite coordinates and w = 0 or w = 1");
+    if (l[3] == 0.0 && l[0] == 0.0 && l[1] == 0.0 && l[2] == 0.0)
+      throw std::invalid_argument("exact_image: a directional light needs a nonzero direction");
+  }
+}
+
+std::vector<detail::ClosedBox> triangle_boxes(const Soup& soup) {
+  std::vector<detail::ClosedBox> boxes(soup.triangles.size());
+  for (std::size_t i = 0; i < boxes.size(); ++i) {
+    const Triangle& t = soup.triangles[i];
+    detail::ClosedBox& b = boxes[i];
+    b.lo = b.hi = soup.vertices[t[0]];
+    for (int k = 1; k < 3; ++k)
+      for (int d = 0; d < 3; ++d) {
+        b.lo[d] = std::min(b.lo[d], soup.vertices[t[static_cast<std::size_t>(k)]][d]);
+        b.hi[d] = std::max(b.hi[d], soup.vertices[t[static_cast<std::size_t>(k)]][d]);
+      }
+  }
+  return boxes;
+}
+
+std::vector<Sign> light_sides(const Soup& soup, const Light& light) {
+  std::vector<Sign> sides(soup.triangles.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, sides.size(), 4096), [&](const auto& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      const Triangle& t = soup.triangles[i];
+      sides[i] = light_orientation(soup.vertices[t[0]], soup.vertices[t[1]], soup.vertices[t[2]], light);
+    }
+  });
+  return sides;
+}
+
+std::unique_ptr<Silhouette> silhouette(const Soup& canonical, const EdgeTable& table, const Light& light) {
+  const EdgeMultiplicities m = exact_multiplicities(canonical, table, light);
+  std::vector<std::array<Vec3, 2>> edges;
+  std::vector<detail::ClosedBox> boxes;
+  for (std::size_t e = 0; e < table.size(); ++e) {
+    if (m.multiplicity[e] == 0) continue;
+    const Vec3& u = canonical.vertices[table.edges[e][0]];
+    const Vec3& v = canonical.vertices[table.edges[e][1]];
+    edges.push_back({u, v});
+    detail::ClosedBox b{u, u};
+    for (int k = 0; k < 3; ++k) {
+      b.lo[k] = std::min(u[k], v[k]);
+      b.hi[k] = std::max(u[k], v[k]);
+    }
+    boxes.push_back(b);
+  }
+  return std::unique_ptr<Silhouette>(new Silhouette{std::move(edges), detail::BoxTree(boxes, detail::LeafTest::exact)});
+}
+
+// The first hit of `ray` (exact). `in_plane` is scratch space for contacts along the ray.
+RayHit first_hit(const ImageGeometry& g, const PixelRay& ray, std::vector<std::uint32_t>& in_plane) {
+  in_plane.clear();
+  std::optional<detail::RayParameter> best;
+  RayHit hit;
+  double bound = std::numeric_limits<double>::infinity();
+  g.tree.nearest_first_ray_query(ray.origin, ray.direction, &bound, [&](std::uint32_t id) {
+    const Vec3 &a = g.vertex(id, 0), &b = g.vertex(id, 1), &c = g.vertex(id, 2);
+    const detail::RayMeeting m = detail::ray_meets_triangle(ray, a, b, c);
+    switch (m.contact) {
+      case detail::RayContact::apart:
+        return true;
+      case detail::RayContact::in_plane:
+        in_plane.push_back(id);  // no single parameter: resolved once the first crossing is known
+        return true;
+      case detail::RayContact::crosses:
+      case detail::RayContact::touches:
+        break;
+    }
+    const detail::RayParameter t(ray, a, b, c, m.direction_side);
+    const bool touch = m.contact == detail::RayContact::touches;
+    switch (best ? t.compare(*best) : Sign::negative) {
+      case Sign::negative:  // nearer than every meeting so far
+        best = t;
+        hit = {id, touch, m.eye_side, m.direction_side};
+        bound = t.upper();
+        break;
+      case Sign::zero:  // a tie: P lies on two triangles (a zero sign, §5)
+        hit.degenerate = true;
+        hit.triangle = std::min(hit.triangle, id);
+        break;
+      case Sign::positive:
+        break;
+    }
+    return true;
+  });
+  for (std::uint32_t id : in_plane) {
+    if (best && !detail::in_plane_contact_before(ray, g.vertex(id, 0), g.vertex(id, 1), g.vertex(id, 2), *best))
+      continue;  // met only beyond the first hit
+    hit.degenerate = true;
+    hit.triangle = std::min(hit.triangle, id);
+  }
+  return hit;
+}
+
+// n(P) for P = the hit point of a countable hit, light number `light` (DESIGN.md §3, §5): the
+// casting triangles other than the hit one that the open segment P -> light crosses;
+// kUndefinedCount when it touches one (P on a volume boundary).
+std::uint32_t count_at(const ImageGeometry& g, std::size_t light, const PixelRay& ray, const RayHit& hit) {
+  const std::uint32_t h = hit.triangle;
+  const detail::HitPoint p(detail::RayParameter(ray, g.vertex(h, 0), g.vertex(h, 1), g.vertex(h, 2), hit.direction_side));
+  const HomogeneousPoint& l = g.lights[light];
+  const std::vector<Sign>& sides = g.light_sides[light];
+  std::uint32_t n = 0;
+  bool touched = false;
+  const auto classify = [&](std::uint32_t id) {
+    if (id == h) return true;  // the triangle that contains P (§5)
+    const Sign s = sides[id];
+    if (s == Sign::zero) return true;  // casts nothing (§2)
+    const Vec3 &a = g.vertex(id, 0), &b = g.vertex(id, 1), &c = g.vertex(id, 2);
+    // P and the light on one side: the open segment never reaches the plane. P on the plane:
+    // the open segment leaves it at once towards the light (s != 0), so it misses the closed
+    // triangle; P itself is on no other triangle, or the hit would be degenerate.
+    const Sign start = p.side(a, b, c);
+    if (start == Sign::zero || start == s) return true;
+    // The segment crosses the plane in one point X; exact/face_crossing.h's rule: X strictly
+    // inside iff orient(P, L, p, q) = -start for every edge pq, outside if one has +start.
+    bool on_boundary = false;
+    for (const auto& [u, v] : {std::pair{&a, &b}, std::pair{&b, &c}, std::pair{&c, &a}}) {
+      switch (p.orient_with(l, *u, *v) * -start) {
+        case Sign::positive:
+          break;
+        case Sign::zero:
+          on_boundary = true;
+          break;
+        case Sign::negative:
+          return true;
+      }
+    }
+    if (on_boundary) {
+      touched = true;
+      return false;
+    }
+    ++n;
+    return true;
+  };
+  // The query starts from a double point of P's enclosure and is dilated by the enclosure's
+  // size, so the exact segment's candidates are all visited (exact/box_tree.h).
+  Vec3 from = p.lo(), slack{};
+  {
+    for (int k = 0; k < 3; ++k) {
+      const double mid = p.lo()[k] / 2 + p.hi()[k] / 2;
+      from[k] = std::clamp(mid, p.lo()[k], p.hi()[k]);
+      slack[k] = std::nextafter(std::max(p.hi()[k] - from[k], from[k] - p.lo()[k]),
+                                std::numeric_limits<double>::infinity());
+    }
+  }
+  if (l[3] == 0.0) {
+    g.tree.dilated_ray_query(from, {l[0], l[1], l[2]}, slack, classify);
+  } else {
+    const Vec3 target{l[0], l[1], l[2]};
+    if (p.equals(target)) return 0;  // the open segment is empty
+    if (from == target) {            // P is within its enclosure of the light: start from a corner
+      from = p.lo();
+      for (int k = 0; k < 3; ++k)
+        slack[k] = std::nextafter(p.hi()[k] - p.lo()[k], std::numeric_limits<double>::infinity());
+      if (from == target) from = p.hi();
+    }
+    g.tree.dilated_segment_query(from, target, slack, classify);
+  }
+  return touched ? kUndefinedCount : n;
+}
+
+// Progress of one stage, reported about once per percent, one report at a time.
+class Progress {
+ public:
+  Progress(const ExactImageOptions& options, std::string_view stage, std::uint64_t total)
+      : report_(options.progress), stage_(stage), total_(total), step_(std::max<std::uint64_t>(1, total / 100)) {
+    if (report_) report_(stage_, 0, total_);
+  }
+  void advance(std::uint64_t amount) {
+    if (!report_) return;
+    const std::uint64_t before = done_.fetch_add(amount);
+    const std::uint64_t after = before + amount;
+    if (after / step_ == before / step_ && after != total_) return;
+    const std::lock_guard<std::mutex> lock(mutex_);
+    report_(stage_, std::min(after, total_), total_);
+  }
+
+ private:
+  const std::function<void(std::string_view, std::uint64_t, std::uint64_t)>& report_;
+  std::string_view stage_;
+  std::uint64_t total_;
+  std::uint64_t step_;
+  std::atomic<std::uint64_t> done_{0};
+  std::mutex mutex_;
+};
+
+// Pixel rays and corner rays in one index space: centre (i, r) is r * width + i, corner
+// (i, r) (image point (i, r)) is centres + r * (width + 1) + i.
+struct RayGrid {
+  CameraFrame frame;
+  std::uint32_t width;
+  std::uint32_t height;
+
+  [[nodiscard]] std::size_t centres() const { return std::size_t{width} * height; }
+  [[nodiscard]] std::size_t size() const { return centres() + std::size_t{width + 1} * (height + 1); }
+  [[nodiscard]] std::size_t corner(std::uint32_t i, std::uint32_t r) const {
+    return centres() + std::size_t{r} * (width + 1) + i;
+  }
+  [[nodiscard]] PixelRay ray(std::size_t index) const {
+    if (index < centres()) {
+      const auto r = static_cast<std::uint32_t>(index / width), i = static_cast<std::uint32_t>(index % width);
+      return pixel_ray(frame, i + 0.5, r + 0.5);
+    }
+    const std::size_t c = index - centres();
+    const auto r = static_cast<std::uint32_t>(c / (width + 1)), i = static_cast<std::uint32_t>(c % (width + 1));
+    return pixel_ray(frame, i, r);
+  }
+  // The footprint of pixel (i, r): its centre and four corners.
+  [[nodiscard]] std::array<std::size_t, 5> footprint(std::uint32_t i, std::uint32_t r) const {
+    return {std::size_t{r} * width + i, corner(i, r), corner(i + 1, r), corner(i, r + 1), corner(i + 1, r + 1)};
+  }
+};
+
+// The light-independent ambiguity of a pixel: a zero sign on a footprint ray, or footprint
+// rays that see different triangles (or not all a triangle).
+std::uint8_t footprint_ambiguity(const std::vector<RayHit>& hits, const std::array<std::size_t, 5>& rays) {
+  std::uint8_t bits = 0;
+  for (std::size_t ray : rays) {
+    if (hits[ray].degenerate) bits |= kZeroSign;
+    if (hits[ray].triangle != hits[rays[0]].triangle) bits |= kFootprintTriangles;
+  }
+  return bits;
+}
+
+[[nodiscard]] bool terminator(const ImageGeometry& g, std::size_t light, const RayHit& hit) {
+  return g.light_sides[light][hit.triangle] != hit.eye_side;  // includes s = 0: the light on the plane
+}
+
+// Where pixel (i, r)'s corner rays meet its hit triangle's plane (all four see it,
+// non-degenerately), in cyclic order.
+std::array<detail::RayParameter, 4> corner_hits(const ImageGeometry& g, const RayGrid& grid,
+                                                const std::vector<RayHit>& hits, std::uint32_t i, std::uint32_t r) {
+  const std::array<std::size_t, 4> corners{grid.corner(i, r), grid.corner(i + 1, r), grid.corner(i + 1, r + 1),
+                                           grid.corner(i, r + 1)};
+  const auto at = [&](std::size_t k) {
+    const RayHit& hit = hits[corners[k]];
+    const std::uint32_t h = hit.triangle;
+    return detail::RayParameter(grid.ray(corners[k]), g.vertex(h, 0), g.vertex(h, 1), g.vertex(h, 2),
+                                hit.direction_side);
+  };
+  return {at(0), at(1), at(2), at(3)};
+}
+
+// Whether something besides triangle h is seen inside the footprint: an edge of another
+// triangle crosses the eye pyramid over it (exact/pixel_footprint.h).
+bool footprint_sees_more(const ImageGeometry& g, const Vec3& eye, const std::array<detail::RayParameter, 4>& corners,
+                         std::uint32_t h) {
+  const detail::FootprintPolytope pyramid(finite_point(eye), corners);
+  bool more = false;
+  g.tree.dilated_segment_query(pyramid.query_from(), eye, pyramid.query_slack(), [&](std::uint32_t id) {
+    if (id == h || !pyramid.meets_an_edge_of(g.vertex(id, 0), g.vertex(id, 1), g.vertex(id, 2))) return true;
+    more = true;
+    return false;
+  });
+  return more;
+}
+
+// Whether n changes over the footprint: a silhouette edge crosses its light pyramid.
+bool footprint_shadow_varies(const ImageGeometry& g, std::size_t light,
+                             const std::array<detail::RayParameter, 4>& corners) {
+  const HomogeneousPoint& l = g.lights[light];
+  const detail::FootprintPolytope pyramid(l, corners);
+  const Silhouette& silhouette = *g.silhouettes[light];
+  bool varies = false;
+  const auto visit = [&](std::uint32_t id) {
+    if (!pyramid.meets(silhouette.edges[id][0], silhouette.edges[id][1])) return true;
+    varies = true;
+    return false;
+  };
+  if (l[3] == 0.0) {
+    silhouette.tree.dilated_ray_query(pyramid.query_from(), {l[0], l[1], l[2]}, pyramid.query_slack(), visit);
+  } else {
+    silhouette.tree.dilated_segment_query(pyramid.query_from(), {l[0], l[1], l[2]}, pyramid.query_slack(), visit);
+  }
+  return varies;
+}
+
+}  // namespace
+
+ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Camera& camera,
+                       const ExactImageOptions& options) {
+  const auto start = Clock::now();
+  validate(soup, lights);
+  const RayGrid grid{camera_frame(camera, "exact_image"), camera.width, camera.height};
+
+  ImageGeometry g{soup, {}, {}, {}, detail::BoxTree(triangle_boxes(soup), detail::LeafTest::exact)};
+  const CanonicalSoup canonical = canonical_soup(soup);
+  const EdgeTable table = build_edge_table(canonical.soup);
+  for (const Light& light : lights) {
+    g.lights.push_back(light.position);
+    g.light_sides.push_back(light_sides(soup, light));
+    g.silhouettes.push_back(silhouette(canonical.soup, table, light));
+  }
+  ExactImage image;
+  image.width = grid.width;
+  image.height = grid.height;
+  image.stats.tree_seconds = seconds_since(start);
+
+  // 1. First hits of every ray, row by row (rays of a row are coherent: good for the tree).
+  auto stage = Clock::now();
+  std::vector<RayHit> hits(grid.size());
+  {
+    Progress progress(options, "hits", hits.size());
+    const std::uint32_t rows = grid.height + (grid.height + 1);  // centre rows, then corner rows
+    tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, rows, 1), [&](const tbb::blocked_range<std::uint32_t>& r) {
+      std::vector<std::uint32_t> in_plane;
+      for (std::uint32_t row = r.begin(); row != r.end(); ++row) {
+        const bool centre_row = row < grid.height;
+        const std::size_t first = centre_row ? std::size_t{row} * grid.width : grid.corner(0, row - grid.height);
+        const std::size_t count = centre_row ? grid.width : grid.width + 1;
+        for (std::size_t k = first; k < first + count; ++k) hits[k] = first_hit(g, grid.ray(k), in_plane);
+        progress.advance(count);
+      }
+    });
+  }
+  image.stats.rays = hits.size();
+  image.stats.hit_seconds = seconds_since(stage);
+
+  // 2. and 3., light by light.
+  stage = Clock::now();
+  image.hit_triangles.resize(grid.centres());
+  for (std::size_t i = 0; i < grid.centres(); ++i) image.hit_triangles[i] = hits[i].triangle;
+  std::vector<std::uint8_t> geometric(grid.centres());
+  tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, grid.height), [&](const auto& r) {
+    for (std::uint32_t row = r.begin(); row != r.end(); ++row)
+      for (std::uint32_t i = 0; i < grid.width; ++i)
+        geometric[std::size_t{row} * grid.width + i] = footprint_ambiguity(hits, grid.footprint(i, row));
+  });
+  image.stats.count_seconds = seconds_since(stage);
+
+  // Where the corners and the centre agree on one triangle, the whole footprint must see only
+  // it (exact/pixel_footprint.h): a small triangle or an edge between the rays is ambiguous.
+  stage = Clock::now();
+  {
+    Progress progress(options, "footprints", grid.height);
+    tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, grid.height), [&](const auto& r) {
+      for (std::uint32_t row = r.begin(); row != r.end(); ++row) {
+        for (std::uint32_t i = 0; i < grid.width; ++i) {
+          const std::size_t pixel = std::size_t{row} * grid.width + i;
+          if (geometric[pixel] != 0 || !countable(hits[pixel])) continue;
+          if (footprint_sees_more(g, grid.frame.eye, corner_hits(g, grid, hits, i, row), hits[pixel].triangle))
+            geometric[pixel] |= kFootprintTriangles;
+        }
+        progress.advance(1);
+      }
+    });
+  }
+  image.stats.footprint_seconds = seconds_since(stage);
+  stage = Clock::now();
+  std::vector<std::uint32_t> counts(grid.size());
+  std::vector<std::uint8_t> needed(grid.size());
+  for (std::size_t light = 0; light < lights.size(); ++light) {
+    // Which rays' counts matter: every countable centre (the count image), and the corners of
+    // pixels whose footprint sees one triangle that the light does not graze.
+    std::fill(needed.begin(), needed.end(), std::uint8_t{0});
+    for (std::uint32_t row = 0; row < grid.height; ++row)
+      for (std::uint32_t i = 0; i < grid.width; ++i) {
+        const auto rays = grid.footprint(i, row);
+        const RayHit& centre = hits[rays[0]];
+        if (!countable(centre)) continue;
+        needed[rays[0]] = 1;
+        if (geometric[rays[0]] == 0 && !terminator(g, light, centre))
+          for (std::size_t k = 1; k < rays.size(); ++k) needed[rays[k]] = 1;
+      }
+    std::vector<std::size_t> work;
+    for (std::size_t k = 0; k < needed.size(); ++k)
+      if (needed[k] != 0) work.push_back(k);
+    Progress progress(options, "counts", work.size());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, work.size(), 64), [&](const auto& r) {
+      for (std::size_t k = r.begin(); k != r.end(); ++k) counts[work[k]] = count_at(g, light, grid.ray(work[k]), hits[work[k]]);
+      progress.advance(r.size());
+    });
+    image.stats.counts += work.size();
+
+    ExactLightImage out;
+    out.counts.resize(grid.centres());
+    out.lit.resize(grid.centres());
+    out.ambiguity.resize(grid.centres());
+    tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, grid.height), [&](const auto& r) {
+      for (std::uint32_t row = r.begin(); row != r.end(); ++row)
+        for (std::uint32_t i = 0; i < grid.width; ++i) {
+          const auto rays = grid.footprint(i, row);
+          const std::size_t pixel = rays[0];
+          const RayHit& centre = hits[pixel];
+          std::uint8_t bits = geometric[pixel];
+          std::uint32_t n = centre.triangle == kNoHit ? kNoHit : kUndefinedCount;
+          if (countable(centre)) {
+            n = counts[pixel];
+            if (n == kUndefinedCount) bits |= kZeroSign;
+            if (terminator(g, light, centre)) bits |= kTerminator;
+            if (bits == 0)
+              for (std::size_t k = 1; k < rays.size(); ++k) {
+                if (counts[rays[k]] == kUndefinedCount) bits |= kZeroSign;
+                else if (counts[rays[k]] != n) bits |= kFootprintCounts;
+              }
+            // The corners agree: n must still be constant between them (a shadow sliver).
+            if (bits == 0 && footprint_shadow_varies(g, light, corner_hits(g, grid, hits, i, row)))
+              bits |= kFootprintCounts;
+          } else if (centre.triangle != kNoHit) {
+            bits |= kZeroSign;
+          }
+          out.counts[pixel] = n;
+          out.lit[pixel] = countable(centre) && n == 0 ? 255 : 0;
+          out.ambiguity[pixel] = bits;
+        }
+    });
+    image.lights.push_back(std::move(out));
+  }
+  image.stats.count_seconds += seconds_since(stage);
+  image.stats.seconds = seconds_since(start);
+  return image;
+}
+
+}  // namespace shadowcert

@@ -1,0 +1,89 @@
+#pragma once
+// The exact image (DESIGN.md §5): what a shadow renderer must show at every pixel, decided with
+// exact predicates on the input doubles, against which `shadowcert diff` checks each GL method.
+//
+// For each pixel the ray through its centre (core/pixel_ray.h, the GL path's own rays) is
+// followed to its first hit P: which triangle the ray meets first is decided by orientation
+// signs and by an exact comparison of ray parameters (an interval filter, then exact binary
+// floats), never by a rounded distance. P is never rounded: it is the rational point
+// e + (N / D) d, kept as an interval enclosure for filters and as exact homogeneous
+// coordinates for the rare signs the enclosure cannot decide. For each light, n(P) is the
+// number of casting triangles (s != 0, §2) crossed by the open segment P -> light (the ray
+// towards l for w = 0), the hit triangle excluded (§5).
+//
+// A pixel is AMBIGUOUS (§5) when the exact answer at its centre does not pin down what a
+// correct renderer shows there: its footprint rays (the four corner rays, plus the centre ray)
+// see different triangles (or some none) or, on one triangle, different counts; or the light
+// is not strictly on the eye's side of the hit triangle's plane (the self-shadow terminator:
+// P then lies on the boundary of that triangle's own volume); or a zero sign arose on a
+// footprint ray (it passes through an edge or a vertex, meets two triangles at one point, or
+// P's segment to the light touches a volume boundary). Corner rays are shared by the four
+// pixels around them: (width + 1) x (height + 1) corners are traced once.
+#include <cstdint>
+#include <functional>
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include "core/camera.h"
+#include "core/light.h"
+#include "core/soup.h"
+
+namespace shadowcert {
+
+// hit_triangles and counts where the centre ray meets no triangle.
+inline constexpr std::uint32_t kNoHit = 0xFFFFFFFFu;
+// counts where n(P) is undefined: P on a boundary (a zero sign on the centre ray).
+inline constexpr std::uint32_t kUndefinedCount = 0xFFFFFFFEu;
+
+// Why a pixel is ambiguous, as bits (0: unambiguous); several may be set.
+enum AmbiguityReason : std::uint8_t {
+  kFootprintTriangles = 1,  // footprint rays see different triangles, or some see none
+  kFootprintCounts = 2,     // all see one triangle, with different n
+  kTerminator = 4,          // the light is not strictly on the eye's side of the hit plane
+  kZeroSign = 8,            // a footprint ray meets an edge, a vertex, a tie or a touched boundary
+};
+
+// One light's images; pixels row-major, row 0 at the TOP (as gpu/image.h).
+struct ExactLightImage {
+  std::vector<std::uint32_t> counts;    // n(P); kNoHit or kUndefinedCount
+  std::vector<std::uint8_t> lit;        // 255 where the centre ray hits and n(P) == 0, else 0
+  std::vector<std::uint8_t> ambiguity;  // AmbiguityReason bits
+};
+
+struct ExactImageStats {
+  std::uint64_t rays = 0;    // centre and corner rays traced
+  std::uint64_t counts = 0;  // n(P) evaluations, all lights (centres, and corners that decide)
+  double tree_seconds = 0.0;   // casting signs, silhouettes and the box tree
+  double hit_seconds = 0.0;        // first hits of every ray
+  double footprint_seconds = 0.0;  // eye pyramids: is only the hit triangle seen over each pixel
+  double count_seconds = 0.0;      // counts, light pyramids and the ambiguity bits
+  double seconds = 0.0;        // all of it
+};
+
+struct ExactImage {
+  std::uint32_t width = 0;
+  std::uint32_t height = 0;
+  // The centre ray's first hit: an index into the soup's triangles, or kNoHit. Where the first
+  // contact is degenerate (kZeroSign) it is the smallest index among the triangles met there.
+  std::vector<std::uint32_t> hit_triangles;
+  std::vector<ExactLightImage> lights;  // one per light, in the given order
+  ExactImageStats stats;
+};
+
+struct ExactImageOptions {
+  // Called as work advances with the stage ("hits", then "counts"), the rays (or counts) done
+  // and the total of that stage: from worker threads, never two at once, about once per
+  // percent. Empty: no reports.
+  std::function<void(std::string_view stage, std::uint64_t done, std::uint64_t total)> progress;
+};
+
+// The exact image of `soup` (every triangle both receives and casts; world space) for
+// `camera` and each of `lights`. Parallel over rows (TBB).
+// Throws std::invalid_argument("exact_image: ...") for a vertex index out of range, a
+// non-finite coordinate, a light with w not in {0, 1} or a zero direction, or a degenerate
+// camera (core/pixel_ray.h).
+[[nodiscard]] ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Camera& camera,
+                                     const ExactImageOptions& options = {});
+
+}  // namespace shadowcert

@@ -1,0 +1,105 @@
+#pragma once
+// Internal to exact/: where a pixel ray (core/pixel_ray.h) meets triangles, decided exactly on
+// the input doubles, for the exact image (exact/exact_image.h, DESIGN.md §5):
+//   - how the ray meets one triangle (orientation signs only, as exact/face_crossing.h);
+//   - which of two meetings comes first along the ray: the parameters t = N / D are compared
+//     by the sign of N1 D2 - N2 D1, an interval filter first, exact binary floats (Mpzf) when
+//     the intervals overlap;
+//   - the hit point P = e + (N / D) d, never rounded: an interval box that encloses it for the
+//     filters, and exact homogeneous coordinates (X, W) = (|D| e + sign(D) N d, |D|), W > 0,
+//     built on first need, for the signs the box cannot decide.
+// Notation: ray origin e, direction d; for a triangle abc, N = det[b - a, c - a, a - e] and
+// D = det[b - a, c - a, d], so the ray meets the triangle's plane at t = N / D when D != 0.
+#include <array>
+#include <cstdint>
+#include <memory>
+
+#include "core/pixel_ray.h"
+#include "core/sign.h"
+#include "core/soup.h"
+#include "exact/light_orientation.h"
+
+namespace shadowcert::detail {
+
+enum class RayContact : std::uint8_t {
+  apart,     // the ray (t >= 0) misses the closed triangle, or the triangle has no area
+  crosses,   // the open ray passes through the open triangle; e strictly off its plane
+  touches,   // it meets the closed triangle in one point at a zero sign: through an edge or a
+             // vertex, or from e itself when e lies on the closed triangle (t = 0)
+  in_plane,  // the ray lies in the triangle's plane and meets it (along a segment or a point)
+};
+
+struct RayMeeting {
+  RayContact contact = RayContact::apart;
+  Sign eye_side = Sign::zero;        // orient(a, b, c, e)
+  Sign direction_side = Sign::zero;  // orient(a, b, c, (d, 0)) = sign D
+};
+
+[[nodiscard]] RayMeeting ray_meets_triangle(const PixelRay& ray, const Vec3& a, const Vec3& b, const Vec3& c);
+
+// The parameter t = N / D at which the ray meets the plane of abc (crosses or touches, so
+// D != 0 and t >= 0). Keeps copies of its inputs for the exact fallback.
+class RayParameter {
+ public:
+  // Precondition: direction_side = sign D != 0 (from ray_meets_triangle).
+  RayParameter(const PixelRay& ray, const Vec3& a, const Vec3& b, const Vec3& c, Sign direction_side);
+
+  // An upper bound of t (+infinity when the enclosure is unbounded).
+  [[nodiscard]] double upper() const { return hi_; }
+
+  // sign(t - other.t), exact. Both on the same ray.
+  [[nodiscard]] Sign compare(const RayParameter& other) const;
+
+  // What it was made of (for exact/hit_point_coordinates.h).
+  [[nodiscard]] const PixelRay& ray() const { return ray_; }
+  [[nodiscard]] const std::array<Vec3, 3>& triangle() const { return triangle_; }
+  [[nodiscard]] Sign direction_side() const { return direction_side_; }
+
+ private:
+  friend class HitPoint;
+  friend bool in_plane_contact_before(const PixelRay& ray, const Vec3& a, const Vec3& b, const Vec3& c,
+                                      const RayParameter& bound);
+  PixelRay ray_;
+  std::array<Vec3, 3> triangle_;
+  Sign direction_side_;
+  double lo_;
+  double hi_;
+};
+
+// Whether the ray, lying in the plane of abc (an in_plane meeting), meets the closed triangle
+// at some t in [0, bound.t]: exact (rational constructions, a rare path).
+[[nodiscard]] bool in_plane_contact_before(const PixelRay& ray, const Vec3& a, const Vec3& b, const Vec3& c,
+                                           const RayParameter& bound);
+
+// The point P where the ray meets the plane of a triangle (its RayParameter), with exact
+// predicates on it. Not thread-safe (the exact coordinates are built lazily): one per thread.
+class HitPoint {
+ public:
+  explicit HitPoint(const RayParameter& t);
+  ~HitPoint();
+  HitPoint(HitPoint&&) noexcept;
+  HitPoint& operator=(HitPoint&&) noexcept;
+
+  // A box that contains P: lo[k] <= P[k] <= hi[k].
+  [[nodiscard]] const Vec3& lo() const { return lo_; }
+  [[nodiscard]] const Vec3& hi() const { return hi_; }
+
+  // orient(a, b, c, P) = sign det[b - a, c - a, P - a].
+  [[nodiscard]] Sign side(const Vec3& a, const Vec3& b, const Vec3& c) const;
+  // orient(P, L, p, q): sign det[L - P, p - P, q - P] for a point light, det[l, p - P, q - P]
+  // for a directional one (L = (l, 0)); `light` validated by the caller.
+  [[nodiscard]] Sign orient_with(const HomogeneousPoint& light, const Vec3& p, const Vec3& q) const;
+  // P == x, exact.
+  [[nodiscard]] bool equals(const Vec3& x) const;
+
+ private:
+  struct Exact;
+  const Exact& exact() const;
+
+  RayParameter t_;
+  Vec3 lo_{};
+  Vec3 hi_{};
+  mutable std::unique_ptr<Exact> exact_;
+};
+
+}  // namespace shadowcert::detail

@@ -1,0 +1,162 @@
+#pragma once
+// One shadow method (issue 4) rendering one scene: the layer `shadowcert render`, the
+// benchmark (bench/render_bench.cpp) and the image comparison share, so that "scene S by
+// method M" means the same frames everywhere.
+//
+//   cpu        the exact chain of exact/ per light, uploaded once (the caller converts it
+//              with exact/chain_mesh.h: gpu/ never links exact/) and drawn as is
+//   cs         compute-shader volumes (gpu/compute_volume.h)
+//   gs         geometry shader over edge records (gpu/geometry_shader_volume.h)
+//   ts         tessellation over edge-record patches (gpu/tessellation_volume.h)
+//   pertri     every triangle's own closed volume (gpu/per_triangle_volume.h)
+//   shadowmap  no volume: one depth map per light (gpu/shadow_map_renderer.h)
+//
+// The GPU-built volumes (cs, gs, ts, pertri) are rebuilt in every frame, as for a moving
+// light, so a frame's time includes their build (stage `volume`); cpu's are built once by
+// the caller. Stencil methods draw with gpu/stencil_shadow_renderer.h, z-fail or z-pass.
+// With several lights each light's colour is divided by their number so that the sum stays
+// in range; the counts and masks of StencilShadowFrame are the first light's.
+//
+//   ShadowMethodRenderer renderer(ShadowMethod::cs, scene, options);  // uploads, compiles
+//   StencilShadowFrame frame = renderer.render(target, camera);      // builds, draws, reads
+//   renderer.check_capacity();                                        // overflowed? throws
+//   FrameTiming t = renderer.time_frames(target, camera, 2, 20, StageSync::none);
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <span>
+#include <stdexcept>
+#include <string_view>
+#include <vector>
+
+#include "core/camera.h"
+#include "core/homogeneous_mesh.h"
+#include "core/light.h"
+#include "core/soup.h"
+#include "gpu/frame_timing.h"
+#include "gpu/gpu_stage_timer.h"
+#include "gpu/offscreen_target.h"
+#include "gpu/shadow_map_renderer.h"
+#include "gpu/stencil_shadow_renderer.h"
+#include "scene/edge_table.h"
+
+namespace shadowcert::gpu {
+
+class ComputeVolumeSoup;  // gpu/compute_volume.h
+
+enum class ShadowMethod { cpu, cs, gs, ts, pertri, shadowmap };
+inline constexpr std::array<ShadowMethod, 6> kShadowMethods{ShadowMethod::cpu, ShadowMethod::cs,
+                                                           ShadowMethod::gs,  ShadowMethod::ts,
+                                                           ShadowMethod::pertri, ShadowMethod::shadowmap};
+
+// "cpu", "cs", "gs", "ts", "pertri", "shadowmap" (the CLI's --method values).
+[[nodiscard]] std::string_view shadow_method_name(ShadowMethod method);
+// The method of that name; nullopt for any other string.
+[[nodiscard]] std::optional<ShadowMethod> parse_shadow_method(std::string_view name);
+// Whether the method counts a shadow volume in the stencil (all but shadowmap), and whether
+// the GPU builds it (cs, gs, ts, pertri).
+[[nodiscard]] constexpr bool draws_volume(ShadowMethod m) { return m != ShadowMethod::shadowmap; }
+[[nodiscard]] constexpr bool builds_volume_on_gpu(ShadowMethod m) {
+  return m != ShadowMethod::cpu && m != ShadowMethod::shadowmap;
+}
+// The stages a frame of the method runs, in order: volume, depth, stencil, lit for the
+// volume methods (cpu's volume stage is empty: 0), depth, shadow_map, lit for shadowmap.
+[[nodiscard]] std::vector<RenderStage> method_stages(ShadowMethod method);
+
+// What the methods need of a scene. Everything is read (uploaded) during construction only,
+// except cpu_volumes, which first_volume() returns: those must outlive the renderer.
+struct ShadowMethodScene {
+  // The shaded receivers (every mesh of the scene, with its colour); at least one triangle.
+  std::span<const ShadedSoupPart> receivers;
+  // The lights, at least one (core/light.h; w in {0, 1}).
+  std::span<const Light> lights;
+  // cs, gs, ts, pertri: the canonical soup of every caster (scene/canonical_soup.h) and its
+  // build_edge_table. Ignored by the other methods.
+  const Soup* canonical = nullptr;
+  const EdgeTable* table = nullptr;
+  // cpu: one volume per light, in the lights' order (exact/chain_mesh.h). Ignored otherwise.
+  std::span<const HomogeneousMesh> cpu_volumes;
+};
+
+struct ShadowMethodOptions {
+  StencilMethod stencil = StencilMethod::zfail;  // volume methods
+  // shadowmap only (gpu/shadow_map_renderer.h): map side in texels, constant and slope bias.
+  std::uint32_t shadow_map_size = kDefaultShadowMapSize;
+  float shadow_map_bias = kDefaultShadowMapBias;
+  float shadow_map_slope = kDefaultShadowMapSlope;
+};
+
+// A GPU-built volume needed more vertices than its buffers hold: drawing it would draw an
+// open volume, so callers report this instead of an image.
+class VolumeCapacityError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+class ShadowMethodRenderer {
+ public:
+  // Uploads the receivers and the method's inputs and compiles its shaders; needs a current
+  // context. Throws std::invalid_argument("ShadowMethodRenderer: ...") when the scene lacks
+  // what the method needs (no light, no receiver triangle, no canonical soup or edge table for
+  // a GPU-built method, not one cpu volume per light), GlError / GlEnvironmentError from the
+  // driver, and whatever the method's own constructor throws (e.g. a shadow map size out of
+  // range).
+  ShadowMethodRenderer(ShadowMethod method, const ShadowMethodScene& scene, const ShadowMethodOptions& options = {});
+  ~ShadowMethodRenderer();
+  ShadowMethodRenderer(const ShadowMethodRenderer&) = delete;
+  ShadowMethodRenderer& operator=(const ShadowMethodRenderer&) = delete;
+
+  [[nodiscard]] ShadowMethod method() const { return method_; }
+
+  // One frame into `target` (bound and cleared here): builds the GPU volumes, draws, reads
+  // back colour, the first light's counts and mask. With `timer` (a frame of it open), the
+  // build and the passes are timed as its stages.
+  StencilShadowFrame render(const OffscreenTarget& target, const Camera& camera, GpuStageTimer* timer = nullptr);
+
+  // `frames` frames without readback, each ended by glFinish; returns each frame's wall time
+  // in ms. With `timer`, each frame is one frame of it (begun and ended here).
+  std::vector<double> render_frames(const OffscreenTarget& target, const Camera& camera, std::size_t frames,
+                                    GpuStageTimer* timer = nullptr);
+
+  // `warm_up` untimed frames (llvmpipe compiles shader variants on first use), then `frames`
+  // frames timed by a fresh GpuStageTimer(sync) and the wall clock. Throws
+  // std::invalid_argument for frames = 0, GlEnvironmentError without timer queries.
+  [[nodiscard]] FrameTiming time_frames(const OffscreenTarget& target, const Camera& camera, std::size_t warm_up,
+                                        std::size_t frames, StageSync sync);
+
+  // After a frame, for the GPU-built methods: throws VolumeCapacityError("the cs volume needs
+  // more vertices than its GL storage buffers hold (N)") when a light's last build overflowed.
+  // Does nothing for cpu and shadowmap. Synchronises with the GPU.
+  void check_capacity() const;
+  // The first light's volume triangles as drawn (cpu: its mesh's; GPU-built: after a frame,
+  // read back). 0 for shadowmap.
+  [[nodiscard]] std::uint64_t volume_triangles() const;
+  // The first light's volume as drawn (render --capture): cpu's mesh as uploaded; for the
+  // GPU-built methods, after a frame, the read-back triangles, three vertices each (not
+  // welded). Throws std::logic_error for shadowmap (no volume).
+  [[nodiscard]] HomogeneousMesh first_volume() const;
+
+  // A volume built on the GPU (cs, gs, ts, pertri behind one interface); in the .cpp.
+  class BuiltVolume;
+
+ private:
+  void build_volumes(GpuStageTimer* timer);
+  StencilShadowFrame draw(const OffscreenTarget& target, const Camera& camera, bool read_back, GpuStageTimer* timer);
+
+  ShadowMethod method_;
+  ShadowMethodOptions options_;
+  std::vector<Light> lights_;
+  std::array<float, 3> light_colour_{};  // each light's share of the default light colour
+  ShadedSoupMesh receivers_;
+  SceneBounds bounds_;  // shadowmap: what each light's frustum is fitted to
+  std::span<const HomogeneousMesh> cpu_meshes_;  // the caller's, for first_volume()
+  std::vector<std::unique_ptr<ShadowVolumeMesh>> cpu_volumes_;
+  std::unique_ptr<ComputeVolumeSoup> gpu_soup_;
+  std::vector<std::unique_ptr<BuiltVolume>> built_volumes_;
+  std::vector<LightVolume> light_volumes_;
+  std::optional<StencilShadowRenderer> stencil_renderer_;
+  std::optional<ShadowMapRenderer> shadow_map_renderer_;
+};
+
+}  // namespace shadowcert::gpu
