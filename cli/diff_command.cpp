@@ -24,8 +24,10 @@
 #include "exact/chain_mesh.h"
 #include "exact/edge_multiplicity.h"
 #include "exact/exact_image.h"
+#include "exact/input_rounding.h"
 #include "exact/pixel_comparison.h"
 #include "exact/shadow_volume_chain.h"
+#include "gpu/depth_precision.h"
 #include "gpu/egl_context.h"
 #include "gpu/gl_environment_error.h"
 #include "gpu/offscreen_target.h"
@@ -74,10 +76,11 @@ std::vector<gpu::ShadowMethod> parse_methods(const std::string& list) {
   return methods;
 }
 
-// The exact image's progress as a bar on stderr when stderr is a terminal; nothing otherwise
-// (logs and pipes get no carriage returns).
-ExactImageOptions progress_bar() {
+// The exact image's options: the GL depth band, and a progress bar on stderr when stderr is a
+// terminal; nothing otherwise (logs and pipes get no carriage returns).
+ExactImageOptions exact_options() {
   ExactImageOptions options;
+  options.depth_band = [](double view_depth) { return gpu::depth_band(view_depth); };
   if (isatty(fileno(stderr)) == 0) return options;
   options.progress = [](std::string_view stage, std::uint64_t done, std::uint64_t total) {
     constexpr int kBarWidth = 32;
@@ -232,9 +235,12 @@ int run_diff(const DiffOptions& options) {
   const Soup merged = merged_soup(scene);
   if (merged.triangles.empty()) throw InputError(options.input, "no triangle to render");
   const std::size_t light_count = scene.lights.size();
+  double rounded_seconds = 0.0;  // the float-rounded scene's exact image
 
-  // The reference: every triangle of the scene receives and casts, as in the GL methods.
-  const ExactImage exact = exact_image(merged, scene.lights, scene.camera, progress_bar());
+  // The reference: every triangle of the scene receives and casts, as in the GL methods. The
+  // GPU gets the scene in float: where that rounding changes the exact answer, the pixel is
+  // ambiguous (exact/input_rounding.h), so the scene is imaged twice.
+  const ExactImage exact = exact_image_of_float_input(merged, scene.lights, scene.camera, exact_options(), &rounded_seconds);
 
   // The volume methods' inputs (as in render): canonical soup, edge table, cpu's exact chains.
   const bool any_volume = std::any_of(methods.begin(), methods.end(), gpu::draws_volume);
@@ -345,6 +351,8 @@ int run_diff(const DiffOptions& options) {
         {"count_seconds", exact.stats.count_seconds},
         {"rays", exact.stats.rays},
         {"counts", exact.stats.counts},
+        {"footprint_seconds", exact.stats.footprint_seconds},
+        {"float_rounded_seconds", rounded_seconds},
         {"ambiguous_pixels", ambiguous},
         {"lit_pixels", lit},
         {"no_hit_pixels", std::count(exact.hit_triangles.begin(), exact.hit_triangles.end(), kNoHit)}}},
@@ -362,9 +370,12 @@ int run_diff(const DiffOptions& options) {
                                           light_count, merged.triangles.size())},
                     {"stencil", options.zpass ? "z-pass" : "z-fail"},
                     {"renderer", context->renderer()},
-                    {"exact image", fmt::format("{:.2f} s (tree {:.2f}, hits {:.2f}, counts {:.2f}), {} rays, {} counts",
+                    {"exact image", fmt::format("{:.2f} s (tree {:.2f}, hits {:.2f}, footprints {:.2f}, counts {:.2f}; "
+                                                "{} rays, {} counts), and {:.2f} s for the float-rounded scene",
                                                 exact.stats.seconds, exact.stats.tree_seconds, exact.stats.hit_seconds,
-                                                exact.stats.count_seconds, exact.stats.rays, exact.stats.counts)}};
+                                                exact.stats.footprint_seconds, exact.stats.count_seconds,
+                                                exact.stats.rays, exact.stats.counts,
+                                                rounded_seconds)}};
     for (const MethodRun& run : runs)
       report.rows.push_back({std::string(gpu::shadow_method_name(run.method)), robust(run.method),
                              run.sum(&PixelComparison::hard_errors), run.sum(&PixelComparison::ambiguous),
@@ -389,9 +400,10 @@ int run_diff(const DiffOptions& options) {
 
   fmt::print("{}: {} triangles, {} light(s), {}x{}, {} on {}\n", options.input, merged.triangles.size(), light_count,
              scene.camera.width, scene.camera.height, options.zpass ? "zpass" : "zfail", context->renderer());
-  fmt::print("  exact image: {:.2f} s (tree {:.2f}, hits {:.2f}, counts {:.2f}); ambiguous pixels {}\n",
-             exact.stats.seconds, exact.stats.tree_seconds, exact.stats.hit_seconds, exact.stats.count_seconds,
-             ambiguous.dump());
+  fmt::print("  exact image: {:.2f} s (tree {:.2f}, hits {:.2f}, footprints {:.2f}, counts {:.2f}), float-rounded "
+             "scene {:.2f} s; ambiguous pixels {}\n",
+             exact.stats.seconds, exact.stats.tree_seconds, exact.stats.hit_seconds, exact.stats.footprint_seconds,
+             exact.stats.count_seconds, rounded_seconds, ambiguous.dump());
   fmt::print("  {:<10} {:>11} {:>10} {:>10} {:>7} {:>9}\n", "method", "hard errors", "ambiguous", "agree", "closed",
              "gl ms");
   for (const MethodRun& run : runs) {

@@ -2,7 +2,6 @@
 
 #include <fmt/core.h>
 
-#include <array>
 #include <chrono>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -12,6 +11,8 @@
 #include <vector>
 
 #include "cli/exit_code.h"
+#include "cli/image_size.h"
+#include "cli/mesh_palette.h"
 #include "cli/output_file.h"
 #include "cli/scene_input.h"
 #include "core/input_error.h"
@@ -39,10 +40,6 @@ constexpr std::size_t kTimedFrames = 5;
 constexpr std::size_t kTimingWarmUpFrames = 2;
 constexpr std::size_t kDefaultTimingFrames = 20;
 
-// Mesh colours, in scene order (cycled): only a picture, nothing is decided from them.
-constexpr std::array<std::array<float, 3>, 4> kPalette{
-    {{0.85f, 0.85f, 0.85f}, {0.95f, 0.55f, 0.35f}, {0.45f, 0.75f, 0.95f}, {0.6f, 0.9f, 0.5f}}};
-
 struct RenderOptions {
   std::string input;
   std::string method = "cpu";
@@ -66,26 +63,6 @@ struct RenderOptions {
 
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
-
-void apply_size(const std::string& size, Camera& camera) {
-  if (size.empty()) return;
-  const auto x = size.find('x');
-  unsigned long w = 0, h = 0;
-  try {
-    if (x == std::string::npos) throw std::invalid_argument("no x");
-    std::size_t used_w = 0, used_h = 0;
-    w = std::stoul(size.substr(0, x), &used_w);
-    h = std::stoul(size.substr(x + 1), &used_h);
-    if (used_w != x || used_h != size.size() - x - 1) throw std::invalid_argument("trailing");
-  } catch (const std::exception&) {
-    throw CLI::ValidationError("--size", "expects WxH, e.g. 1024x768");
-  }
-  constexpr unsigned long kMaxSide = 16384;  // GL_MAX_RENDERBUFFER_SIZE of every driver we target
-  if (w == 0 || h == 0 || w > kMaxSide || h > kMaxSide)
-    throw CLI::ValidationError("--size", "each side must be in [1, 16384]");
-  camera.width = static_cast<std::uint32_t>(w);
-  camera.height = static_cast<std::uint32_t>(h);
-}
 
 // The method, after the checks that need no input file.
 gpu::ShadowMethod validate(const RenderOptions& options) {
@@ -160,7 +137,7 @@ int run_render(const RenderOptions& options) {
   const bool shadowmap = method == gpu::ShadowMethod::shadowmap;
   Scene scene = load_scene_or_mesh(options.input);
   if (scene.lights.empty()) throw InputError(options.input, "the scene has no light");
-  apply_size(options.size, scene.camera);
+  apply_image_size(options.size, scene.camera);
   const Soup merged = merged_soup(scene);
   if (merged.triangles.empty()) throw InputError(options.input, "no triangle to render");
 
@@ -193,9 +170,7 @@ int run_render(const RenderOptions& options) {
   }
 
   stage = Clock::now();
-  std::vector<gpu::ShadedSoupPart> parts;
-  for (std::size_t i = 0; i < scene.meshes.size(); ++i)
-    parts.push_back({&scene.meshes[i].soup, kPalette[i % kPalette.size()]});
+  const std::vector<gpu::ShadedSoupPart> parts = shaded_parts(scene);
   gpu::ShadowMethodScene method_scene;
   method_scene.receivers = parts;
   method_scene.lights = scene.lights;

@@ -52,8 +52,9 @@ class BoxTree {
   // from +- slack (slack >= 0 per axis, e.g. an interval enclosure of an exact rational point):
   // every box that the segment from any such start to `to` (or the ray along `direction`)
   // meets is reported. Those segments lie in the segment from -> to dilated by [-slack, slack]
-  // per axis, so each box is dilated by slack, its bounds rounded outwards, and tested
-  // exactly against the given segment: a superset, never a missed box.
+  // per axis, so each box is dilated by slack and tested against the given segment (see
+  // below: a superset, never a missed box). Equally, every box that any point within slack of
+  // the segment lies in (the footprint pyramids of exact/pixel_footprint.h).
   template <typename Visit>
   void dilated_segment_query(const Vec3& from, const Vec3& to, const Vec3& slack, Visit&& visit) const {
     dilated_segment_query(from, to, slack, erase(visit), &call<std::remove_reference_t<Visit>>);
@@ -67,10 +68,13 @@ class BoxTree {
   // visit(id) for the boxes the ray meets, the subtree whose box the ray enters first visited
   // first, and skips every subtree whose box the ray can only enter at a parameter t > *bound.
   // The visitor lowers *bound (through its own pointer) as it finds hits, and returns false to
-  // stop. Entry and exit parameters are enclosed in interval arithmetic (round-to-nearest is
-  // restored before each visit), so every box the ray meets at some t <= *bound is visited:
-  // a superset (boxes the ray just misses may come too), never a missed box. *bound may be
-  // +infinity.
+  // stop. *bound may be +infinity.
+  //
+  // The dilated and nearest-first queries test boxes in plain double arithmetic with a
+  // certified bound on every rounding error (the slab method, box_tree.cpp), so every box the
+  // exact query meets (at some t <= *bound) is visited: a superset (boxes it just misses may
+  // come too), never a missed box. Round-to-nearest is assumed, as everywhere in exact/ outside
+  // an interval filter's scope.
   template <typename Visit>
   void nearest_first_ray_query(const Vec3& from, const Vec3& direction, const double* bound, Visit&& visit) const {
     nearest_first_ray_query(from, direction, bound, erase(visit), &call<std::remove_reference_t<Visit>>);

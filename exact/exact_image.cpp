@@ -25,6 +25,7 @@
 #include "core/pixel_ray.h"
 #include "exact/box_tree.h"
 #include "exact/edge_multiplicity.h"
+#include "exact/face_crossing.h"
 #include "exact/light_orientation.h"
 #include "exact/pixel_footprint.h"
 #include "exact/ray_hit.h"
@@ -62,6 +63,7 @@ struct ImageGeometry {
   std::vector<HomogeneousPoint> lights;
   std::vector<std::vector<Sign>> light_sides;  // [light][triangle]: s(t) of DESIGN.md §2
   std::vector<std::unique_ptr<Silhouette>> silhouettes;
+  std::vector<std::unique_ptr<Silhouette>> casting_edges;  // with a depth band: every edge of a caster
   detail::BoxTree tree;
 
   [[nodiscard]] const Vec3& vertex(std::uint32_t triangle, int k) const {
@@ -112,12 +114,13 @@ std::vector<Sign> light_sides(const Soup& soup, const Light& light) {
   return sides;
 }
 
-std::unique_ptr<Silhouette> silhouette(const Soup& canonical, const EdgeTable& table, const Light& light) {
-  const EdgeMultiplicities m = exact_multiplicities(canonical, table, light);
+// The edges of `table` that `keep` selects, with a box tree over them.
+template <typename Keep>
+std::unique_ptr<Silhouette> edge_set(const Soup& canonical, const EdgeTable& table, Keep keep) {
   std::vector<std::array<Vec3, 2>> edges;
   std::vector<detail::ClosedBox> boxes;
   for (std::size_t e = 0; e < table.size(); ++e) {
-    if (m.multiplicity[e] == 0) continue;
+    if (!keep(e)) continue;
     const Vec3& u = canonical.vertices[table.edges[e][0]];
     const Vec3& v = canonical.vertices[table.edges[e][1]];
     edges.push_back({u, v});
@@ -129,6 +132,20 @@ std::unique_ptr<Silhouette> silhouette(const Soup& canonical, const EdgeTable& t
     boxes.push_back(b);
   }
   return std::unique_ptr<Silhouette>(new Silhouette{std::move(edges), detail::BoxTree(boxes, detail::LeafTest::exact)});
+}
+
+std::unique_ptr<Silhouette> silhouette(const Soup& canonical, const EdgeTable& table, const Light& light) {
+  const EdgeMultiplicities m = exact_multiplicities(canonical, table, light);
+  return edge_set(canonical, table, [&](std::size_t e) { return m.multiplicity[e] != 0; });
+}
+
+// Every edge with a casting triangle on it (canonical triangles keep the soup's order).
+std::unique_ptr<Silhouette> casting_edges(const Soup& canonical, const EdgeTable& table, const std::vector<Sign>& sides) {
+  return edge_set(canonical, table, [&](std::size_t e) {
+    for (std::uint32_t k = table.first_opposite[e]; k < table.first_opposite[e + 1]; ++k)
+      if (sides[table.opposite_triangle[k]] != Sign::zero) return true;
+    return false;
+  });
 }
 
 // The first hit of `ray` (exact). `in_plane` is scratch space for contacts along the ray.
@@ -360,6 +377,75 @@ bool footprint_shadow_varies(const ImageGeometry& g, std::size_t light,
   return varies;
 }
 
+// The centre ray's depth band around P (ExactImageOptions::depth_band): the segment of the
+// ray from P - b to P + b in view depth, b = band(D), as doubles.
+struct DepthBand {
+  Vec3 near{};
+  Vec3 far{};
+};
+
+DepthBand depth_band(const ImageGeometry& g, const CameraFrame& frame, const PixelRay& ray, const RayHit& hit,
+                     const std::function<double(double)>& band) {
+  const std::uint32_t h = hit.triangle;
+  const detail::HitPoint p(detail::RayParameter(ray, g.vertex(h, 0), g.vertex(h, 1), g.vertex(h, 2), hit.direction_side));
+  Vec3 point;
+  for (int k = 0; k < 3; ++k) point[k] = p.lo()[k] / 2 + p.hi()[k] / 2;
+  const double per_t = detail::dot(ray.direction, frame.forward);  // view depth per unit of t (> 0)
+  const double t = detail::dot({point[0] - ray.origin[0], point[1] - ray.origin[1], point[2] - ray.origin[2]},
+                               ray.direction) / detail::dot(ray.direction, ray.direction);
+  const double dt = band(t * per_t) / per_t;
+  DepthBand b;
+  for (int k = 0; k < 3; ++k) {
+    b.near[k] = ray.origin[k] + (t - dt) * ray.direction[k];
+    b.far[k] = ray.origin[k] + (t + dt) * ray.direction[k];
+  }
+  return b;
+}
+
+// Whether the band meets a triangle other than h (two surfaces a depth buffer cannot order).
+bool band_meets_surface(const ImageGeometry& g, const DepthBand& b, std::uint32_t h) {
+  if (b.near == b.far) return false;
+  bool meets = false;
+  g.tree.segment_query(b.near, b.far, [&](std::uint32_t id) {
+    if (id == h) return true;
+    const detail::FaceMeeting m = detail::segment_meets_triangle(finite_point(b.near), finite_point(b.far),
+                                                                 g.vertex(id, 0), g.vertex(id, 1), g.vertex(id, 2));
+    if (m.meeting == detail::Meeting::apart) return true;
+    meets = true;
+    return false;
+  });
+  return meets;
+}
+
+// Whether the band meets the side face of a casting edge of light number `light`.
+bool band_meets_volume(const ImageGeometry& g, std::size_t light, const DepthBand& b) {
+  if (b.near == b.far) return false;
+  const HomogeneousPoint& l = g.lights[light];
+  const Silhouette& edges = *g.casting_edges[light];
+  bool meets = false;
+  const auto visit = [&](std::uint32_t id) {
+    if (detail::segment_meets_side(b.near, b.far, l, edges.edges[id][0], edges.edges[id][1]).meeting ==
+        detail::Meeting::apart)
+      return true;
+    meets = true;
+    return false;
+  };
+  // The side face of edge uv meets the band only if a segment from the light to a band point
+  // crosses uv: the edge lies in hull{L, band}, inside the band's segment to L dilated by it.
+  Vec3 from, slack;
+  for (int k = 0; k < 3; ++k) {
+    const double lo = std::min(b.near[k], b.far[k]), hi = std::max(b.near[k], b.far[k]);
+    from[k] = std::clamp(lo / 2 + hi / 2, lo, hi);
+    slack[k] = std::nextafter(std::max(hi - from[k], from[k] - lo), std::numeric_limits<double>::infinity());
+  }
+  if (l[3] == 0.0) {
+    edges.tree.dilated_ray_query(from, {l[0], l[1], l[2]}, slack, visit);
+  } else {
+    edges.tree.dilated_segment_query(from, {l[0], l[1], l[2]}, slack, visit);
+  }
+  return meets;
+}
+
 }  // namespace
 
 ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Camera& camera,
@@ -368,13 +454,14 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
   validate(soup, lights);
   const RayGrid grid{camera_frame(camera, "exact_image"), camera.width, camera.height};
 
-  ImageGeometry g{soup, {}, {}, {}, detail::BoxTree(triangle_boxes(soup), detail::LeafTest::exact)};
+  ImageGeometry g{soup, {}, {}, {}, {}, detail::BoxTree(triangle_boxes(soup), detail::LeafTest::exact)};
   const CanonicalSoup canonical = canonical_soup(soup);
   const EdgeTable table = build_edge_table(canonical.soup);
   for (const Light& light : lights) {
     g.lights.push_back(light.position);
     g.light_sides.push_back(light_sides(soup, light));
     g.silhouettes.push_back(silhouette(canonical.soup, table, light));
+    if (options.depth_band) g.casting_edges.push_back(casting_edges(canonical.soup, table, g.light_sides.back()));
   }
   ExactImage image;
   image.width = grid.width;
@@ -425,6 +512,10 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
           if (geometric[pixel] != 0 || !countable(hits[pixel])) continue;
           if (footprint_sees_more(g, grid.frame.eye, corner_hits(g, grid, hits, i, row), hits[pixel].triangle))
             geometric[pixel] |= kFootprintTriangles;
+          else if (options.depth_band &&
+                   band_meets_surface(g, depth_band(g, grid.frame, grid.ray(pixel), hits[pixel], options.depth_band),
+                                      hits[pixel].triangle))
+            geometric[pixel] |= kDepthBand;
         }
         progress.advance(1);
       }
@@ -481,6 +572,9 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
             // The corners agree: n must still be constant between them (a shadow sliver).
             if (bits == 0 && footprint_shadow_varies(g, light, corner_hits(g, grid, hits, i, row)))
               bits |= kFootprintCounts;
+            if (bits == 0 && options.depth_band &&
+                band_meets_volume(g, light, depth_band(g, grid.frame, grid.ray(pixel), centre, options.depth_band)))
+              bits |= kDepthBand;
           } else if (centre.triangle != kNoHit) {
             bits |= kZeroSign;
           }

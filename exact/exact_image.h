@@ -12,13 +12,22 @@
 // towards l for w = 0), the hit triangle excluded (§5).
 //
 // A pixel is AMBIGUOUS (§5) when the exact answer at its centre does not pin down what a
-// correct renderer shows there: its footprint rays (the four corner rays, plus the centre ray)
-// see different triangles (or some none) or, on one triangle, different counts; or the light
-// is not strictly on the eye's side of the hit triangle's plane (the self-shadow terminator:
-// P then lies on the boundary of that triangle's own volume); or a zero sign arose on a
-// footprint ray (it passes through an edge or a vertex, meets two triangles at one point, or
-// P's segment to the light touches a volume boundary). Corner rays are shared by the four
-// pixels around them: (width + 1) x (height + 1) corners are traced once.
+// correct renderer shows there:
+//   - its footprint does not see one triangle: the footprint rays (the four corner rays and the
+//     centre ray) see different triangles (or some none), or, where they agree on triangle h,
+//     an edge of another triangle crosses the eye pyramid over the footprint's region R on h
+//     (exact/pixel_footprint.h: a small triangle between the rays);
+//   - n is not constant over the footprint: the footprint rays count differently, or a
+//     silhouette edge (the shadow-volume chain's side faces) crosses the light pyramid over R
+//     (a shadow sliver between the rays, which GL's finite depth precision may draw over the
+//     centre);
+//   - the light is not strictly on the eye's side of the hit triangle's plane (the self-shadow
+//     terminator: P then lies on the boundary of that triangle's own volume);
+//   - a zero sign arose on a footprint ray (through an edge or a vertex, two triangles met at
+//     one point, P's segment to the light touching a volume boundary).
+// Corner rays are shared by the four pixels around them: (width + 1) x (height + 1) corners are
+// traced once. Every test is exact (interval filters, exact fallbacks): the image does not
+// change under vertex relabelling, face reversal or an exact translation of scene and camera.
 #include <cstdint>
 #include <functional>
 #include <span>
@@ -38,10 +47,14 @@ inline constexpr std::uint32_t kUndefinedCount = 0xFFFFFFFEu;
 
 // Why a pixel is ambiguous, as bits (0: unambiguous); several may be set.
 enum AmbiguityReason : std::uint8_t {
-  kFootprintTriangles = 1,  // footprint rays see different triangles, or some see none
-  kFootprintCounts = 2,     // all see one triangle, with different n
+  kFootprintTriangles = 1,  // footprint rays see different triangles (or some none), or another
+                            // triangle's edge crosses the footprint's eye pyramid
+  kFootprintCounts = 2,     // all see one triangle, with different n, or a silhouette edge
+                            // crosses the footprint's light pyramid
   kTerminator = 4,          // the light is not strictly on the eye's side of the hit plane
   kZeroSign = 8,            // a footprint ray meets an edge, a vertex, a tie or a touched boundary
+  kInputRounding = 16,      // the scene rounded to float answers otherwise (exact/input_rounding.h)
+  kDepthBand = 32,          // a surface or a volume face within ExactImageOptions::depth_band of P
 };
 
 // One light's images; pixels row-major, row 0 at the TOP (as gpu/image.h).
@@ -72,10 +85,20 @@ struct ExactImage {
 };
 
 struct ExactImageOptions {
-  // Called as work advances with the stage ("hits", then "counts"), the rays (or counts) done
-  // and the total of that stage: from worker threads, never two at once, about once per
-  // percent. Empty: no reports.
+  // Called as work advances with the stage ("hits", "footprints", then "counts" per light),
+  // the work done and the total of that stage: from worker threads, never two at once, about
+  // once per percent. Empty: no reports.
   std::function<void(std::string_view stage, std::uint64_t done, std::uint64_t total)> progress;
+
+  // The depth band of a renderer whose depth test has finite precision (the diff's model of
+  // GL's depth buffer, cli/diff_command.cpp). When set, depth_band(D) > 0 is a half-width in
+  // view depth around P at view depth D; a pixel whose centre ray meets, within that band of
+  // P, another triangle (two surfaces a depth buffer cannot order) or the side face of an
+  // edge of a casting triangle (a shadow-volume face whose depth test against P a renderer
+  // may get either way: silhouette edges for every volume method, the others for pertri,
+  // which draws them as cancelling pairs) is ambiguous: kDepthBand. The band's end points are
+  // rounded to doubles, which only moves the band by an ulp; the tests on them are exact.
+  std::function<double(double view_depth)> depth_band;
 };
 
 // The exact image of `soup` (every triangle both receives and casts; world space) for

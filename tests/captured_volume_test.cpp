@@ -111,6 +111,25 @@ TEST(CapturedVolume, BadFiles_NameFileAndLine) {
   EXPECT_NE(read_error(temp_file("missing.vol")).find("missing.vol: cannot open"), std::string::npos);
 }
 
+TEST(CapturedVolume, ParseText_SameAsReadingTheFile) {
+  const std::string text = "# c\nv 0 0 0 1\nv 1 0 0 1\nv 0 1 0 1\nv 0.25 0.25 1 0\nf 1 3 2\nf 1 2 4 3\n";
+  const fs::path file = write_text("parse.vol", text);
+  const CapturedVolume from_file = read_captured_volume(file);
+  const CapturedVolume from_text = parse_captured_volume(text, file.string());
+  EXPECT_EQ(from_text.vertices, from_file.vertices);
+  EXPECT_EQ(from_text.triangles, from_file.triangles);
+  EXPECT_EQ(from_text.triangles.size(), 3u);
+  const std::string bad = "v 0 0 0 1\nf 1 1 2\n";
+  const fs::path bad_file = write_text("parse_bad.vol", bad);
+  try {
+    (void)parse_captured_volume(bad, bad_file.string());
+    FAIL() << "not rejected";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), read_error(bad_file));
+    EXPECT_EQ(e.line(), 2u);
+  }
+}
+
 TEST(CapturedVolume, ClosedTetrahedron_IsClosed) {
   const CapturedClosure result = certify_captured_closure(tetrahedron());
   EXPECT_TRUE(result.certificate.closed);

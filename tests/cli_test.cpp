@@ -402,10 +402,14 @@ TEST(CliFuzz, RegressionReproducer_CertifyReplaysItsRecordedCommand) {
   // Every reproducer's command is relative to its folder (tests/regressions/README.md).
   const fs::path folder = fs::path(kSource) / "tests" / "regressions";
   const nlohmann::json rep = read_json(folder / "refedge-double-light-on-triangle-s1-c105.json");
-  std::string command = rep["command"].get<std::string>().substr(std::string("shadowcert ").size());
-  const std::string name = " refedge-double-light-on-triangle-s1-c105.";
-  for (std::size_t at = command.find(name); at != std::string::npos; at = command.find(name, at + 1))
-    command.replace(at, name.size(), " " + (folder / name.substr(1)).string());
+  std::istringstream words(rep["command"].get<std::string>());
+  std::string word, command;
+  words >> word;  // "shadowcert": run_cli supplies the program
+  while (words >> word) {
+    const bool file = word.ends_with(".off") || word.ends_with(".points");
+    command += ' ';
+    command += file ? (folder / word).string() : word;
+  }
   const fs::path certified = temp_dir() / "regression.json";
   const RunResult r = run_cli(command + " --json " + certified.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
@@ -413,4 +417,101 @@ TEST(CliFuzz, RegressionReproducer_CertifyReplaysItsRecordedCommand) {
   EXPECT_EQ(j["methods"]["refedge"]["closed"], true);
   EXPECT_EQ(j["methods"]["refedge"]["count_checks"], 2);
   EXPECT_EQ(j["methods"]["refedge"]["count_failures"], 2);  // the documented light-on-triangle error
+}
+
+// ---- diff (docs/diff.md): the exact image against every GL method ---------------------------
+
+namespace {
+
+const std::string kHardScenes = kSource + "/data/scenes/hard/";
+
+}  // namespace
+
+TEST(CliDiff, DefaultScene_EveryMethodInJsonImagesAndOfflineReport) {
+  const fs::path dir = temp_dir() / "diff_default";
+  const fs::path json = temp_dir() / "diff_default.json";
+  const fs::path report = temp_dir() / "diff_default.html";
+  const RunResult r = run_cli("diff " + kDefaultScene + " --size 64x48 --out " + dir.string() + " --json " +
+                              json.string() + " --report " + report.string());
+  if (render_unavailable(r)) GTEST_SKIP() << r.output;
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const nlohmann::json j = read_json(json);
+  EXPECT_GT(j["exact_seconds"].get<double>(), 0.0);
+  EXPECT_EQ(j["passed"], true);
+  EXPECT_EQ(j["size"], nlohmann::json::array({64, 48}));
+  for (const char* m : {"cpu", "cs", "gs", "ts", "pertri", "shadowmap"}) {
+    SCOPED_TRACE(m);
+    ASSERT_TRUE(j["methods"].contains(m));
+    const nlohmann::json& method = j["methods"][m];
+    for (const char* key : {"hard_errors", "ambiguous", "agree", "closed", "gl_ms"}) EXPECT_TRUE(method.contains(key)) << key;
+    EXPECT_EQ(method["hard_errors"].get<int>() + method["ambiguous"].get<int>() + method["agree"].get<int>(), 64 * 48);
+    if (std::string(m) == "shadowmap") {
+      EXPECT_TRUE(method["closed"].is_null());
+      EXPECT_EQ(method["robust"], false);
+    } else {
+      EXPECT_EQ(method["hard_errors"], 0);
+      EXPECT_EQ(method["closed"], true);
+    }
+    EXPECT_TRUE(fs::exists(dir / (std::string(m) + "_overlay.png")));
+    EXPECT_TRUE(fs::exists(dir / (std::string(m) + "_mask.png")));
+  }
+  for (const char* file : {"exact_mask.png", "exact_counts.png", "exact_ambiguous.png", "summary.json"})
+    EXPECT_TRUE(fs::exists(dir / file)) << file;
+  EXPECT_EQ(read_json(dir / "summary.json"), j);
+  // One page, every image inlined, nothing fetched from elsewhere.
+  std::ifstream in(report);
+  const std::string html((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::size_t images = 0;
+  for (std::size_t at = html.find("src=\"data:image/png;base64,"); at != std::string::npos;
+       at = html.find("src=\"data:image/png;base64,", at + 1))
+    ++images;
+  EXPECT_EQ(images, 3u + 6u * 3u);  // exact mask, counts, ambiguity; per method overlay and both masks
+  EXPECT_EQ(html.find("http"), std::string::npos);
+  EXPECT_EQ(html.find("src=\"/"), std::string::npos);
+}
+
+TEST(CliDiff, MethodsOption_ComparesOnlyThose) {
+  const fs::path json = temp_dir() / "diff_methods.json";
+  const RunResult r = run_cli("diff " + kDefaultScene + " --size 48x36 --methods gs,shadowmap --json " + json.string());
+  if (render_unavailable(r)) GTEST_SKIP() << r.output;
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const nlohmann::json j = read_json(json);
+  EXPECT_EQ(j["methods"].size(), 2u);
+  EXPECT_TRUE(j["methods"].contains("gs"));
+  EXPECT_TRUE(j["methods"].contains("shadowmap"));
+}
+
+// z-pass counts the faces between the eye and P: with the eye inside a shadow volume every
+// pixel behind it is off by the eye's own count. cpu is a robust method, so the run fails.
+TEST(CliDiff, RobustMethodWithHardErrors_ExitsOne) {
+  const fs::path json = temp_dir() / "diff_zpass.json";
+  const RunResult r = run_cli("diff " + kHardScenes + "camera_inside_volume.json --size 48x36 --methods cpu --zpass --json " +
+                              json.string());
+  if (render_unavailable(r)) GTEST_SKIP() << r.output;
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  const nlohmann::json j = read_json(json);
+  EXPECT_GT(j["methods"]["cpu"]["hard_errors"].get<int>(), 0);
+  EXPECT_EQ(j["methods"]["cpu"]["failed"], true);
+  EXPECT_EQ(j["passed"], false);
+  EXPECT_NE(r.output.find("FAILED"), std::string::npos);
+}
+
+// The shadow map's errors are its speed-against-error figures, never a failure.
+TEST(CliDiff, ShadowMapHardErrors_ExitZero) {
+  const fs::path json = temp_dir() / "diff_shadowmap.json";
+  const RunResult r = run_cli("diff " + kHardScenes + "light_inside_closed_caster.json --size 48x36 --methods shadowmap "
+                              "--shadowmap-size 64 --json " + json.string());
+  if (render_unavailable(r)) GTEST_SKIP() << r.output;
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_GT(read_json(json)["methods"]["shadowmap"]["hard_errors"].get<int>(), 0);
+}
+
+TEST(CliDiff, BadOptions_ExitTwo) {
+  EXPECT_EQ(run_cli("diff " + kDefaultScene + " --methods cpu,bogus").exit_code, 2);
+  EXPECT_NE(run_cli("diff " + kDefaultScene + " --methods bogus").output.find("bogus"), std::string::npos);
+  EXPECT_EQ(run_cli("diff " + kDefaultScene + " --zpass --zfail").exit_code, 2);
+  EXPECT_EQ(run_cli("diff " + kDefaultScene + " --size 0x10").exit_code, 2);
+  EXPECT_EQ(run_cli("diff " + kDefaultScene + " --shadowmap-size 0").exit_code, 2);
+  EXPECT_EQ(run_cli("diff").exit_code, 2);
+  EXPECT_EQ(run_cli("diff " + kSource + "/no/such/scene.json").exit_code, 2);
 }

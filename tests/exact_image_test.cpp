@@ -303,6 +303,44 @@ TEST(ExactImage, FeaturesBetweenTheCornerRays_MakeTheirPixelsAmbiguous) {
   EXPECT_EQ(light.ambiguity[pixel(image, 2, 2)], 0);
 }
 
+// With a depth band (ExactImageOptions::depth_band), surfaces and volume faces that pass within
+// it of P make the pixel ambiguous; without one they do not.
+TEST(ExactImage, DepthBand_MarksNearlyCoincidentSurfacesAndGrazingVolumeFaces) {
+  constexpr double kBand = 1e-3;  // any fixed band: the test is about what it includes
+  ExactImageOptions banded;
+  banded.depth_band = [](double) { return kBand; };
+  Camera camera = top_down_camera();
+  camera.width = camera.height = 8;
+  // A second floor 1e-6 below the first: hidden, but within the band.
+  Soup doubled = floor_quad(4.0);
+  Soup lower = floor_quad(4.0);
+  for (Vec3& v : lower.vertices) v[1] = -1e-6;
+  append(doubled, lower);
+  const std::vector<Light> above{point_light(0.25, 3.0, 0.5)};
+  // The light 1e-9 above the floor's plane: the floor's own side faces run just below it.
+  const std::vector<Light> grazing{point_light(0.25, 1e-9, 3.0)};
+  const auto count = [](const ExactImage& image, std::uint8_t bit) {
+    std::size_t n = 0;
+    for (std::uint8_t a : image.lights.at(0).ambiguity) n += (a & bit) != 0;
+    return n;
+  };
+  // Off the diagonal's footprints (|i - r| >= 2: 42 of 64 pixels) nothing else is ambiguous.
+  EXPECT_EQ(count(exact_image(doubled, above, camera), kDepthBand), 0u);
+  EXPECT_EQ(count(exact_image(doubled, above, camera, banded), kDepthBand), 42u);
+  EXPECT_EQ(count(exact_image(floor_quad(4.0), grazing, camera), kDepthBand), 0u);
+  // The side face of the shared diagonal x = z runs away from the light (on the side z > x)
+  // just below the floor: it passes under the triangle beyond it (x > z, triangle 1) only.
+  const ExactImage grazed = exact_image(floor_quad(4.0), grazing, camera, banded);
+  EXPECT_EQ(count(grazed, kDepthBand), 21u);
+  for (std::uint32_t r = 0; r < 8; ++r)
+    for (std::uint32_t i = 0; i < 8; ++i) {
+      if (std::max(i, r) - std::min(i, r) < 2) continue;
+      const std::size_t p = pixel(grazed, i, r);
+      EXPECT_EQ((grazed.lights[0].ambiguity[p] & kDepthBand) != 0, grazed.hit_triangles[p] == 1) << i << "," << r;
+      EXPECT_EQ(grazed.lights[0].counts[p], 0u);  // lit, exactly
+    }
+}
+
 TEST(ExactImage, TriangleFacingAwayFromTheLight_IsTerminatorAmbiguous) {
   const Soup soup = floor_quad(4.0);
   // One light below the floor (the floor faces away from it, seen from above), one above.

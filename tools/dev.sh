@@ -76,14 +76,19 @@ build_sanitized() {
   cmake --build "$SAN_BUILD_DIR" -j "$JOBS"
 }
 
-# Any report fails the program (the build has -fno-sanitize-recover=all). LeakSanitizer skips
-# only the leaks tools/sanitizer.supp names, all inside Mesa's driver stack.
+# Any report fails the program (the build has -fno-sanitize-recover=all).
 export_sanitizer_options() {
   export ASAN_SYMBOLIZER_PATH="$LLVM_BIN/llvm-symbolizer"
   export ASAN_OPTIONS=detect_leaks=1:check_initialization_order=1:strict_init_order=1
   export UBSAN_OPTIONS=print_stacktrace=1
-  export LSAN_OPTIONS="suppressions=$PWD/tools/sanitizer.supp:print_suppressions=0"
 }
+
+# GL tests (ctest label gl) under ASan + UBSan, but without LeakSanitizer and with a small
+# quarantine (docs/fuzzing-parsers.md): llvmpipe's JIT-compiled shader code keeps blocks until
+# exit through frames no module owns, which no suppression can name (and the slow unwinder
+# that would see past them deadlocks in llvmpipe's threads); and a 256 MiB quarantine of freed
+# blocks would be counted by the RSS-growth check of tests/gl/gl_object_test.cpp.
+GL_ASAN_OPTIONS=detect_leaks=0:quarantine_size_mb=4
 
 # Each harness for FUZZ_SECONDS over a scratch corpus (new inputs go there, never into
 # fuzz/corpus/) and its seeds, JOBS at a time. Fails on any crash, leak, sanitizer report,
@@ -99,10 +104,13 @@ fuzz_harnesses() {
   for name in "${harnesses[@]}"; do
     while [ "$(jobs -rp | wc -l)" -ge "$JOBS" ]; do wait -n || true; done
     mkdir -p "$runs/$name"
+    local dict=()
+    [ -f "fuzz/$name.dict" ] && dict=(-dict="fuzz/$name.dict")
     (
       set +e
       "$SAN_BUILD_DIR/fuzz/${name}_fuzzer" -max_total_time="$FUZZ_SECONDS" -rss_limit_mb=1024 -timeout=10 \
-        -print_final_stats=1 -artifact_prefix="$runs/$name-" "$runs/$name" "fuzz/corpus/$name" >"$runs/$name.log" 2>&1
+        -print_final_stats=1 "${dict[@]}" -artifact_prefix="$runs/$name-" "$runs/$name" "fuzz/corpus/$name" \
+        >"$runs/$name.log" 2>&1
       echo $? >"$runs/$name.rc"
     ) &
   done
@@ -126,7 +134,9 @@ sanitize() {
   build_sanitized
   export_sanitizer_options
   echo "== ctest under ASan + UBSan ($SAN_BUILD_DIR)"
-  ctest --test-dir "$SAN_BUILD_DIR" --output-on-failure -j "$JOBS"
+  ctest --test-dir "$SAN_BUILD_DIR" --output-on-failure -j "$JOBS" -LE gl
+  echo "== GL tests under ASan + UBSan, no leak check"
+  ASAN_OPTIONS="$ASAN_OPTIONS:$GL_ASAN_OPTIONS" ctest --test-dir "$SAN_BUILD_DIR" --output-on-failure -j "$JOBS" -L gl
   fuzz_harnesses
 }
 

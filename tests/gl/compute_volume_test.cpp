@@ -23,6 +23,7 @@
 #include <utility>
 #include <vector>
 
+#include "exact/chain_mesh.h"
 #include "exact/edge_multiplicity.h"
 #include "exact/shadow_volume_chain.h"
 #include "gl_test_support.h"
@@ -122,7 +123,7 @@ TEST_F(GlTest, StencilCountsMatchCpuExceptOnBoundaries) {
   const Light& light = scene.lights.front();
   const EdgeMultiplicities exact = exact_multiplicities(p.canonical.soup, p.table, light);
   const ShadowVolumeMesh cpu_volume(
-      to_geometry(assemble_chain(p.canonical.soup, p.table, exact, light), p.canonical.soup, light));
+      chain_mesh(assemble_chain(p.canonical.soup, p.table, exact, light), p.canonical.soup, light));
   const ComputeVolumeSoup gpu_soup(p.canonical.soup, p.table);
   ComputeShadowVolume cs_volume(gpu_soup);
   cs_volume.build(light);

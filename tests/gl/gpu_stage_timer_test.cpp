@@ -1,6 +1,7 @@
 // gpu/gpu_stage_timer.h: one result per frame, in frame order, through a ring smaller than the
 // number of frames; stages summed over their intervals and 0 where not run; wall times of
-// StageSync::finish that cover what the interval did; misuse rejected.
+// StageSync::finish that cover what the interval did; misuse rejected. Timing checks are lower
+// bounds only (sleeps), so a loaded machine cannot fail them.
 #include "gpu/gpu_stage_timer.h"
 
 #include <epoxy/gl.h>
@@ -9,6 +10,7 @@
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -20,10 +22,10 @@ namespace {
 
 using test::GlTest;
 
-// A frame of frame i sleeps (i + 1) x kSleepMs inside its lit interval: long against timer
-// and scheduler granularity, short enough for a test.
-constexpr double kSleepMs = 4.0;
-// What steady_clock and the driver's nanosecond timestamps may disagree by over one sleep:
+// Every timed interval of the first test sleeps at least this long: its wall time is then
+// surely above 0, whatever the machine's load (which can only lengthen it).
+constexpr double kSleepMs = 2.0;
+// What steady_clock and the driver's nanosecond timestamps may disagree by over one frame:
 // they are different clocks read at slightly different moments around the same interval.
 constexpr double kClockSlackMs = 1.0;
 
@@ -35,21 +37,40 @@ void clear_work(const OffscreenTarget& target, int clears) {
   for (int i = 0; i < clears; ++i) target.clear({0.1f * static_cast<float>(i % 10), 0.0f, 0.0f, 1.0f});
 }
 
+// Frame f runs depth if bit 0 of f is set, stencil if bit 1, shadow_map if bit 2, and lit
+// always (as two intervals, as with two lights): 7 frames have 7 different stage sets, so
+// which frame a result belongs to shows in which of its stages are 0.
+bool runs(int frame, RenderStage stage) {
+  switch (stage) {
+    case RenderStage::depth: return (frame & 1) != 0;
+    case RenderStage::stencil: return (frame & 2) != 0;
+    case RenderStage::shadow_map: return (frame & 4) != 0;
+    case RenderStage::lit: return true;
+    case RenderStage::volume: return false;
+  }
+  return false;
+}
+
 using GpuStageTimerTest = GlTest;
 
 TEST_F(GpuStageTimerTest, FinishSync_MoreFramesThanSlots_EveryFrameInOrderWithItsWallTimes) {
   constexpr int kFrames = 7;
   GpuStageTimer timer(StageSync::finish, 3);
   const OffscreenTarget target(256, 256);
+  std::vector<double> slept(kFrames, 0.0);
   for (int f = 0; f < kFrames; ++f) {
     timer.begin_frame();
-    {
-      const ScopedStage stage(&timer, RenderStage::depth);
+    for (RenderStage s : {RenderStage::depth, RenderStage::stencil, RenderStage::shadow_map}) {
+      if (!runs(f, s)) continue;
+      const ScopedStage stage(&timer, s);
       clear_work(target, 4);
+      sleep_ms(kSleepMs);
+      slept[f] += kSleepMs;
     }
     for (int light = 0; light < 2; ++light) {  // a stage recurring in a frame adds up
       const ScopedStage stage(&timer, RenderStage::lit);
-      sleep_ms((f + 1) * kSleepMs / 2.0);
+      sleep_ms(kSleepMs);
+      slept[f] += kSleepMs;
     }
     timer.end_frame();
     glFinish();  // as ShadowMethodRenderer::render_frames ends each frame
@@ -58,18 +79,17 @@ TEST_F(GpuStageTimerTest, FinishSync_MoreFramesThanSlots_EveryFrameInOrderWithIt
   ASSERT_EQ(times.size(), static_cast<std::size_t>(kFrames));
   for (int f = 0; f < kFrames; ++f) {
     const FrameStageTimes& t = times[f];
-    const double slept = (f + 1) * kSleepMs;
-    EXPECT_GE(t.wall(RenderStage::lit), slept) << "frame " << f;
-    // In order: frame f slept kSleepMs more than frame f - 1, far more than any overhead here.
-    if (f > 0) {
-      EXPECT_GT(t.wall(RenderStage::lit), times[f - 1].wall(RenderStage::lit)) << "frame " << f;
+    for (RenderStage s : kRenderStages) {
+      SCOPED_TRACE("frame " + std::to_string(f) + ", " + std::string(render_stage_name(s)));
+      EXPECT_TRUE(std::isfinite(t.gpu(s)) && t.gpu(s) >= 0.0);
+      if (!runs(f, s)) {
+        EXPECT_EQ(t.gpu(s), 0.0) << "never ran in this frame";
+        EXPECT_EQ(t.wall(s), 0.0) << "never ran in this frame";
+      } else {
+        EXPECT_GE(t.wall(s), s == RenderStage::lit ? 2 * kSleepMs : kSleepMs);
+      }
     }
-    EXPECT_GE(t.frame_ms, slept - kClockSlackMs) << "frame " << f << ": the GPU frame spans the sleep";
-    for (RenderStage s : {RenderStage::volume, RenderStage::stencil, RenderStage::shadow_map}) {
-      EXPECT_EQ(t.gpu(s), 0.0) << render_stage_name(s) << " never ran";
-      EXPECT_EQ(t.wall(s), 0.0) << render_stage_name(s) << " never ran";
-    }
-    for (RenderStage s : kRenderStages) EXPECT_TRUE(std::isfinite(t.gpu(s)) && t.gpu(s) >= 0.0);
+    EXPECT_GE(t.frame_ms, slept[f] - kClockSlackMs) << "frame " << f << ": the GPU frame spans its sleeps";
   }
   EXPECT_TRUE(timer.collect().empty()) << "frames are returned once";
 }

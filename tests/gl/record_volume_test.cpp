@@ -21,6 +21,7 @@
 #include <utility>
 #include <vector>
 
+#include "exact/chain_mesh.h"
 #include "exact/edge_multiplicity.h"
 #include "exact/shadow_volume_chain.h"
 #include "gl_test_support.h"
@@ -128,7 +129,7 @@ CountComparison compare_with_cpu(const Soup& soup, const Light& light, const Cam
   const Prepared p = prepare(soup);
   const EdgeMultiplicities exact = exact_multiplicities(p.canonical.soup, p.table, light);
   const ShadowVolumeMesh cpu_volume(
-      to_geometry(assemble_chain(p.canonical.soup, p.table, exact, light), p.canonical.soup, light));
+      chain_mesh(assemble_chain(p.canonical.soup, p.table, exact, light), p.canonical.soup, light));
   const ComputeVolumeSoup gpu_soup(p.canonical.soup, p.table);
   Volume method_volume(gpu_soup, p.table);
   method_volume.build(light);

@@ -17,6 +17,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "exact/chain_mesh.h"
 #include "exact/edge_multiplicity.h"
 #include "exact/shadow_volume_chain.h"
 #include "gl_test_support.h"
@@ -133,7 +134,7 @@ TEST_F(GlTest, LitMaskAgreesWithCpuExceptOnABandThatNarrowsWithSize) {
   const CanonicalSoup canonical = canonical_soup(soup);
   const EdgeTable table = build_edge_table(canonical.soup);
   const EdgeMultiplicities exact = exact_multiplicities(canonical.soup, table, light);
-  const ShadowVolumeMesh volume(to_geometry(assemble_chain(canonical.soup, table, exact, light), canonical.soup, light));
+  const ShadowVolumeMesh volume(chain_mesh(assemble_chain(canonical.soup, table, exact, light), canonical.soup, light));
   const ShadedSoupMesh receivers(soup);
   const OffscreenTarget target(scene.camera.width, scene.camera.height);
   const std::array cpu_light{LightVolume{light, &volume, {}}};

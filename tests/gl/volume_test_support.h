@@ -1,8 +1,9 @@
 #pragma once
 // What the GL volume tests share (compute, per-triangle, gs/ts and shadow-map tests): the
-// canonical soup and edge table of a test soup, the default scene, the exact cpu chain as GPU
-// geometry (the reference every method is compared with), and the closure check of captured
-// triangles. Tests that include it link shadowcert_exact (CPU reference only: gpu/ never does).
+// canonical soup and edge table of a test soup, the default scene, and the closure check of
+// captured triangles. The reference every method is compared with is the exact cpu chain as
+// GPU geometry, exact/chain_mesh.h's chain_mesh (what render --method cpu draws): tests that
+// use it link shadowcert_exact (CPU reference only: gpu/ never does).
 #include <algorithm>
 #include <array>
 #include <bit>
@@ -15,8 +16,6 @@
 #include <vector>
 
 #include "core/scene.h"
-#include "exact/chain_mesh.h"
-#include "exact/shadow_volume_chain.h"
 #include "gpu/compute_volume.h"
 #include "gpu/shadow_volume_geometry.h"
 #include "scene/canonical_soup.h"
@@ -76,11 +75,6 @@ inline std::map<std::pair<std::uint32_t, std::uint32_t>, int> unbalanced_edges(c
   }
   std::erase_if(balance, [](const auto& entry) { return entry.second == 0; });
   return balance;
-}
-
-// The cpu reference volume: exact/chain_mesh.h's conversion, the one render --method cpu draws.
-inline ShadowVolumeGeometry to_geometry(const ShadowVolumeChain& chain, const Soup& canonical, const Light& light) {
-  return chain_mesh(chain, canonical, light);
 }
 
 }  // namespace shadowcert::gpu::test

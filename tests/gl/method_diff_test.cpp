@@ -1,0 +1,220 @@
+// `shadowcert diff`'s protocol on real GL frames (DESIGN.md §5; docs/diff.md): every method
+// of gpu/shadow_method_renderer.h renders each light alone, and its readback is compared with
+// the exact image (exact/exact_image.h with the GL depth band of gpu/depth_precision.h,
+// marked by the float-rounded scene, exact/input_rounding.h) by exact/pixel_comparison.h; the
+// volume it drew is certified by exact/captured_volume.h.
+//  1. the default scene and every scene of data/scenes/hard/: zero hard errors and closed
+//     volumes for every robust method (cpu, cs, gs, ts, pertri) with z-fail, one known defect
+//     excepted (kKnownDefects);
+//  2. planted faults in cpu's volume (a side quad dropped, a cap reversed) are caught as open
+//     volumes and as hard errors;
+//  3. the shadow map, a baseline, shows hard errors at low resolution and fewer as it grows.
+// Sizes are small: llvmpipe draws every method of every scene here.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cstdint>
+#include <filesystem>
+#include <iostream>
+#include <set>
+#include <span>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "exact/captured_volume.h"
+#include "exact/chain_mesh.h"
+#include "exact/edge_multiplicity.h"
+#include "exact/exact_image.h"
+#include "exact/input_rounding.h"
+#include "exact/pixel_comparison.h"
+#include "exact/shadow_volume_chain.h"
+#include "exact/soup_file.h"
+#include "gl_test_support.h"
+#include "gpu/depth_precision.h"
+#include "gpu/offscreen_target.h"
+#include "gpu/shadow_method_renderer.h"
+#include "volume_test_support.h"
+
+namespace shadowcert::gpu {
+namespace {
+
+using test::GlTest;
+using namespace test;
+
+constexpr std::uint32_t kWidth = 96;
+constexpr std::uint32_t kHeight = 72;
+
+// The one pair that fails and why: cpu draws the exact chain of the DOUBLE scene in float. With
+// the light 2^-52 above the floor the floor casts exactly, but in float the light is in its
+// plane and the chain's back cap collapses, so cpu's counts are wrong beyond the floor's own
+// (ambiguous) pixels; the GPU-built methods, which build from the float input, are right. The
+// diff reports it: a defect of cpu's volume, not of the comparison (docs/diff.md).
+const std::set<std::pair<std::string, ShadowMethod>> kKnownDefects{
+    {"light_one_ulp_off_floor_plane", ShadowMethod::cpu}};
+
+// One scene prepared as `shadowcert diff` prepares it.
+struct DiffScene {
+  Scene scene;
+  Soup soup;
+  Prepared prepared;
+  std::vector<ShadedSoupPart> parts;
+  std::vector<HomogeneousMesh> cpu_volumes;
+  ExactImage exact;
+
+  explicit DiffScene(Scene s) : scene(std::move(s)), soup(merged(scene)), prepared(prepare(soup)) {
+    scene.camera.width = kWidth;
+    scene.camera.height = kHeight;
+    for (const SceneMesh& mesh : scene.meshes) parts.push_back({&mesh.soup});
+    for (const Light& light : scene.lights) {
+      const EdgeMultiplicities m = exact_multiplicities(prepared.canonical.soup, prepared.table, light);
+      cpu_volumes.push_back(
+          chain_mesh(assemble_chain(prepared.canonical.soup, prepared.table, m, light), prepared.canonical.soup, light));
+    }
+    ExactImageOptions options;
+    options.depth_band = [](double view_depth) { return depth_band(view_depth); };
+    exact = exact_image_of_float_input(soup, scene.lights, scene.camera, options);
+  }
+  DiffScene(const DiffScene&) = delete;
+  DiffScene& operator=(const DiffScene&) = delete;
+};
+
+struct LightResult {
+  PixelComparison comparison;
+  bool closed = true;  // what was drawn, certified exactly (volume methods)
+};
+
+// Renders light `k` alone with `method` and compares; `cpu_volume` replaces cpu's exact chain.
+LightResult run_light(const DiffScene& d, ShadowMethod method, std::size_t k, const ShadowMethodOptions& options,
+                      const HomogeneousMesh* cpu_volume = nullptr) {
+  ShadowMethodScene s;
+  s.receivers = d.parts;
+  s.lights = std::span<const Light>(&d.scene.lights[k], 1);
+  s.canonical = &d.prepared.canonical.soup;
+  s.table = &d.prepared.table;
+  if (method == ShadowMethod::cpu) s.cpu_volumes = std::span<const HomogeneousMesh>(cpu_volume ? cpu_volume : &d.cpu_volumes[k], 1);
+  ShadowMethodRenderer renderer(method, s, options);
+  const OffscreenTarget target(d.scene.camera.width, d.scene.camera.height);
+  const StencilShadowFrame frame = renderer.render(target, d.scene.camera);
+  renderer.check_capacity();
+  std::vector<std::uint8_t> covered(frame.first_lit_mask.pixels.size());
+  for (std::size_t p = 0; p < covered.size(); ++p) covered[p] = frame.colour.pixels[4 * p + 3];
+  RenderedPixels rendered{d.scene.camera.width, d.scene.camera.height, covered, frame.first_lit_mask.pixels, {}};
+  if (draws_volume(method)) rendered.counts = frame.first_stencil.pixels;
+  LightResult r{compare_pixels(d.exact, k, rendered)};
+  if (draws_volume(method)) r.closed = certify_captured_closure(renderer.first_volume()).certificate.closed;
+  return r;
+}
+
+constexpr std::array<ShadowMethod, 5> kRobustMethods{ShadowMethod::cpu, ShadowMethod::cs, ShadowMethod::gs,
+                                                    ShadowMethod::ts, ShadowMethod::pertri};
+
+void expect_robust_methods_exact(const DiffScene& d, const std::string& name) {
+  for (ShadowMethod method : kRobustMethods)
+    for (std::size_t k = 0; k < d.scene.lights.size(); ++k) {
+      SCOPED_TRACE(name + ", " + std::string(shadow_method_name(method)) + ", light " + std::to_string(k));
+      const LightResult r = run_light(d, method, k, {});
+      EXPECT_TRUE(r.closed);
+      // Not vacuous: most pixels are compared (the hard scenes' grazing lights leave less).
+      EXPECT_GT(r.comparison.agree, kWidth * kHeight / 3);
+      if (kKnownDefects.count({name, method}) != 0) {
+        std::cout << "[ known    ] " << name << " " << shadow_method_name(method) << " light " << k << ": "
+                  << r.comparison.hard_errors << " hard errors (kKnownDefects)\n";
+        continue;
+      }
+      EXPECT_EQ(r.comparison.hard_errors, 0u) << "coverage " << r.comparison.coverage_errors << ", lit "
+                                              << r.comparison.lit_errors << ", count " << r.comparison.count_errors;
+    }
+}
+
+TEST_F(GlTest, DefaultScene_RobustMethodsWithZFail_HaveNoHardErrorAndClosedVolumes) {
+  const DiffScene d(default_scene());
+  expect_robust_methods_exact(d, "default");
+}
+
+class HardSceneDiff : public GlTest, public ::testing::WithParamInterface<std::string> {};
+
+TEST_P(HardSceneDiff, RobustMethodsWithZFail_HaveNoHardErrorAndClosedVolumes) {
+  const std::filesystem::path file =
+      std::filesystem::path(SHADOWCERT_SOURCE_DIR) / "data" / "scenes" / "hard" / (GetParam() + ".json");
+  const DiffScene d(load_scene(file, [](const std::filesystem::path& f) { return read_soup(f); }));
+  expect_robust_methods_exact(d, GetParam());
+}
+
+std::vector<std::string> hard_scenes() {
+  std::vector<std::string> names;
+  const std::filesystem::path folder = std::filesystem::path(SHADOWCERT_SOURCE_DIR) / "data" / "scenes" / "hard";
+  for (const auto& entry : std::filesystem::directory_iterator(folder))
+    if (entry.path().extension() == ".json") names.push_back(entry.path().stem().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+// Test names allow letters, digits and '_' only ("scale_1e-3" -> "scale_1e_3").
+std::string test_name(const ::testing::TestParamInfo<std::string>& scene) {
+  std::string name = scene.param;
+  std::replace_if(name.begin(), name.end(), [](char c) { return !std::isalnum(static_cast<unsigned char>(c)); }, '_');
+  return name;
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryHardScene, HardSceneDiff, ::testing::ValuesIn(hard_scenes()), test_name);
+
+TEST(HardSceneList, IsNotEmpty) { EXPECT_GE(hard_scenes().size(), 10u); }
+
+// ---- planted faults ---------------------------------------------------------------------------
+
+TEST_F(GlTest, DroppedSideQuad_IsAnOpenVolumeAndHardErrors) {
+  const DiffScene d(default_scene());
+  const LightResult exact = run_light(d, ShadowMethod::cpu, 0, {});
+  ASSERT_EQ(exact.comparison.hard_errors, 0u);
+  // chain_mesh writes the side quads last, two triangles each; the longest-shadowing quads
+  // are the fan's and the box's, near the end: drop one quad at a time until one leaks into
+  // an unambiguous pixel (every drop must open the volume).
+  bool leaked = false;
+  for (std::size_t quad = 1; quad <= 40 && !leaked; ++quad) {
+    HomogeneousMesh faulty = d.cpu_volumes[0];
+    const std::size_t at = faulty.triangles.size() - 2 * quad;
+    faulty.triangles.erase(faulty.triangles.begin() + static_cast<std::ptrdiff_t>(at),
+                           faulty.triangles.begin() + static_cast<std::ptrdiff_t>(at + 2));
+    const LightResult r = run_light(d, ShadowMethod::cpu, 0, {}, &faulty);
+    EXPECT_FALSE(r.closed) << "quad " << quad;
+    leaked = r.comparison.hard_errors > 0;
+  }
+  EXPECT_TRUE(leaked) << "no dropped side quad of the 40 last ones changed an unambiguous pixel";
+}
+
+TEST_F(GlTest, ReversedCap_IsAnOpenVolumeAndHardErrors) {
+  const DiffScene d(default_scene());
+  // The caps come first in chain_mesh's output: reverse each of the first ones in turn until
+  // one whose shadow reaches unambiguous pixels (its own volume then counts the other way).
+  bool caught = false;
+  for (std::size_t cap = 0; cap < 40 && !caught; ++cap) {
+    HomogeneousMesh faulty = d.cpu_volumes[0];
+    std::swap(faulty.triangles[cap][1], faulty.triangles[cap][2]);
+    const LightResult r = run_light(d, ShadowMethod::cpu, 0, {}, &faulty);
+    EXPECT_FALSE(r.closed) << "cap " << cap;
+    caught = r.comparison.hard_errors > 0;
+  }
+  EXPECT_TRUE(caught);
+}
+
+// ---- the shadow map: speed against error -------------------------------------------------------
+
+TEST_F(GlTest, ShadowMap_HardErrorsShrinkAsItsResolutionGrows) {
+  Scene scene = default_scene();
+  const DiffScene d(std::move(scene));
+  std::vector<std::uint64_t> errors;
+  for (std::uint32_t size : {16u, 64u, 256u, 2048u}) {
+    ShadowMethodOptions options;
+    options.shadow_map_size = size;
+    errors.push_back(run_light(d, ShadowMethod::shadowmap, 0, options).comparison.hard_errors);
+  }
+  EXPECT_GT(errors.front(), 20u) << "a 16x16 map misses shadow boundaries by whole texels";
+  for (std::size_t i = 1; i < errors.size(); ++i) EXPECT_LE(errors[i], errors[i - 1]) << "size step " << i;
+  EXPECT_LT(errors.back(), errors.front() / 4);
+}
+
+}  // namespace
+}  // namespace shadowcert::gpu
