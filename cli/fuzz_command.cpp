@@ -64,8 +64,8 @@ FuzzCampaignResult run_with_progress(FuzzCampaignOptions& campaign) {
     const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
     const double rate = seconds > 0.0 ? static_cast<double>(n) / seconds : 0.0;
     const double left = rate > 0.0 ? static_cast<double>(campaign.cases - n) / rate : 0.0;
-    const std::string line = fmt::format("fuzz: {}/{} cases, {:.0f} cases/s, {:.0f} s left", n, campaign.cases,
-                                         rate, left);
+    const std::string line =
+        fmt::format("fuzz: {}/{} cases, {:.0f} cases/s, {:.0f} s left", n, campaign.cases, rate, left);
     if (terminal)
       fmt::print(stderr, "\r{:<70}", line);
     else
@@ -93,8 +93,8 @@ std::string placement_list(const std::vector<std::uint64_t>& counts) {
 
 void print_summary(const FuzzOptions& options, const FuzzCampaignOptions& campaign, const FuzzCampaignResult& result,
                    unsigned threads) {
-  fmt::print("shadowcert fuzz: seed {}, {} cases of {} triangles, {} runs, {} threads\n", campaign.seed,
-             result.cases, campaign.triangles, campaign.runs.size(), threads);
+  fmt::print("shadowcert fuzz: seed {}, {} cases of {} triangles, {} runs, {} threads\n", campaign.seed, result.cases,
+             campaign.triangles, campaign.runs.size(), threads);
   fmt::print("  families: {}\n", family_list(result.cases_by_family));
   fmt::print("  lights:   {}\n", placement_list(result.cases_by_placement));
   fmt::print("  {:<16}{:>5}{:>10}{:>9}{:>8}{:>9}{:>11}{:>14}{:>16}\n", "run", "must", "failures", "closure", "counts",
@@ -108,13 +108,15 @@ void print_summary(const FuzzOptions& options, const FuzzCampaignOptions& campai
   }
   const double rate = result.seconds > 0.0 ? static_cast<double>(result.cases) / result.seconds : 0.0;
   const std::uint64_t checks = result.runs.empty() ? 0 : result.runs.front().checks;
-  fmt::print("  (cases per column; counts = a pair whose crossings miss the run's claimed count, or a sign its\n"
-             "   precision decides wrong; exact-mismatch = crossings != n(B) - n(A), docs/fuzzing.md)\n");
-  fmt::print("{} cases in {:.2f} s: {:.0f} cases/s on {} threads; {:.1f} sample points and {:.1f} compared pairs "
-             "per case\n",
-             result.cases, result.seconds, rate, threads,
-             result.cases ? static_cast<double>(result.samples) / static_cast<double>(result.cases) : 0.0,
-             result.cases ? static_cast<double>(checks) / static_cast<double>(result.cases) : 0.0);
+  fmt::print(
+      "  (cases per column; counts = a pair whose crossings miss the run's claimed count, or a sign its\n"
+      "   precision decides wrong; exact-mismatch = crossings != n(B) - n(A), docs/fuzzing.md)\n");
+  fmt::print(
+      "{} cases in {:.2f} s: {:.0f} cases/s on {} threads; {:.1f} sample points and {:.1f} compared pairs "
+      "per case\n",
+      result.cases, result.seconds, rate, threads,
+      result.cases ? static_cast<double>(result.samples) / static_cast<double>(result.cases) : 0.0,
+      result.cases ? static_cast<double>(checks) / static_cast<double>(result.cases) : 0.0);
   (void)options;
 }
 
@@ -157,7 +159,8 @@ WrittenReproducer write_reproducer(const FuzzOptions& options, const FuzzCampaig
   w.original_triangles = r.original_triangles;
   w.triangles = r.soup.triangles.size();
   w.json = write_fuzz_reproducer(options.out_dir, name, r);
-  w.command = certify_command(r, fs::path(options.out_dir) / (name + ".off"), fs::path(options.out_dir) / (name + ".points"));
+  w.command =
+      certify_command(r, fs::path(options.out_dir) / (name + ".off"), fs::path(options.out_dir) / (name + ".points"));
   // Bit for bit: what was written reads back as the very soup and light, and fails the same way.
   const FuzzReproducer back = read_fuzz_reproducer(w.json);
   w.replayed = back.soup.vertices == r.soup.vertices && back.soup.triangles == r.soup.triangles &&
@@ -242,25 +245,27 @@ int run_fuzz(const FuzzOptions& options) {
                              {"file", w.json.string()},
                              {"command", w.command},
                              {"replayed", w.replayed}});
-    write_json_file(options.json_file,
-                    {{"seed", campaign.seed},
-                     {"cases", result.cases},
-                     {"triangles", campaign.triangles},
-                     {"threads", threads},
-                     {"seconds", result.seconds},
-                     {"cases_per_second", result.seconds > 0.0 ? static_cast<double>(result.cases) / result.seconds : 0.0},
-                     {"shrink_seconds", result.shrink_seconds},
-                     {"samples", result.samples},
-                     {"redrawn_samples", result.redrawn},
-                     {"lost_samples", result.lost},
-                     {"families", families},
-                     {"placements", placements},
-                     {"methods", methods},
-                     {"must_not_fail_failed", must_not_fail_failed},
-                     {"reproducers", reproducers}});
+    write_json_file(
+        options.json_file,
+        {{"seed", campaign.seed},
+         {"cases", result.cases},
+         {"triangles", campaign.triangles},
+         {"threads", threads},
+         {"seconds", result.seconds},
+         {"cases_per_second", result.seconds > 0.0 ? static_cast<double>(result.cases) / result.seconds : 0.0},
+         {"shrink_seconds", result.shrink_seconds},
+         {"samples", result.samples},
+         {"redrawn_samples", result.redrawn},
+         {"lost_samples", result.lost},
+         {"families", families},
+         {"placements", placements},
+         {"methods", methods},
+         {"must_not_fail_failed", must_not_fail_failed},
+         {"reproducers", reproducers}});
   }
   if (must_not_fail_failed) {
-    fmt::print(stderr, "shadowcert: a method that must not fail (exact, peciva, refedge) failed: see the reproducers\n");
+    fmt::print(stderr,
+               "shadowcert: a method that must not fail (exact, peciva, refedge) failed: see the reproducers\n");
     return kExitCheckFailed;
   }
   return kExitOk;

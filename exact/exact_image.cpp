@@ -1,12 +1,17 @@
-// exact_image of exact/exact_image.h: three passes over the pixel grid (DESIGN.md §5).
+// exact_image of exact/exact_image.h, in passes over the pixel grid (DESIGN.md §5):
 //   1. hits: every centre ray and every corner ray is followed to its first hit with the box
 //      tree's nearest-first query and exact ray/triangle tests (exact/ray_hit.h);
-//   2. counts, per light: n(P) at every centre hit, and at the corner hits that can still
+//   2. footprints: where a pixel's five rays agree on one triangle, nothing else may be seen
+//      over its footprint (exact/pixel_footprint.h, the eye pyramid), nor, with a depth band,
+//      within the band of its centre (another surface);
+//   3. counts, per light: n(P) at every centre hit, and at the corner hits that can still
 //      decide a pixel (a pixel whose footprint already sees two triangles, or whose hit
 //      triangle is a terminator, is ambiguous whatever its corners count);
-//   3. per pixel and light: the lit mask and the ambiguity bits.
+//   4. per pixel and light: the lit mask and the ambiguity bits, the light pyramid over the
+//      footprint (silhouette edges) and, with a depth band, the volume faces near P.
 // Every decision is an exact sign; the only doubles that are not inputs are interval bounds
-// that enclose exact values (filters and box-tree queries), never a decision by themselves.
+// that enclose exact values (filters and box-tree queries), never a decision by themselves,
+// and the depth band's end points, which its caller's model defines.
 #include "exact/exact_image.h"
 
 #include <tbb/blocked_range.h>

@@ -75,13 +75,13 @@ bool float_sign_is_decided(const Vec3& a, const Vec3& b, const Vec3& c, const Li
     v[i] = Interval(c[i]) - Interval(a[i]);
     d[i] = Interval(l[i]) - Interval(l[3]) * Interval(a[i]);
   }
-  const Interval det = u[0] * (v[1] * d[2] - v[2] * d[1]) - u[1] * (v[0] * d[2] - v[2] * d[0]) +
-                       u[2] * (v[0] * d[1] - v[1] * d[0]);
+  const Interval det =
+      u[0] * (v[1] * d[2] - v[2] * d[1]) - u[1] * (v[0] * d[2] - v[2] * d[0]) + u[2] * (v[0] * d[1] - v[1] * d[0]);
   const bool rounded_inputs = precision == Precision::float32;
   double scale = 0.0;
-  const double m = std::max({permanent(a, b, c, l, rounded_inputs, scale).sup(),
-                             permanent(b, c, a, l, rounded_inputs, scale).sup(),
-                             permanent(c, a, b, l, rounded_inputs, scale).sup()});
+  const double m =
+      std::max({permanent(a, b, c, l, rounded_inputs, scale).sup(), permanent(b, c, a, l, rounded_inputs, scale).sup(),
+                permanent(c, a, b, l, rounded_inputs, scale).sup()});
   const double bound =
       (Interval(k.twelve_u) * Interval(m) + Interval(16.0 * k.smallest_normal) * Interval(scale)).sup();
   if (!std::isfinite(bound) || !std::isfinite(det.inf()) || !std::isfinite(det.sup())) return false;

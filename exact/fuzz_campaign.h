@@ -20,11 +20,11 @@ namespace shadowcert {
 struct FuzzCampaignOptions {
   std::uint64_t seed = 1;
   std::uint64_t cases = 1000;
-  std::uint32_t triangles = 100;          // per case, >= 1
+  std::uint32_t triangles = 100;  // per case, >= 1
   std::vector<FuzzRun> runs = all_fuzz_runs();
-  FuzzSampling sampling;                  // its seed is replaced per case (fuzz_sampling_for_case)
-  std::size_t max_shrunk_per_run = 4;     // failing cases shrunk per run: the first ones by index
-  bool shrink_findings = false;           // also shrink failures of runs allowed to fail (kim)
+  FuzzSampling sampling;                           // its seed is replaced per case (fuzz_sampling_for_case)
+  std::size_t max_shrunk_per_run = 4;              // failing cases shrunk per run: the first ones by index
+  bool shrink_findings = false;                    // also shrink failures of runs allowed to fail (kim)
   std::atomic<std::uint64_t>* progress = nullptr;  // when set, incremented as cases complete
 };
 
@@ -52,16 +52,16 @@ struct FuzzFailure {
 
 struct ShrunkFailure {
   FuzzFailure failure;
-  FuzzCase original;        // the case as generated
-  Soup soup;                // the shrunk soup (same light)
-  RunVerdict verdict;       // the failing run's verdict on the shrunk soup
-  std::size_t tests = 0;    // shrinking cost, in case certificates
+  FuzzCase original;      // the case as generated
+  Soup soup;              // the shrunk soup (same light)
+  RunVerdict verdict;     // the failing run's verdict on the shrunk soup
+  std::size_t tests = 0;  // shrinking cost, in case certificates
   bool minimal = false;
 };
 
 struct FuzzCampaignResult {
   std::uint64_t cases = 0;
-  double seconds = 0.0;     // the cases alone, shrinking excluded
+  double seconds = 0.0;  // the cases alone, shrinking excluded
   double shrink_seconds = 0.0;
   std::vector<FuzzRunTally> runs;  // one per run of the options
   std::vector<std::uint64_t> cases_by_family = std::vector<std::uint64_t>(kSoupFamilies, 0);

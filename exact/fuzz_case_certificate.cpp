@@ -49,7 +49,6 @@ void require_valid_light(const Light& light) {
     throw std::invalid_argument("certify_fuzz_case: a directional light needs a nonzero direction");
 }
 
-
 // One ulp of x (> 0), or the smallest normal for 0.
 double grain(double x) {
   if (x == 0.0) return std::numeric_limits<double>::min();
@@ -71,7 +70,10 @@ class SampleDrawer {
  public:
   SampleDrawer(const Soup& canonical, const OccluderCounter& counter, const FuzzSampling& sampling,
                CaseVerdict& verdict)
-      : soup_(canonical), counter_(counter), sampling_(sampling), verdict_(verdict),
+      : soup_(canonical),
+        counter_(counter),
+        sampling_(sampling),
+        verdict_(verdict),
         box_(detail::sampling_box(canonical)) {}
 
   [[nodiscard]] const Box3& box() const { return box_; }
@@ -87,7 +89,8 @@ class SampleDrawer {
   std::optional<Sample> in_box(SplitMixRandom& rng) {
     for (std::uint32_t attempt = 0;; ++attempt) {
       Vec3 p{};
-      for (int d = 0; d < 3; ++d) p[d] = std::clamp(box_.lo[d] + rng.unit() * (box_.hi[d] - box_.lo[d]), box_.lo[d], box_.hi[d]);
+      for (int d = 0; d < 3; ++d)
+        p[d] = std::clamp(box_.lo[d] + rng.unit() * (box_.hi[d] - box_.lo[d]), box_.lo[d], box_.hi[d]);
       if (const std::optional<std::uint32_t> n = counter_.count(p)) return Sample{p, *n};
       if (!spend(attempt)) return std::nullopt;
     }
@@ -268,7 +271,8 @@ class PlaneSides {
  public:
   PlaneSides(const Soup& canonical, const EdgeTable& table, const Light& light, const std::vector<bool>& caps,
              const std::vector<bool>& sides, const std::vector<Sample>& points)
-      : points_(points.size()), cap_(canonical.triangles.size() * points.size(), Sign::zero),
+      : points_(points.size()),
+        cap_(canonical.triangles.size() * points.size(), Sign::zero),
         side_(table.size() * points.size(), Sign::zero) {
     const HomogeneousPoint& l = light.position;
     for (std::size_t t = 0; t < caps.size(); ++t) {
@@ -286,8 +290,8 @@ class PlaneSides {
         const HomogeneousPoint p = finite_point(points[i].point);
         // orient(L, u, v, P): directly for a point light; for a directional one, by two
         // transpositions and one more, -orient(u, v, P, L), whose last point is the direction.
-        side_[e * points_ + i] = l[3] != 0.0 ? orient_with_last(l_xyz, u, v, p)
-                                              : -orient_with_last(u, v, points[i].point, l);
+        side_[e * points_ + i] =
+            l[3] != 0.0 ? orient_with_last(l_xyz, u, v, p) : -orient_with_last(u, v, points[i].point, l);
       }
     }
   }

@@ -69,12 +69,14 @@ std::string certify_command(const FuzzReproducer& r, const fs::path& mesh, const
 fs::path write_fuzz_reproducer(const fs::path& dir, const std::string& name, const FuzzReproducer& r) {
   std::error_code error;
   fs::create_directories(dir, error);
-  if (error) throw std::runtime_error("write_fuzz_reproducer: cannot create '" + dir.string() + "': " + error.message());
+  if (error)
+    throw std::runtime_error("write_fuzz_reproducer: cannot create '" + dir.string() + "': " + error.message());
   const fs::path mesh = dir / (name + ".off"), points = dir / (name + ".points"), json = dir / (name + ".json");
   write_soup(mesh, r.soup);
   if (counts_failure(r)) {
     std::string text;
-    for (const Vec3& p : r.points) text += exact_number(p[0]) + " " + exact_number(p[1]) + " " + exact_number(p[2]) + "\n";
+    for (const Vec3& p : r.points)
+      text += exact_number(p[0]) + " " + exact_number(p[1]) + " " + exact_number(p[2]) + "\n";
     write_text(points, text);
   }
   // The light goes in as text too: nlohmann prints doubles round-trip exactly, but a reader

@@ -157,7 +157,8 @@ Soup grid_soup(CaseRandom& rng, std::uint32_t triangles) {
   Soup s;
   for (std::uint64_t i = 0; i < pool; ++i)
     s.vertices.push_back({double(rng.between(-g, g)), double(rng.between(-g, g)), double(rng.between(-g, g))});
-  for (std::uint32_t t = 0; t < triangles; ++t) s.triangles.push_back({rng.below32(pool), rng.below32(pool), rng.below32(pool)});
+  for (std::uint32_t t = 0; t < triangles; ++t)
+    s.triangles.push_back({rng.below32(pool), rng.below32(pool), rng.below32(pool)});
   return s;
 }
 
@@ -195,8 +196,8 @@ bool spans_a_plane(const Soup& s, const Triangle& t) {
 }
 
 bool needs_plane(LightPlacement p) {
-  return p == LightPlacement::on_plane || p == LightPlacement::off_plane ||
-         p == LightPlacement::directional_parallel || p == LightPlacement::directional_parallel_off;
+  return p == LightPlacement::on_plane || p == LightPlacement::off_plane || p == LightPlacement::directional_parallel ||
+         p == LightPlacement::directional_parallel_off;
 }
 
 // A triangle to place the light against: distinct indices, and spanning a plane when the
@@ -241,7 +242,8 @@ Vec3 combination(const Vec3& a, const Vec3& b, const Vec3& c, double i, double j
 
 void one_ulp_off(CaseRandom& rng, Light& light) {
   const std::size_t axis = rng.below(3);
-  const double toward = rng.chance(0.5) ? std::numeric_limits<double>::infinity() : -std::numeric_limits<double>::infinity();
+  const double toward =
+      rng.chance(0.5) ? std::numeric_limits<double>::infinity() : -std::numeric_limits<double>::infinity();
   light.position[axis] = std::nextafter(light.position[axis], toward);
 }
 
@@ -342,8 +344,8 @@ FuzzKind draw_fuzz_kind(std::uint64_t seed, std::uint64_t index) {
   CaseRandom rng(seed, index, Stream::kind);
   FuzzKind kind;
   kind.family = static_cast<SoupFamily>(rng.weighted(std::array<unsigned, kSoupFamilies>{30, 30, 20, 20}));
-  kind.light =
-      static_cast<LightPlacement>(rng.weighted(std::array<unsigned, kLightPlacements>{25, 10, 10, 10, 8, 10, 8, 7, 6, 6}));
+  kind.light = static_cast<LightPlacement>(
+      rng.weighted(std::array<unsigned, kLightPlacements>{25, 10, 10, 10, 8, 10, 8, 7, 6, 6}));
   const double frame = rng.unit();
   if (frame < 0.5) return kind;  // unit scale
   if (frame < 0.75) {

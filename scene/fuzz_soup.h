@@ -6,8 +6,8 @@
 // them with the exact predicate.
 //
 // A case is built in three steps:
-//   1. a soup of the case's family at unit scale (coordinates within about [-1.5, 1.5], or a
-//      small integer grid for the grid families);
+//   1. a soup of the case's family at unit scale (coordinates within a few units of the
+//      origin; integers up to 8 for the grid families);
 //   2. the frame: p -> 2^e p + (o, o, o). Powers of two keep every grid coordinate and every
 //      exact coincidence exact; o = 1e6 is an integer, so offset grid points stay exact too;
 //   3. the light, placed on the framed soup.

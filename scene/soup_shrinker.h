@@ -11,9 +11,9 @@
 namespace shadowcert {
 
 struct ShrinkResult {
-  Soup soup;               // the smallest failing soup found
-  std::size_t tests = 0;   // calls of the predicate
-  bool minimal = false;    // 1-minimal: removing any one of its triangles makes it pass
+  Soup soup;              // the smallest failing soup found
+  std::size_t tests = 0;  // calls of the predicate
+  bool minimal = false;   // 1-minimal: removing any one of its triangles makes it pass
 };
 
 // `still_fails` must be deterministic. When it does not hold for `soup` itself, the soup comes

@@ -33,7 +33,7 @@ class SplitMixRandom {
     return z ^ (z >> 31);
   }
   constexpr double unit() { return static_cast<double>((*this)() >> 11) * 0x1.0p-53; }  // [0, 1), exact
-  constexpr double symmetric() { return 2.0 * unit() - 1.0; }                            // [-1, 1), exact
+  constexpr double symmetric() { return 2.0 * unit() - 1.0; }                           // [-1, 1), exact
   // Below n (n >= 1); the modulo bias is below n / 2^64, nothing for the small n used here.
   constexpr std::uint64_t below(std::uint64_t n) { return (*this)() % n; }
 

@@ -48,8 +48,8 @@ void check(const std::array<Vec3, 3>& v, const Light& light, Precision precision
   if (decided) {
     ++tally.decided;
     EXPECT_NE(exact, Sign::zero);
-    EXPECT_FALSE(wrong) << "decided but a float evaluation has another sign: (" << v[0][0] << ", " << v[0][1]
-                        << ", " << v[0][2] << ") ...";
+    EXPECT_FALSE(wrong) << "decided but a float evaluation has another sign: (" << v[0][0] << ", " << v[0][1] << ", "
+                        << v[0][2] << ") ...";
   } else {
     ++tally.undecided;
     tally.undecided_and_wrong += wrong;
@@ -73,7 +73,8 @@ TEST(FloatSignBound, NearCoplanarLights_DecidedImpliesEveryOrderHasTheExactSign)
     const double s = unit(rng) * 2, t = unit(rng) * 2, lift = std::pow(10.0, exponent(rng)) * scale;
     Light light;
     if (k % 3 == 0) {  // directional, nearly parallel to the plane
-      for (int d = 0; d < 3; ++d) light.position[d] = s * (v[1][d] - v[0][d]) + t * (v[2][d] - v[0][d]) + lift * unit(rng);
+      for (int d = 0; d < 3; ++d)
+        light.position[d] = s * (v[1][d] - v[0][d]) + t * (v[2][d] - v[0][d]) + lift * unit(rng);
       light.position[3] = 0.0;
       if (light.position[0] == 0.0 && light.position[1] == 0.0 && light.position[2] == 0.0) continue;
     } else {
@@ -95,8 +96,8 @@ TEST(FloatSignBound, NearCoplanarLights_DecidedImpliesEveryOrderHasTheExactSign)
 TEST(FloatSignBound, LightExactlyOnThePlaneOrDegenerateTriangle_NeverDecided) {
   const Vec3 a{0.1, 0.2, 0.3}, b{1.5, -0.25, 0.75}, c{-0.5, 2.0, 0.125};
   for (Precision p : {Precision::float32, Precision::float64}) {
-    EXPECT_FALSE(float_sign_is_decided(a, b, c, Light{{b[0], b[1], b[2], 1.0}}, p));  // at a vertex
-    EXPECT_FALSE(float_sign_is_decided(a, a, c, Light{{5, 5, 5, 1}}, p));  // a repeated vertex
+    EXPECT_FALSE(float_sign_is_decided(a, b, c, Light{{b[0], b[1], b[2], 1.0}}, p));               // at a vertex
+    EXPECT_FALSE(float_sign_is_decided(a, a, c, Light{{5, 5, 5, 1}}, p));                          // a repeated vertex
     EXPECT_FALSE(float_sign_is_decided({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, Light{{1, 1, 0, 0}}, p));  // parallel
     EXPECT_FALSE(float_sign_is_decided({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, Light{{0.3, 0.3, 0, 1}}, p));  // in plane
   }

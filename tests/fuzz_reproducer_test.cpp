@@ -92,7 +92,8 @@ TEST(FuzzReproducer, KimOnThePinnedTiltedPlane_ReplaysOpen) {
   r.method = MultiplicityMethod::kim;
   r.precision = Precision::float32;
   r.status = "finding";
-  const FuzzReplay replay = replay_fuzz_reproducer(read_fuzz_reproducer(write_fuzz_reproducer(temp_dir(), "pinned", r)));
+  const FuzzReplay replay =
+      replay_fuzz_reproducer(read_fuzz_reproducer(write_fuzz_reproducer(temp_dir(), "pinned", r)));
   EXPECT_FALSE(replay.closed);
   EXPECT_TRUE(replay.reproduces);
   r.method = MultiplicityMethod::refedge;
@@ -120,7 +121,8 @@ TEST(FuzzReproducer, FloatCountMismatch_ReplaysAtTheRecordedPair) {
   r.precision = Precision::float32;
   r.failure = "counts";
   r.points = {v.first_exact_mismatch->from, v.first_exact_mismatch->to};
-  const FuzzReplay replay = replay_fuzz_reproducer(read_fuzz_reproducer(write_fuzz_reproducer(temp_dir(), "offset", r)));
+  const FuzzReplay replay =
+      replay_fuzz_reproducer(read_fuzz_reproducer(write_fuzz_reproducer(temp_dir(), "offset", r)));
   EXPECT_TRUE(replay.closed);
   EXPECT_EQ(replay.count_checks, 2u);  // the pair, both ways
   EXPECT_EQ(replay.count_failures, 2u);

@@ -18,7 +18,7 @@ std::vector<std::string> names(const std::vector<FuzzRun>& runs) {
 
 TEST(FuzzRun, AllRuns_ExactThenEachFloatMethodInBothPrecisions) {
   EXPECT_EQ(names(all_fuzz_runs()), (std::vector<std::string>{"exact", "kim-float", "kim-double", "peciva-float",
-                                                               "peciva-double", "refedge-float", "refedge-double"}));
+                                                              "peciva-double", "refedge-float", "refedge-double"}));
 }
 
 TEST(FuzzRun, MustNotFail_EveryMethodButKim) {

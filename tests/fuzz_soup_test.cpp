@@ -46,7 +46,8 @@ bool one_ulp_apart(const std::array<double, 4>& x, const std::array<double, 4>& 
 
 TEST(FuzzSoup, SameSeedAndIndex_SameCaseOnEveryCall) {
   std::cout << "seed " << kSeed << "\n";
-  for (std::uint64_t i = 0; i < 50; ++i) EXPECT_TRUE(same_case(fuzz_case(kSeed, i, 100), fuzz_case(kSeed, i, 100))) << i;
+  for (std::uint64_t i = 0; i < 50; ++i)
+    EXPECT_TRUE(same_case(fuzz_case(kSeed, i, 100), fuzz_case(kSeed, i, 100))) << i;
   // Cases do not depend on the order they are made in: index 7 alone equals index 7 after others.
   const FuzzCase alone = fuzz_case(kSeed, 7, 60);
   for (std::uint64_t i = 0; i < 7; ++i) (void)fuzz_case(kSeed, i, 60);

@@ -16,7 +16,9 @@ enum class PlantedFault { consistent_flip, cap_only_flip };
 // it reversed: consistent_flip reverses its caps and its three edge entries (a closed chain,
 // -dV(t) instead of dV(t): wrong counts behind t), cap_only_flip only its caps (an open chain).
 inline FuzzRun planted_run(PlantedFault fault) {
-  FuzzRun run{MultiplicityMethod::refedge, Precision::float64, {},
+  FuzzRun run{MultiplicityMethod::refedge,
+              Precision::float64,
+              {},
               fault == PlantedFault::consistent_flip ? "planted-consistent-flip" : "planted-cap-flip"};
   run.multiplicities = [fault](const Soup& canonical, const EdgeTable& table, const Light& light) {
     EdgeMultiplicities m =

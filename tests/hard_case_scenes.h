@@ -119,15 +119,34 @@ inline std::vector<HardCaseScene> hard_case_scenes() {
     std::snprintf(name, sizeof name, "cube and sphere at scale %g", scale);
     add(name, s, point_light(1.1 * scale, 4.0 * scale, 0.3 * scale));
   }
-  const Soup cracks = soup_of({{0, 0, 0}, {1, 0, 0}, {1, 0, 1}, {0, 0, 1}, {1, 0, 0.5}, {2, 0, 0}, {2, 0, 1},
-                               {2.001, 0, 0}, {3, 0, 0}, {3, 0, 1}, {2.001, 0, 1}},
+  const Soup cracks = soup_of({{0, 0, 0},
+                               {1, 0, 0},
+                               {1, 0, 1},
+                               {0, 0, 1},
+                               {1, 0, 0.5},
+                               {2, 0, 0},
+                               {2, 0, 1},
+                               {2.001, 0, 0},
+                               {3, 0, 0},
+                               {3, 0, 1},
+                               {2.001, 0, 1}},
                               {{0, 2, 1}, {0, 3, 2}, {1, 4, 5}, {4, 2, 6}, {4, 6, 5}, {7, 10, 9}, {7, 9, 8}});
   add("T-junctions and cracks", cracks, point_light(1.2, 3.0, 0.4));
   add("T-junctions and cracks, light above the T vertex", cracks, point_light(1.0, 3.0, 0.5));
-  const Soup bow_ties = soup_of({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {-1, 0, 0}, {0, -1, 0}, {0, 0, -1},
-                                 {3, 0, 0}, {4, 0, 0}, {3, 1, 0}, {2, 0, 0}, {3, -1, 0.5}},
-                                {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}, {0, 4, 5}, {0, 6, 4}, {4, 6, 5},
-                                 {0, 5, 6}, {7, 8, 9}, {7, 10, 11}});
+  const Soup bow_ties = soup_of(
+      {{0, 0, 0},
+       {1, 0, 0},
+       {0, 1, 0},
+       {0, 0, 1},
+       {-1, 0, 0},
+       {0, -1, 0},
+       {0, 0, -1},
+       {3, 0, 0},
+       {4, 0, 0},
+       {3, 1, 0},
+       {2, 0, 0},
+       {3, -1, 0.5}},
+      {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}, {0, 4, 5}, {0, 6, 4}, {4, 6, 5}, {0, 5, 6}, {7, 8, 9}, {7, 10, 11}});
   add("bow-tie vertices", bow_ties, point_light(0.2, 3.0, 0.1));
   add("bow-tie vertices, light on the axis through the shared vertex", bow_ties, point_light(0.0, 0.0, 4.0));
   add("directional light parallel to cube faces (x)", unit_cube(), directional_light(1.0, 0.0, 0.0));

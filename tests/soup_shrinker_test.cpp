@@ -98,7 +98,9 @@ TEST(SoupShrinker, BadArguments_Throw) {
   Soup bad = random_soup(16, 2, 1.0);
   bad.triangles[1][2] = 99;
   EXPECT_THROW((void)shrink_soup(bad, [](const Soup&) { return true; }), std::invalid_argument);
-  EXPECT_THROW((void)shrink_soup(random_soup(16, 2, 1.0), [](const Soup&) { return true; }, 0), std::invalid_argument);
+  EXPECT_THROW((void)shrink_soup(
+                   random_soup(16, 2, 1.0), [](const Soup&) { return true; }, 0),
+               std::invalid_argument);
 }
 
 }  // namespace
