@@ -14,17 +14,12 @@
 
 #include "exact/exact_image.h"
 #include "exact/soup_file.h"
+#include "scene/merged_soup.h"
 #include "scene/procedural_mesh.h"
 
 namespace {
 
 using namespace shadowcert;
-
-void append(Soup& to, const Soup& from) {
-  const auto base = static_cast<std::uint32_t>(to.vertices.size());
-  to.vertices.insert(to.vertices.end(), from.vertices.begin(), from.vertices.end());
-  for (const Triangle& t : from.triangles) to.triangles.push_back({base + t[0], base + t[1], base + t[2]});
-}
 
 struct BenchScene {
   Soup soup;
@@ -37,7 +32,7 @@ const BenchScene& sphere_grid_scene() {
     BenchScene s;
     s.soup = floor_quad(16.0);  // the grid spans x, z in [-12.25, 12.25], resting on y = 0
     s.soup.normals.clear();
-    append(s.soup, sphere_grid(100'000));
+    append_soup(s.soup, sphere_grid(100'000));
     s.lights = {Light{{4.0, 30.0, 8.0, 1.0}}};
     s.camera.eye = {0.0, 24.0, 32.0};
     s.camera.target = {0.0, 0.0, 0.0};
@@ -64,7 +59,7 @@ const BenchScene* shared_mesh_scene() {
     s.soup = floor_quad(1.5 * size);
     s.soup.normals.clear();
     for (Vec3& v : s.soup.vertices) v = {v[0] + c[0], lo[1] - 0.01 * size, v[2] + c[2]};
-    append(s.soup, mesh);
+    append_soup(s.soup, mesh);
     s.lights = {Light{{c[0] + 0.4 * size, c[1] + 2.0 * size, c[2] + 0.6 * size, 1.0}}};
     s.camera.eye = {c[0], c[1] + 0.8 * size, c[2] + 1.6 * size};
     s.camera.target = c;

@@ -49,6 +49,7 @@
 #include "gpu/shadow_method_renderer.h"
 #include "scene/canonical_soup.h"
 #include "scene/edge_table.h"
+#include "scene/merged_soup.h"
 #include "scene/procedural_mesh.h"
 
 namespace {
@@ -87,14 +88,10 @@ struct GridScene {
   std::vector<HomogeneousMesh> cpu_volumes;  // built on first use by cpu
 };
 
-// The grid with floor_quad(kFloorHalfSize) appended, the floor's vertices shaded with its own
-// normal (+y) so that the soup keeps one normal per vertex.
+// The grid with floor_quad(kFloorHalfSize) appended; both have vertex normals (the floor's +y),
+// so the soup keeps one normal per vertex.
 Soup over_floor(Soup soup) {
-  const Soup floor = floor_quad(kFloorHalfSize);
-  const auto offset = static_cast<std::uint32_t>(soup.vertices.size());
-  soup.vertices.insert(soup.vertices.end(), floor.vertices.begin(), floor.vertices.end());
-  soup.normals.resize(soup.vertices.size(), Normal{0.0f, 1.0f, 0.0f});
-  for (const Triangle& t : floor.triangles) soup.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+  append_soup(soup, floor_quad(kFloorHalfSize));
   return soup;
 }
 

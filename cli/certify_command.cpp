@@ -20,6 +20,7 @@
 #include "exact/count_certificate.h"
 #include "exact/edge_multiplicity.h"
 #include "scene/edge_table.h"
+#include "scene/merged_soup.h"
 #include "exact/shadow_volume_chain.h"
 #include "scene/canonical_soup.h"
 #include "scene/point_file.h"

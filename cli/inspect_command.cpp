@@ -12,6 +12,7 @@
 #include "cli/scene_input.h"
 #include "core/input_error.h"
 #include "exact/caster_diagnostics.h"
+#include "scene/merged_soup.h"
 
 namespace shadowcert::cli {
 namespace {

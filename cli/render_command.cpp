@@ -28,6 +28,7 @@
 #include "gpu/shadow_method_renderer.h"
 #include "scene/canonical_soup.h"
 #include "scene/edge_table.h"
+#include "scene/merged_soup.h"
 
 namespace shadowcert::cli {
 namespace {

@@ -11,8 +11,4 @@ namespace shadowcert::cli {
 // exact's read_soup, wrapped in a scene with the defaults of core/scene.h.
 [[nodiscard]] Scene load_scene_or_mesh(const std::filesystem::path& input);
 
-// All meshes of a scene concatenated into one soup (indices offset, normals kept only when
-// every mesh has them): shadow volumes see every triangle of the scene as a caster.
-[[nodiscard]] Soup merged_soup(const Scene& scene);
-
 }  // namespace shadowcert::cli

@@ -78,7 +78,9 @@ void sort_run(std::uint64_t* first, std::uint64_t* last) {
     std::sort(first, last);
     return;
   }
-  for (std::uint64_t* i = first + 1; i < last; ++i) {
+  // From `first`, not `first + 1`: an empty run may be (nullptr, nullptr), where + 1 is
+  // undefined behaviour (UBSan, tools/dev.sh sanitize); i = first moves nothing.
+  for (std::uint64_t* i = first; i < last; ++i) {
     const std::uint64_t moving = *i;
     std::uint64_t* j = i;
     for (; j > first && moving < *(j - 1); --j) *j = *(j - 1);

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "scene/affine_transform.h"
+#include "scene/merged_soup.h"
 #include "scene/procedural_mesh.h"
 #include "scene/split_mix_random.h"
 
@@ -52,12 +53,6 @@ class CaseRandom {
 };
 
 // ---- families ------------------------------------------------------------------------------
-
-void append(Soup& to, const Soup& from) {
-  const auto base = static_cast<std::uint32_t>(to.vertices.size());
-  to.vertices.insert(to.vertices.end(), from.vertices.begin(), from.vertices.end());
-  for (const Triangle& t : from.triangles) to.triangles.push_back({base + t[0], base + t[1], base + t[2]});
-}
 
 Triangle reversed(const Triangle& t) { return {t[0], t[2], t[1]}; }
 
@@ -128,7 +123,7 @@ Soup mesh_soup(CaseRandom& rng, std::uint32_t triangles) {
     Soup m = closed_mesh(rng, budget);
     m = transformed(m, random_placement(rng));
     m.normals.clear();
-    append(s, m);
+    append_soup(s, m);
   }
   const std::array<double, 3> flip_rates{0.0, 0.05, 0.5};
   const double flip = flip_rates[rng.below(3)];

@@ -21,6 +21,7 @@
 #include "exact/light_orientation.h"
 #include "exact/shadow_volume_chain.h"
 #include "scene/canonical_soup.h"
+#include "scene/merged_soup.h"
 
 namespace shadowcert::test_support {
 
@@ -42,12 +43,11 @@ inline Soup unit_cube() {
                      {2, 6, 7}, {2, 7, 3}, {0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5}});
 }
 
-// Appends `from` to `to`; shading normals are dropped (no certificate reads them).
+// Appends `from` to `to` (scene/merged_soup.h); shading normals are dropped (no certificate
+// reads them), so every soup built here has none.
 inline void append(Soup& to, const Soup& from) {
+  append_soup(to, from);
   to.normals.clear();
-  const auto base = static_cast<std::uint32_t>(to.vertices.size());
-  to.vertices.insert(to.vertices.end(), from.vertices.begin(), from.vertices.end());
-  for (const Triangle& t : from.triangles) to.triangles.push_back({base + t[0], base + t[1], base + t[2]});
 }
 
 struct MethodRun {

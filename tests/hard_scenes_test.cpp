@@ -30,6 +30,7 @@
 #include "exact/soup_file.h"
 #include "scene/canonical_soup.h"
 #include "scene/edge_table.h"
+#include "scene/merged_soup.h"
 #include "scene/scene_file.h"
 #include "scene/welded_soup.h"
 
@@ -83,16 +84,6 @@ const Soup& mesh(const Scene& scene, const std::string& name) {
   throw std::invalid_argument("no mesh named " + name);
 }
 
-Soup merged(const Scene& scene) {
-  Soup out;
-  for (const SceneMesh& m : scene.meshes) {
-    const auto offset = static_cast<std::uint32_t>(out.vertices.size());
-    out.vertices.insert(out.vertices.end(), m.soup.vertices.begin(), m.soup.vertices.end());
-    for (const Triangle& t : m.soup.triangles) out.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
-  }
-  return out;
-}
-
 Sign sign_of(const Soup& soup, const Triangle& t, const Light& light) {
   return light_orientation(soup.vertices[t[0]], soup.vertices[t[1]], soup.vertices[t[2]], light);
 }
@@ -138,7 +129,7 @@ TEST(HardScenes, EverySceneLoadsSmallWithALightAndAShadowCaster) {
     const Scene scene = load(name);
     ASSERT_FALSE(scene.lights.empty());
     EXPECT_LE(std::uint64_t{scene.camera.width} * scene.camera.height, kMaxImagePixels);
-    const Soup soup = merged(scene);
+    const Soup soup = merged_soup(scene);
     EXPECT_LE(soup.triangles.size(), kMaxTriangles);
     // Every light has something to shadow: a triangle that casts exactly.
     for (const Light& light : scene.lights) {
@@ -333,7 +324,7 @@ TEST(HardScenes, Offset1e6_MillionOffsetsAndMillimetreFeaturesThatCollapseInFloa
 // The scale in the name, and the geometry within a factor 100 of it (the room is 8 units wide).
 void expect_scaled(const std::string& name, double scale) {
   SCOPED_TRACE(name);
-  const Soup soup = merged(load(name));
+  const Soup soup = merged_soup(load(name));
   double extent = 0.0;
   for (int axis = 0; axis < 3; ++axis) {
     const auto [lo, hi] = std::minmax_element(soup.vertices.begin(), soup.vertices.end(),
@@ -406,7 +397,7 @@ TEST(HardScenes, DirectionalParallelToFaces_SomeFacesExactlyParallelToEachLight)
 
 TEST(HardScenes, CameraInsideVolume_TheEyeIsShadowedByEveryLight) {
   const Scene scene = load("camera_inside_volume");
-  const CanonicalSoup soup = canonical_soup(merged(scene));
+  const CanonicalSoup soup = canonical_soup(merged_soup(scene));
   for (const Light& light : scene.lights) {
     const std::optional<std::uint32_t> n = OccluderCounter(soup.soup, light).count(scene.camera.eye);
     ASSERT_TRUE(n.has_value());

@@ -20,6 +20,7 @@
 #include "exact/soup_file.h"
 #include "scene/canonical_soup.h"
 #include "scene/edge_table.h"
+#include "scene/merged_soup.h"
 #include "scene/scene_file.h"
 
 namespace {
@@ -37,7 +38,7 @@ DefaultScene default_scene(std::uint32_t width = 128, std::uint32_t height = 96)
   const Scene scene = load_scene(std::filesystem::path(SHADOWCERT_SOURCE_DIR) / "data" / "scenes" / "default.json",
                                  [](const std::filesystem::path& file) { return read_soup(file); });
   DefaultScene d;
-  for (const SceneMesh& mesh : scene.meshes) test_support::append(d.soup, mesh.soup);
+  d.soup = merged_soup(scene);
   d.lights = scene.lights;
   d.camera = scene.camera;
   d.camera.width = width;

@@ -51,7 +51,7 @@ using namespace test;
 constexpr std::size_t kMaxBoundaryPixels = 64;
 
 std::vector<std::pair<std::string, Soup>> test_soups() {
-  return {{"default scene", merged(default_scene())},
+  return {{"default scene", merged_soup(default_scene())},
           {"uv sphere", uv_sphere({0.2, 0.1, -0.3}, 1.0, 32, 16)},
           {"fan of 100", nonmanifold_fan(100)}};
 }
@@ -118,7 +118,7 @@ TEST_F(GlTest, CapturedVolumeIsClosed) {
 
 TEST_F(GlTest, StencilCountsMatchCpuExceptOnBoundaries) {
   const Scene scene = default_scene();
-  const Soup soup = merged(scene);
+  const Soup soup = merged_soup(scene);
   const Prepared p = prepare(soup);
   const Light& light = scene.lights.front();
   const EdgeMultiplicities exact = exact_multiplicities(p.canonical.soup, p.table, light);

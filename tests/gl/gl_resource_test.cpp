@@ -1,14 +1,16 @@
 // GL resources of the volume methods (issue 4: "no GL error, no leak across 100 create/destroy
-// cycles"), on llvmpipe or any EGL device, with a debug context (a GL error anywhere throws):
-//  1. per method (cpu, cs, gs, ts, pertri), 100 cycles in ONE context of: upload the soup,
-//     create the method's volume objects, build the volume, draw one frame, read it back,
-//     destroy. Every cycle draws the same counts (re-created objects work alike); every GL
-//     name the cycle created is deleted when its owners go (glIs* false), no other name stays
-//     alive; the resident set grows by less than kMaxRssGrowthBytes from cycle 10 to cycle 100;
-//  2. 100 cycles of the EGL context itself around one cs frame (context, soup, volume, renderer,
-//     target): the same counts every time, every name created in the context deleted before it
-//     goes, the same RSS bound (a leaked llvmpipe context costs about 2.6 MiB, so 90 of them
-//     would exceed it). tests/gl/gl_object_test.cpp cycles contexts around the plain GL object
+// cycles"), on llvmpipe or any EGL device, with a debug context (a GL error anywhere throws).
+// Each method is driven as `render --method` drives it, by gpu/shadow_method_renderer.h:
+//  1. per method (cpu, cs, gs, ts, pertri), 100 cycles in ONE context of: create the method's
+//     renderer (upload receivers and soup, create the volume objects, compile the shaders),
+//     build the volume and draw one frame, read it back, destroy. Every cycle draws the same
+//     counts (re-created objects work alike); every GL name the cycle created is deleted when
+//     its owners go (glIs* false), no other name stays alive; the resident set grows by less
+//     than kMaxRssGrowthBytes from cycle 10 to cycle 100;
+//  2. 100 cycles of the EGL context itself around one cs frame (context, renderer, target):
+//     the same counts every time, every name created in the context deleted before it goes,
+//     the same RSS bound (a leaked llvmpipe context costs about 2.6 MiB, so 90 of them would
+//     exceed it). tests/gl/gl_object_test.cpp cycles contexts around the plain GL object
 //     owners.
 #include <epoxy/gl.h>
 #include <gtest/gtest.h>
@@ -32,9 +34,9 @@
 #include "gpu/egl_context.h"
 #include "gpu/gl_error.h"
 #include "gpu/offscreen_target.h"
-#include "gpu/stencil_shadow_renderer.h"
+#include "gpu/shadow_method_renderer.h"
+#include "scene/merged_soup.h"
 #include "scene/procedural_mesh.h"
-#include "volume_method_support.h"
 #include "volume_test_support.h"
 
 namespace shadowcert::gpu {
@@ -173,10 +175,7 @@ std::string joined(const std::vector<std::string>& names) {
 // hundred KiB per cycle (see kMaxRssGrowthBytes), a shadow in view of a small image.
 Soup resource_soup() {
   Soup soup = floor_quad(4.0);
-  const Soup sphere = uv_sphere({0.0, 1.5, 0.0}, 1.0, 32, 16);
-  const auto base = static_cast<std::uint32_t>(soup.vertices.size());
-  soup.vertices.insert(soup.vertices.end(), sphere.vertices.begin(), sphere.vertices.end());
-  for (const Triangle& t : sphere.triangles) soup.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+  append_soup(soup, uv_sphere({0.0, 1.5, 0.0}, 1.0, 32, 16));
   soup.normals.clear();  // face normals for shading; no decision reads them
   return soup;
 }
@@ -208,24 +207,27 @@ struct CycleReport {
 
 class GlResourceTest : public GlTest {};
 
-// One cycle: the method's objects (soup upload and volume) created, built, drawn, read back,
-// destroyed; checks that every name they created died with them. Returns the stencil.
+// The scene of every cycle: the soup, its canonical form and edge table, and cpu's volume (the
+// exact chain, computed once: a cycle uploads it).
+struct ResourceScene {
+  Soup soup = resource_soup();
+  Prepared prepared = prepare(soup);
+  HomogeneousMesh cpu = cpu_volume(prepared, kLight);
+};
+
+// One cycle: the method's renderer (every GL object it draws with) created, built, drawn, read
+// back, destroyed; checks that every name it created died with it. Returns the stencil.
 // `live` holds the names alive before the cycle and, on return, those alive after it (the next
 // cycle's "before").
-GrayImage object_cycle(VolumeMethod method, const Prepared& prepared, const ShadedSoupMesh& receivers,
-                       const OffscreenTarget& target, const StencilShadowRenderer& renderer, NameScanner& scanner,
-                       LiveNames& live, CycleReport& report) {
+GrayImage object_cycle(ShadowMethod method, const ResourceScene& scene, const OffscreenTarget& target,
+                       NameScanner& scanner, LiveNames& live, CycleReport& report) {
   const LiveNames before = live;
   GrayImage stencil;
   std::vector<std::string> created;
   {
-    std::optional<ComputeVolumeSoup> gpu_soup;
-    if (method != VolumeMethod::cpu) gpu_soup.emplace(prepared.canonical.soup, prepared.table);
-    MethodVolume volume(method, prepared, gpu_soup ? &*gpu_soup : nullptr);
-    volume.build(kLight);
-    EXPECT_LE(volume.read_requested_vertices(), volume.capacity_vertices());
-    const std::array lights{volume.light_volume()};
-    stencil = renderer.render(target, receivers, resource_camera(), lights).first_stencil;
+    ShadowMethodRenderer renderer = one_light_renderer(method, scene.soup, scene.prepared, kLight, &scene.cpu);
+    stencil = renderer.render(target, resource_camera()).first_stencil;
+    EXPECT_NO_THROW(renderer.check_capacity());
     created = added(before, scanner.scan());
     EXPECT_FALSE(created.empty()) << "the method should own GL objects";
     report.names_per_cycle = std::max(report.names_per_cycle, created.size());
@@ -239,29 +241,27 @@ GrayImage object_cycle(VolumeMethod method, const Prepared& prepared, const Shad
 }
 
 TEST_F(GlResourceTest, HundredObjectCyclesPerMethod_NoGlErrorNoLeak) {
-  const Soup soup = resource_soup();
-  const Prepared prepared = prepare(soup);
-  const ShadedSoupMesh receivers(soup);
+  const ResourceScene scene;
   const OffscreenTarget target(resource_camera().width, resource_camera().height);
-  const StencilShadowRenderer renderer;
   NameScanner scanner;
   LiveNames live = scanner.scan();
-  for (VolumeMethod method : kAllVolumeMethods) {
-    SCOPED_TRACE(std::string(volume_method_name(method)));
+  for (ShadowMethod method : kShadowMethods) {
+    if (!draws_volume(method)) continue;
+    SCOPED_TRACE(std::string(shadow_method_name(method)));
     CycleReport report;
     const auto start = std::chrono::steady_clock::now();
-    const GrayImage first = object_cycle(method, prepared, receivers, target, renderer, scanner, live, report);
+    const GrayImage first = object_cycle(method, scene, target, scanner, live, report);
     ASSERT_GT(shadowed_pixels(first), 100u) << "the sphere's shadow should be in view";
     long rss_after_warm_up = 0;
     for (int cycle = 1; cycle < kCycles; ++cycle) {
-      const GrayImage stencil = object_cycle(method, prepared, receivers, target, renderer, scanner, live, report);
+      const GrayImage stencil = object_cycle(method, scene, target, scanner, live, report);
       ASSERT_FALSE(HasFailure()) << "cycle " << cycle;
       ASSERT_EQ(stencil.pixels, first.pixels) << "cycle " << cycle << " drew other counts";
       if (cycle + 1 == kWarmUpCycles) rss_after_warm_up = resident_bytes();
     }
     report.rss_growth = resident_bytes() - rss_after_warm_up;
     report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::cout << volume_method_name(method) << ": " << kCycles << " cycles in " << report.seconds << " s, "
+    std::cout << shadow_method_name(method) << ": " << kCycles << " cycles in " << report.seconds << " s, "
               << report.names_per_cycle << " GL names per cycle, RSS growth from cycle " << kWarmUpCycles << " to "
               << kCycles << ": " << report.rss_growth / 1024 << " KiB\n";
     EXPECT_LT(report.rss_growth, kMaxRssGrowthBytes);
@@ -271,8 +271,7 @@ TEST_F(GlResourceTest, HundredObjectCyclesPerMethod_NoGlErrorNoLeak) {
 // ---- 2. context cycles -------------------------------------------------------------------------
 
 TEST(GlContextCycles, HundredContextsWithAComputeVolumeFrame_NoGlErrorNoLeak) {
-  const Soup soup = resource_soup();
-  const Prepared prepared = prepare(soup);
+  const ResourceScene scene;
   std::optional<GrayImage> first;
   long rss_after_warm_up = 0;
   const auto start = std::chrono::steady_clock::now();
@@ -288,14 +287,9 @@ TEST(GlContextCycles, HundredContextsWithAComputeVolumeFrame_NoGlErrorNoLeak) {
     const LiveNames before = scanner.scan();
     GrayImage stencil;
     {
-      const ShadedSoupMesh receivers(soup);
       const OffscreenTarget target(resource_camera().width, resource_camera().height);
-      const StencilShadowRenderer renderer;
-      const ComputeVolumeSoup gpu_soup(prepared.canonical.soup, prepared.table);
-      MethodVolume volume(VolumeMethod::cs, prepared, &gpu_soup);
-      volume.build(kLight);
-      const std::array lights{volume.light_volume()};
-      stencil = renderer.render(target, receivers, resource_camera(), lights).first_stencil;
+      ShadowMethodRenderer renderer = one_light_renderer(ShadowMethod::cs, scene.soup, scene.prepared, kLight, nullptr);
+      stencil = renderer.render(target, resource_camera()).first_stencil;
     }
     const std::vector<std::string> left = added(before, scanner.scan());
     ASSERT_TRUE(left.empty()) << "cycle " << cycle << ": names outlived their owners: " << joined(left);

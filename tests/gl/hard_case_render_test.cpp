@@ -1,5 +1,6 @@
 // Every volume method against the exact `cpu` chain on the hard cases of DESIGN.md §6 (issue 4),
-// on llvmpipe or any EGL device:
+// on llvmpipe or any EGL device, each drawn as `render --method` draws it
+// (gpu/shadow_method_renderer.h, one light at a time):
 //  1. every scene of data/scenes/hard/, every one of its lights (point and directional): each
 //     method (cpu, cs, gs, ts, pertri) builds its volume without overflow and the volume it drew
 //     is certified closed by exact/'s certify_captured_closure (DESIGN.md §4.1, on the float
@@ -26,6 +27,7 @@
 #include <string>
 #include <vector>
 
+#include "core/homogeneous_mesh.h"
 #include "core/scene.h"
 #include "exact/captured_volume.h"
 #include "exact/count_certificate.h"
@@ -34,10 +36,11 @@
 #include "gl_test_support.h"
 #include "gpu/flat_soup_renderer.h"
 #include "gpu/offscreen_target.h"
+#include "gpu/shadow_method_renderer.h"
 #include "gpu/soup_mesh.h"
 #include "gpu/stencil_shadow_renderer.h"
+#include "scene/merged_soup.h"
 #include "scene/scene_file.h"
-#include "volume_method_support.h"
 #include "volume_test_support.h"
 
 namespace shadowcert::gpu {
@@ -179,8 +182,8 @@ std::size_t max_boundary_differences(const CountComparison& c) {
 // The counts equal the reference's on every non-boundary pixel (pertri: but for at most
 // kMaxPertriUncancelledFraction of the pixels, off by at most kMaxPertriUncancelledStep), and differ on few boundary
 // pixels.
-void expect_equal_off_boundaries(VolumeMethod method, const CountComparison& c) {
-  if (method == VolumeMethod::pertri) {
+void expect_equal_off_boundaries(ShadowMethod method, const CountComparison& c) {
+  if (method == ShadowMethod::pertri) {
     EXPECT_LE(c.differing_inside,
               static_cast<std::size_t>(kMaxPertriUncancelledFraction * static_cast<double>(c.pixels)))
         << "first: " << c.first_inside;
@@ -265,42 +268,42 @@ std::string light_label(std::size_t index, const Light& light) {
   return "light " + std::to_string(index) + (light.directional() ? " (directional)" : " (point)");
 }
 
-// One soup and camera uploaded once: receivers, target and renderer shared by every method and
-// light, and the visible triangle at each pixel.
+// One soup and camera, prepared once: the target every method draws into, and the visible
+// triangle at each pixel.
 struct Rig {
   Rig(const Soup& scene_soup, const Camera& scene_camera)
       : soup(scene_soup),
         camera(scene_camera),
         prepared(prepare(soup)),
-        gpu_soup(prepared.canonical.soup, prepared.table),
-        receivers(soup),
         target(camera.width, camera.height),
         ids(visible_triangles(soup, camera, target)) {}
 
-  StencilShadowFrame render(const MethodVolume& volume, StencilMethod stencil = StencilMethod::zfail) const {
-    const std::array lights{volume.light_volume()};
-    return renderer.render(target, receivers, camera, lights, {.method = stencil});
+  // `method` lit by `light` alone (one_light_renderer); cpu draws `*cpu`, which must outlive it.
+  [[nodiscard]] ShadowMethodRenderer renderer(ShadowMethod method, const Light& light, const HomogeneousMesh* cpu,
+                                              StencilMethod stencil = StencilMethod::zfail) const {
+    return one_light_renderer(method, soup, prepared, light, cpu, stencil);
+  }
+  // One frame of `renderer`, which builds its GPU volume.
+  [[nodiscard]] StencilShadowFrame render(ShadowMethodRenderer& renderer) const {
+    return renderer.render(target, camera);
   }
 
   Soup soup;
   Camera camera;
   Prepared prepared;
-  ComputeVolumeSoup gpu_soup;
-  ShadedSoupMesh receivers;
   OffscreenTarget target;
-  StencilShadowRenderer renderer;
   TriangleIds ids;
 };
 
-// Builds the volume of `light` and checks what was drawn: no overflow, closed (exact/).
-void expect_built_and_closed(MethodVolume& volume, const Light& light) {
-  SCOPED_TRACE(std::string(volume_method_name(volume.method())));
-  volume.build(light);
-  EXPECT_LE(volume.read_requested_vertices(), volume.capacity_vertices()) << "overflow: the drawn volume is truncated";
-  const std::vector<VolumeTriangle> triangles = volume.read_triangles();
-  const CapturedClosure closure = certify_captured_closure(captured_volume(triangles));
+// After a frame of `renderer`: the volume it drew did not overflow and is closed (exact/,
+// DESIGN.md §4.1, on the float triangles as drawn, read back for the GPU-built methods).
+void expect_drawn_volume_closed(const ShadowMethodRenderer& renderer) {
+  SCOPED_TRACE(std::string(shadow_method_name(renderer.method())));
+  EXPECT_NO_THROW(renderer.check_capacity()) << "overflow: the drawn volume is truncated";
+  const HomogeneousMesh drawn = renderer.first_volume();
+  const CapturedClosure closure = certify_captured_closure(drawn);
   EXPECT_TRUE(closure.certificate.closed)
-      << closure.certificate.unbalanced.size() << " unbalanced edges of " << triangles.size() << " triangles";
+      << closure.certificate.unbalanced.size() << " unbalanced edges of " << drawn.triangles.size() << " triangles";
 }
 
 class HardCaseRenderTest : public GlTest, public ::testing::WithParamInterface<std::string> {};
@@ -308,32 +311,36 @@ class HardCaseRenderTest : public GlTest, public ::testing::WithParamInterface<s
 TEST_P(HardCaseRenderTest, EveryMethodIsClosedAndCountsAsCpuOffBoundaries) {
   const Scene scene = load_hard_scene(GetParam());
   ASSERT_FALSE(scene.lights.empty());
-  const Rig rig(merged(scene), scene.camera);
+  const Rig rig(merged_soup(scene), scene.camera);
   std::optional<Rig> rounded_rig;  // the float inputs, for lights that need them as reference
   for (std::size_t l = 0; l < scene.lights.size(); ++l) {
     const Light& light = scene.lights[l];
     const std::string label = GetParam() + ", " + light_label(l, light);
     SCOPED_TRACE(label);
-    MethodVolume cpu(VolumeMethod::cpu, rig.prepared, nullptr);
-    expect_built_and_closed(cpu, light);
+    const HomogeneousMesh cpu_mesh = cpu_volume(rig.prepared, light);
+    ShadowMethodRenderer cpu = rig.renderer(ShadowMethod::cpu, light, &cpu_mesh);
     StencilShadowFrame reference = rig.render(cpu);
+    expect_drawn_volume_closed(cpu);
     std::string reference_name = "cpu";
     if (const std::size_t flat = float_flat_triangles(rig.prepared.canonical.soup, light); flat != 0) {
       if (!rounded_rig) rounded_rig.emplace(rounded_to_float(rig.soup), rig.camera);
-      MethodVolume rounded_cpu(VolumeMethod::cpu, rounded_rig->prepared, nullptr);
-      expect_built_and_closed(rounded_cpu, rounded_to_float(light));
+      const Light rounded_light = rounded_to_float(light);
+      const HomogeneousMesh rounded_mesh = cpu_volume(rounded_rig->prepared, rounded_light);
+      ShadowMethodRenderer rounded_cpu = rounded_rig->renderer(ShadowMethod::cpu, rounded_light, &rounded_mesh);
       reference = rounded_rig->render(rounded_cpu);
+      expect_drawn_volume_closed(rounded_cpu);
       reference_name = "exact chain of the float inputs";
       const CountComparison cpu_off = compare_counts(reference, rig.render(cpu), rig.ids);
       std::cout << label << ": " << flat << " casting triangles are flat in float; cpu differs from the float "
                 << "inputs' exact chain on " << cpu_off.differing_boundary + cpu_off.differing_inside << " pixels\n";
     }
-    for (VolumeMethod method : kGpuVolumeMethods) {
-      SCOPED_TRACE(std::string(volume_method_name(method)) + " against " + reference_name);
-      MethodVolume volume(method, rig.prepared, &rig.gpu_soup);
-      expect_built_and_closed(volume, light);
-      const CountComparison c = compare_counts(reference, rig.render(volume), rig.ids);
-      std::cout << label << ", " << volume_method_name(method) << " against " << reference_name << ": " << c.shadowed
+    for (ShadowMethod method : kShadowMethods) {
+      if (!builds_volume_on_gpu(method)) continue;
+      SCOPED_TRACE(std::string(shadow_method_name(method)) + " against " + reference_name);
+      ShadowMethodRenderer renderer = rig.renderer(method, light, nullptr);
+      const CountComparison c = compare_counts(reference, rig.render(renderer), rig.ids);
+      expect_drawn_volume_closed(renderer);
+      std::cout << label << ", " << shadow_method_name(method) << " against " << reference_name << ": " << c.shadowed
                 << " shadowed, " << c.boundary << " boundary pixels, " << c.differing_boundary << " of them differ; "
                 << c.differing_inside << " others differ\n";
       expect_equal_off_boundaries(method, c);
@@ -358,7 +365,7 @@ constexpr std::size_t kMinZPassOffPixels = 20000;
 
 TEST_F(GlTest, CameraInsideAVolume_ZFailEqualsCpuZPassIsOffByTheEyesCount) {
   const Scene scene = load_hard_scene("camera_inside_volume");
-  const Rig rig(merged(scene), scene.camera);
+  const Rig rig(merged_soup(scene), scene.camera);
   for (std::size_t l = 0; l < scene.lights.size(); ++l) {
     const Light& light = scene.lights[l];
     SCOPED_TRACE(light_label(l, light));
@@ -366,22 +373,23 @@ TEST_F(GlTest, CameraInsideAVolume_ZFailEqualsCpuZPassIsOffByTheEyesCount) {
         OccluderCounter(rig.prepared.canonical.soup, light).count(scene.camera.eye);
     ASSERT_TRUE(eye_count.has_value()) << "the eye must not lie on a volume boundary";
     ASSERT_GE(*eye_count, 1u) << "the eye must be inside a shadow volume";
-    MethodVolume cpu(VolumeMethod::cpu, rig.prepared, nullptr);
-    cpu.build(light);
+    const HomogeneousMesh cpu_mesh = cpu_volume(rig.prepared, light);
+    ShadowMethodRenderer cpu = rig.renderer(ShadowMethod::cpu, light, &cpu_mesh);
     const StencilShadowFrame reference = rig.render(cpu);
-    for (VolumeMethod method : kAllVolumeMethods) {
-      SCOPED_TRACE(std::string(volume_method_name(method)));
-      MethodVolume volume(method, rig.prepared, &rig.gpu_soup);
-      volume.build(light);
-      const CountComparison zfail = compare_counts(reference, rig.render(volume, StencilMethod::zfail), rig.ids);
+    for (ShadowMethod method : kShadowMethods) {
+      if (!draws_volume(method)) continue;
+      SCOPED_TRACE(std::string(shadow_method_name(method)));
+      ShadowMethodRenderer zfail_renderer = rig.renderer(method, light, &cpu_mesh, StencilMethod::zfail);
+      const CountComparison zfail = compare_counts(reference, rig.render(zfail_renderer), rig.ids);
       expect_equal_off_boundaries(method, zfail);
       // z-pass counts the faces between the eye and P: n(P) - n(eye).
-      const StencilShadowFrame zpass_frame = rig.render(volume, StencilMethod::zpass);
+      ShadowMethodRenderer zpass_renderer = rig.renderer(method, light, &cpu_mesh, StencilMethod::zpass);
+      const StencilShadowFrame zpass_frame = rig.render(zpass_renderer);
       const CountComparison zpass = compare_counts(reference, zpass_frame, rig.ids, static_cast<int>(*eye_count));
       expect_equal_off_boundaries(method, zpass);
       const CountComparison zpass_as_zfail = compare_counts(reference, zpass_frame, rig.ids);
       std::cout << "camera inside, " << light_label(l, light) << ", n(eye) = " << *eye_count << ", "
-                << volume_method_name(method) << ": z-fail differs on " << zfail.differing_inside << " + "
+                << shadow_method_name(method) << ": z-fail differs on " << zfail.differing_inside << " + "
                 << zfail.differing_boundary << " boundary pixels, z-pass on " << zpass_as_zfail.differing_inside
                 << " + " << zpass_as_zfail.differing_boundary << "\n";
       EXPECT_GE(zpass_as_zfail.differing_inside, kMinZPassOffPixels) << "z-pass should miss the eye's own count";
@@ -414,12 +422,15 @@ Soup half_fan_and_wall() {
 }
 
 // The side quads drawn on the edge a-b: +1 per triangle that holds the directed edge a -> b and
-// a far vertex (w = 0), -1 per one with b -> a. Every method splits a side quad so that exactly
-// one of its triangles holds the finite edge, and caps hold no far vertex with it, so this is
-// the edge's multiplicity as drawn.
-std::int64_t drawn_side_multiplicity(const std::vector<VolumeTriangle>& triangles, const Vec4f& a, const Vec4f& b) {
+// a far vertex (w = 0), -1 per one with b -> a (vertices compared by value: GPU-built volumes
+// are read back unwelded). Every method splits a side quad so that exactly one of its
+// triangles holds the finite edge, and caps hold no far vertex with it, so this is the edge's
+// multiplicity as drawn.
+std::int64_t drawn_side_multiplicity(const HomogeneousMesh& volume, const Vec4f& a, const Vec4f& b) {
   std::int64_t m = 0;
-  for (const VolumeTriangle& t : triangles) {
+  for (const auto& triangle : volume.triangles) {
+    const std::array<Vec4f, 3> t{volume.vertices.at(triangle[0]), volume.vertices.at(triangle[1]),
+                                 volume.vertices.at(triangle[2])};
     if (std::none_of(t.begin(), t.end(), [](const Vec4f& x) { return x[3] == 0.0f; })) continue;
     for (int k = 0; k < 3; ++k) {
       if (t[k] == a && t[(k + 1) % 3] == b) ++m;
@@ -439,18 +450,19 @@ TEST_F(GlTest, EdgeWithHundredOppositeTriangles_EveryMethodReachesMultiplicity10
   const Vec4f edge_start{0.0f, 0.0f, 0.0f, 1.0f}, edge_end{0.0f, 1.0f, 0.0f, 1.0f};
   for (const Light& light : {Light{{0.0, 0.5, -5.0, 1.0}}, Light{{0.0, 0.2, -1.0, 0.0}}}) {
     SCOPED_TRACE(light.directional() ? "directional" : "point");
-    MethodVolume cpu(VolumeMethod::cpu, rig.prepared, nullptr);
-    cpu.build(light);
+    const HomogeneousMesh cpu_mesh = cpu_volume(rig.prepared, light);
+    ShadowMethodRenderer cpu = rig.renderer(ShadowMethod::cpu, light, &cpu_mesh);
     const StencilShadowFrame reference = rig.render(cpu);
-    for (VolumeMethod method : kAllVolumeMethods) {
-      SCOPED_TRACE(std::string(volume_method_name(method)));
-      MethodVolume volume(method, rig.prepared, &rig.gpu_soup);
-      expect_built_and_closed(volume, light);
-      const std::int64_t m = drawn_side_multiplicity(volume.read_triangles(), edge_start, edge_end);
+    for (ShadowMethod method : kShadowMethods) {
+      if (!draws_volume(method)) continue;
+      SCOPED_TRACE(std::string(shadow_method_name(method)));
+      ShadowMethodRenderer renderer = rig.renderer(method, light, &cpu_mesh);
+      const CountComparison c = compare_counts(reference, rig.render(renderer), rig.ids);
+      expect_drawn_volume_closed(renderer);
+      const std::int64_t m = drawn_side_multiplicity(renderer.first_volume(), edge_start, edge_end);
       EXPECT_EQ(std::abs(m), static_cast<std::int64_t>(kBlades));
-      const CountComparison c = compare_counts(reference, rig.render(volume), rig.ids);
       std::cout << "half fan of " << kBlades << ", " << (light.directional() ? "directional" : "point") << ", "
-                << volume_method_name(method) << ": drawn m = " << m << ", " << c.shadowed << " shadowed, "
+                << shadow_method_name(method) << ": drawn m = " << m << ", " << c.shadowed << " shadowed, "
                 << c.differing_boundary << " boundary pixels differ, " << c.differing_inside << " others\n";
       EXPECT_GE(c.shadowed, kMinShadowedPixels);
       expect_equal_off_boundaries(method, c);

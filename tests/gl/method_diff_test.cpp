@@ -64,7 +64,7 @@ struct DiffScene {
   std::vector<HomogeneousMesh> cpu_volumes;
   ExactImage exact;
 
-  explicit DiffScene(Scene s) : scene(std::move(s)), soup(merged(scene)), prepared(prepare(soup)) {
+  explicit DiffScene(Scene s) : scene(std::move(s)), soup(merged_soup(scene)), prepared(prepare(soup)) {
     scene.camera.width = kWidth;
     scene.camera.height = kHeight;
     for (const SceneMesh& mesh : scene.meshes) parts.push_back({&mesh.soup});

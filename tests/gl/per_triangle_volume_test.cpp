@@ -53,7 +53,7 @@ using namespace test;
 constexpr std::size_t kMaxBoundaryPixels = 256;
 
 std::vector<std::pair<std::string, Soup>> test_soups() {
-  return {{"default scene", merged(default_scene())},
+  return {{"default scene", merged_soup(default_scene())},
           {"uv sphere", uv_sphere({0.2, 0.1, -0.3}, 1.0, 32, 16)}};
 }
 
@@ -96,7 +96,7 @@ TEST_F(GlTest, CapturedPerTriangleVolumesAreClosed) {
 
 TEST_F(GlTest, StencilCountsMatchCpuExceptOnBoundaries) {
   const Scene scene = default_scene();
-  const Soup soup = merged(scene);
+  const Soup soup = merged_soup(scene);
   const Prepared p = prepare(soup);
   const Light& light = scene.lights.front();
   const EdgeMultiplicities exact = exact_multiplicities(p.canonical.soup, p.table, light);

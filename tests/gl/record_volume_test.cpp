@@ -98,7 +98,7 @@ Soup half_fan_and_wall() {
 }
 
 TYPED_TEST(RecordVolumeTest, CapturedVolumeIsClosed) {
-  const std::vector<std::pair<std::string, Soup>> soups{{"default scene", merged(default_scene())},
+  const std::vector<std::pair<std::string, Soup>> soups{{"default scene", merged_soup(default_scene())},
                                                         {"uv sphere", uv_sphere({0.2, 0.1, -0.3}, 1.0, 32, 16)},
                                                         {"fan of 100", nonmanifold_fan(100)},
                                                         {"half fan", half_fan_and_wall()}};
@@ -154,7 +154,7 @@ CountComparison compare_with_cpu(const Soup& soup, const Light& light, const Cam
 
 TYPED_TEST(RecordVolumeTest, StencilCountsMatchCpuExceptOnBoundaries) {
   const Scene scene = default_scene();
-  const CountComparison c = compare_with_cpu<TypeParam>(merged(scene), scene.lights.front(), scene.camera);
+  const CountComparison c = compare_with_cpu<TypeParam>(merged_soup(scene), scene.lights.front(), scene.camera);
   std::cout << RecordMethod<TypeParam>::kName << " vs cpu (default.json): " << c.differing << " differing stencil pixels of " << c.shadowed
             << " shadowed\n";
   EXPECT_GT(c.shadowed, kMinShadowedPixels);

@@ -129,7 +129,7 @@ constexpr double kMaxMismatchFractionAt256 = 0.25;
 
 TEST_F(GlTest, LitMaskAgreesWithCpuExceptOnABandThatNarrowsWithSize) {
   const Scene scene = default_scene();
-  const Soup soup = merged(scene);
+  const Soup soup = merged_soup(scene);
   const Light& light = scene.lights.front();
   const CanonicalSoup canonical = canonical_soup(soup);
   const EdgeTable table = build_edge_table(canonical.soup);

@@ -39,7 +39,7 @@ constexpr double kMedianSumSlack = 0.25;
 // default.json with its inputs for every method, sized down.
 struct DefaultInputs {
   Scene scene = default_scene();
-  Soup soup = merged(scene);
+  Soup soup = merged_soup(scene);
   Prepared prepared = prepare(soup);
   std::vector<ShadedSoupPart> parts;
   std::vector<HomogeneousMesh> cpu_volumes;

@@ -1,25 +1,37 @@
 #pragma once
-// What the GL volume tests share (compute, per-triangle, gs/ts and shadow-map tests): the
-// canonical soup and edge table of a test soup, the default scene, and the closure check of
+// What the GL volume tests share: the canonical soup and edge table of a test soup, the
+// default scene, the reference volume, one method lit by one light, and the closure check of
 // captured triangles. The reference every method is compared with is the exact cpu chain as
 // GPU geometry, exact/chain_mesh.h's chain_mesh (what render --method cpu draws): tests that
-// use it link shadowcert_exact (CPU reference only: gpu/ never does).
+// use it link shadowcert_exact (CPU reference only: gpu/ never does). Scenes are merged into
+// one soup as the CLI merges them (scene/merged_soup.h).
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <map>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "core/camera.h"
+#include "core/homogeneous_mesh.h"
 #include "core/scene.h"
+#include "exact/chain_mesh.h"
+#include "exact/edge_multiplicity.h"
+#include "exact/shadow_volume_chain.h"
 #include "gpu/compute_volume.h"
+#include "gpu/offscreen_target.h"
+#include "gpu/shadow_method_renderer.h"
 #include "gpu/shadow_volume_geometry.h"
+#include "gpu/stencil_shadow_renderer.h"
 #include "scene/canonical_soup.h"
 #include "scene/edge_table.h"
+#include "scene/merged_soup.h"
 #include "scene/scene_file.h"
 
 namespace shadowcert::gpu::test {
@@ -45,15 +57,125 @@ inline Scene default_scene() {
                     });
 }
 
-// As cli/scene_input.cpp's merged_soup: every mesh's vertices and triangles, one soup.
-inline Soup merged(const Scene& scene) {
-  Soup out;
-  for (const SceneMesh& mesh : scene.meshes) {
-    const auto offset = static_cast<std::uint32_t>(out.vertices.size());
-    out.vertices.insert(out.vertices.end(), mesh.soup.vertices.begin(), mesh.soup.vertices.end());
-    for (Triangle t : mesh.soup.triangles) out.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+// The exact chain of `light` over p's canonical soup (exact multiplicities, assembled) as the
+// float triangles `render --method cpu` uploads (exact/chain_mesh.h): the reference volume.
+inline HomogeneousMesh cpu_volume(const Prepared& p, const Light& light) {
+  const Soup& canonical = p.canonical.soup;
+  const EdgeMultiplicities m = exact_multiplicities(canonical, p.table, light);
+  return chain_mesh(assemble_chain(canonical, p.table, m, light), canonical, light);
+}
+
+// What ShadowMethodRenderer needs to draw `light` alone over `receivers`, the casters being
+// `p` (prepare() of the receivers' merged soup); cpu draws `*cpu` (cpu_volume(p, light); null
+// for the other methods). The spans point into the arguments: construct the renderer while
+// they live, and keep `*cpu` alive as long as the renderer (it reads the rest while constructed).
+inline ShadowMethodScene one_light_scene(std::span<const ShadedSoupPart> receivers, const Prepared& p,
+                                         const Light& light, const HomogeneousMesh* cpu) {
+  ShadowMethodScene scene;
+  scene.receivers = receivers;
+  scene.lights = std::span(&light, 1);
+  scene.canonical = &p.canonical.soup;
+  scene.table = &p.table;
+  if (cpu != nullptr) scene.cpu_volumes = std::span(cpu, 1);
+  return scene;
+}
+
+// `method` (any of gpu/shadow_method_renderer.h's) rendering `soup` lit by `light` alone, every
+// triangle a receiver (one part, default albedo) and a caster; `prepared` = prepare(soup). cpu
+// draws `*cpu` (cpu_volume(prepared, light)), which must outlive the renderer; the other
+// methods ignore it (null allowed). The renderer uploads and compiles everything it draws
+// with, so its lifetime is that of every GL object the method needs. Throws as the
+// ShadowMethodRenderer constructor (std::invalid_argument for cpu without a volume).
+inline ShadowMethodRenderer one_light_renderer(ShadowMethod method, const Soup& soup, const Prepared& prepared,
+                                               const Light& light, const HomogeneousMesh* cpu,
+                                               StencilMethod stencil = StencilMethod::zfail) {
+  const std::array parts{ShadedSoupPart{&soup}};
+  ShadowMethodOptions options;
+  options.stencil = stencil;
+  return ShadowMethodRenderer(method, one_light_scene(parts, prepared, light, cpu), options);
+}
+
+// A scene ready for every method, as `shadowcert render` prepares it: its meshes merged
+// (merged_soup) as the casters, canonicalised; each mesh a receiver part; cpu's volume of
+// each light (cpu_volume). Set the camera's size before or after; change the lights only
+// before (cpu_volumes follow them). Not copyable: `parts` point into `scene`.
+struct MethodInputs {
+  explicit MethodInputs(Scene s) : scene(std::move(s)), soup(merged_soup(scene)), prepared(prepare(soup)) {
+    for (const SceneMesh& mesh : scene.meshes) parts.push_back({&mesh.soup});
+    for (const Light& light : scene.lights) cpu_volumes.push_back(cpu_volume(prepared, light));
+  }
+  MethodInputs(const MethodInputs&) = delete;
+  MethodInputs& operator=(const MethodInputs&) = delete;
+
+  // Every light (the renderer's cpu draws cpu_volumes).
+  [[nodiscard]] ShadowMethodScene method_scene() const {
+    return {parts, scene.lights, &prepared.canonical.soup, &prepared.table, cpu_volumes};
+  }
+  // Light k alone; cpu draws `cpu` when given (it must outlive the renderer), else cpu_volumes[k].
+  [[nodiscard]] ShadowMethodScene light_scene(std::size_t k, const HomogeneousMesh* cpu = nullptr) const {
+    return one_light_scene(parts, prepared, scene.lights.at(k), cpu != nullptr ? cpu : &cpu_volumes.at(k));
+  }
+
+  Scene scene;
+  Soup soup;
+  Prepared prepared;
+  std::vector<ShadedSoupPart> parts;
+  std::vector<HomogeneousMesh> cpu_volumes;
+};
+
+// A method's first-light stencil counts (z-fail) against cpu's, pixel by pixel.
+struct StencilDifference {
+  std::size_t differing = 0;  // pixels whose counts differ
+  std::size_t shadowed = 0;   // pixels cpu counts non-zero
+};
+
+// `method` and cpu (the exact chain) drawing `soup` lit by `light` alone (one_light_renderer),
+// seen by `camera`. Throws VolumeCapacityError when the method's volume overflowed.
+inline StencilDifference stencil_difference_from_cpu(ShadowMethod method, const Soup& soup, const Light& light,
+                                                     const Camera& camera) {
+  const Prepared p = prepare(soup);
+  const HomogeneousMesh cpu_mesh = cpu_volume(p, light);
+  const OffscreenTarget target(camera.width, camera.height);
+  const GrayImage cpu = one_light_renderer(ShadowMethod::cpu, soup, p, light, &cpu_mesh).render(target, camera).first_stencil;
+  ShadowMethodRenderer renderer = one_light_renderer(method, soup, p, light, nullptr);
+  const GrayImage counts = renderer.render(target, camera).first_stencil;
+  renderer.check_capacity();
+  StencilDifference out;
+  for (std::size_t i = 0; i < cpu.pixels.size(); ++i) {
+    out.differing += cpu.pixels[i] != counts.pixels.at(i);
+    out.shadowed += cpu.pixels[i] != 0;
   }
   return out;
+}
+
+// `blades` triangles on the edge (0,0,0)-(0,1,0), apexes on the half circle x > 0 at y = 0.5,
+// alternately flipped. With the light in the plane x = 0 every apex lies on one side of the
+// plane (edge, light), so the edge's |m| is `blades` (DESIGN.md §6: fans beyond one record,
+// patch or invocation); nonmanifold_fan spreads its apexes all around and keeps |m| small.
+inline Soup half_fan(std::uint32_t blades) {
+  constexpr double kPi = 3.14159265358979323846;
+  Soup fan;
+  fan.vertices = {{0.0, 0.0, 0.0}, {0.0, 1.0, 0.0}};
+  for (std::uint32_t i = 0; i < blades; ++i) {
+    const double angle = -kPi / 2 + kPi * (i + 0.5) / blades;
+    fan.vertices.push_back({std::cos(angle), 0.5, std::sin(angle)});
+    fan.triangles.push_back(i % 2 == 0 ? Triangle{0, 1, i + 2} : Triangle{1, 0, i + 2});
+  }
+  return fan;
+}
+
+// half_fan(blades) and a 12 x 12 wall (two triangles) in the plane z = kHalfFanWallZ, behind the
+// fan seen from kHalfFanLight (in the plane x = 0): it receives the fan's shadow.
+inline constexpr double kHalfFanWallZ = 3.0;
+inline const Light kHalfFanLight{{0.0, 0.5, -5.0, 1.0}};
+inline Soup half_fan_and_wall(std::uint32_t blades) {
+  constexpr double h = 6.0;
+  Soup wall;
+  wall.vertices = {{-h, -h, kHalfFanWallZ}, {h, -h, kHalfFanWallZ}, {h, h, kHalfFanWallZ}, {-h, h, kHalfFanWallZ}};
+  wall.triangles = {{0, 1, 2}, {0, 2, 3}};
+  Soup soup = half_fan(blades);
+  append_soup(soup, wall);
+  return soup;
 }
 
 // Every directed edge (a, b) of the welded triangles minus its reverse: zero when closed.

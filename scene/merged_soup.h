@@ -1,0 +1,26 @@
+#pragma once
+// Several soups as one (DESIGN.md §1, §3): a scene's shadow volumes see every triangle of every
+// mesh as a caster, so inspect, certify, render and diff work on the scene's meshes
+// concatenated. Concatenation only: no welding (scene/welded_soup.h, canonical_soup do that
+// later), so every vertex and triangle keeps its values and its relative order.
+#include "core/scene.h"
+#include "core/soup.h"
+
+namespace shadowcert {
+
+// Appends `from` to `to`: from's vertices after to's, then from's triangles with every index
+// raised by to's former vertex count, so that each names the same three points as before.
+// Normals (Soup keeps none or one per vertex; a soup without vertices counts as having them)
+// are kept only when both soups have them; otherwise the result has none, and shading falls
+// back to face normals. Preconditions: both soups valid (indices in range, normals empty or
+// one per vertex). Throws std::length_error("append_soup: ...") when the result would hold
+// more than 2^32 - 1 vertices (indices are 32-bit); `to` is then unchanged.
+void append_soup(Soup& to, const Soup& from);
+
+// Every mesh of `scene`, in the scene's order, appended (append_soup) to an empty soup: mesh
+// k's vertices follow those of meshes 0..k-1; normals are kept only when every mesh has them.
+// An empty scene gives an empty soup. Throws InputError naming the first mesh (SceneMesh::name)
+// that takes the total past 2^32 - 1 vertices.
+[[nodiscard]] Soup merged_soup(const Scene& scene);
+
+}  // namespace shadowcert
