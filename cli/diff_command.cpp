@@ -8,7 +8,6 @@
 #include <filesystem>
 #include <memory>
 #include <nlohmann/json.hpp>
-#include <numeric>
 #include <optional>
 #include <string>
 #include <vector>
@@ -16,25 +15,15 @@
 #include "cli/diff_report.h"
 #include "cli/exit_code.h"
 #include "cli/image_size.h"
-#include "cli/mesh_palette.h"
 #include "cli/output_file.h"
+#include "cli/scene_comparison.h"
 #include "cli/scene_input.h"
 #include "core/input_error.h"
-#include "exact/captured_volume.h"
-#include "exact/chain_mesh.h"
-#include "exact/edge_multiplicity.h"
 #include "exact/exact_image.h"
-#include "exact/input_rounding.h"
 #include "exact/pixel_comparison.h"
-#include "exact/shadow_volume_chain.h"
-#include "gpu/depth_precision.h"
 #include "gpu/egl_context.h"
-#include "gpu/gl_environment_error.h"
-#include "gpu/offscreen_target.h"
 #include "gpu/png_image.h"
 #include "gpu/shadow_method_renderer.h"
-#include "scene/canonical_soup.h"
-#include "scene/edge_table.h"
 #include "scene/merged_soup.h"
 
 namespace shadowcert::cli {
@@ -57,82 +46,7 @@ struct DiffOptions {
   long long shadowmap_size = gpu::kDefaultShadowMapSize;
 };
 
-// Robust methods must show zero hard errors and closed volumes (DESIGN.md §5); the shadow map
-// is the baseline whose errors are its speed-against-error figures (§7).
-bool robust(gpu::ShadowMethod method) { return method != gpu::ShadowMethod::shadowmap; }
-
-std::vector<gpu::ShadowMethod> parse_methods(const std::string& list) {
-  if (list.empty()) return {gpu::kShadowMethods.begin(), gpu::kShadowMethods.end()};
-  std::vector<gpu::ShadowMethod> methods;
-  std::size_t start = 0;
-  while (start <= list.size()) {
-    const std::size_t comma = std::min(list.find(',', start), list.size());
-    const std::string name = list.substr(start, comma - start);
-    const std::optional<gpu::ShadowMethod> method = gpu::parse_shadow_method(name);
-    if (!method)
-      throw CLI::ValidationError("--methods", "unknown method '" + name + "': use cpu, cs, gs, ts, pertri, shadowmap");
-    if (std::find(methods.begin(), methods.end(), *method) == methods.end()) methods.push_back(*method);
-    start = comma + 1;
-  }
-  return methods;
-}
-
-// The exact image's options: the GL depth band, and a progress bar on stderr when stderr is a
-// terminal; nothing otherwise (logs and pipes get no carriage returns).
-ExactImageOptions exact_options() {
-  ExactImageOptions options;
-  options.depth_band = [](double view_depth) { return gpu::depth_band(view_depth); };
-  if (isatty(fileno(stderr)) == 0) return options;
-  options.progress = [](std::string_view stage, std::uint64_t done, std::uint64_t total) {
-    constexpr int kBarWidth = 32;
-    const double fraction = total == 0 ? 1.0 : static_cast<double>(done) / static_cast<double>(total);
-    const auto filled = static_cast<std::size_t>(fraction * kBarWidth);
-    fmt::print(stderr, "\rexact image, {:<6} [{}{}] {:3.0f}%", stage, std::string(filled, '#'),
-               std::string(kBarWidth - filled, '.'), 100.0 * fraction);
-    if (done >= total) fmt::print(stderr, "\n");
-    std::fflush(stderr);
-  };
-  return options;
-}
-
-// One method against one light.
-struct LightRun {
-  PixelComparison comparison;
-  gpu::StencilShadowFrame frame;
-  std::optional<ClosureCertificate> closure;  // volume methods
-  std::uint64_t volume_triangles = 0;
-  double gl_ms = 0.0;
-  std::string capacity_error;  // a GPU-built volume overflowed its buffers (then drawn open)
-};
-
-struct MethodRun {
-  gpu::ShadowMethod method = gpu::ShadowMethod::cpu;
-  std::vector<LightRun> lights;
-
-  [[nodiscard]] std::uint64_t sum(std::uint64_t PixelComparison::*figure) const {
-    std::uint64_t n = 0;
-    for (const LightRun& l : lights) n += l.comparison.*figure;
-    return n;
-  }
-  [[nodiscard]] std::optional<bool> closed() const {
-    if (!gpu::draws_volume(method)) return std::nullopt;
-    return std::all_of(lights.begin(), lights.end(), [](const LightRun& l) { return l.closure->closed; });
-  }
-  [[nodiscard]] double gl_ms() const {
-    return std::accumulate(lights.begin(), lights.end(), 0.0, [](double s, const LightRun& l) { return s + l.gl_ms; });
-  }
-  [[nodiscard]] bool failed() const {
-    return robust(method) && (sum(&PixelComparison::hard_errors) > 0 || closed() == false);
-  }
-};
-
-// The frame's coverage (alpha) and the method's lit mask, gated by coverage.
-std::vector<std::uint8_t> coverage(const gpu::RgbaImage& colour) {
-  std::vector<std::uint8_t> c(std::size_t{colour.width} * colour.height);
-  for (std::size_t p = 0; p < c.size(); ++p) c[p] = colour.pixels[4 * p + 3] != 0 ? 255 : 0;
-  return c;
-}
-
+// The method's lit mask, gated by coverage (the frame's alpha).
 gpu::GrayImage gl_mask(const gpu::StencilShadowFrame& frame) {
   gpu::GrayImage mask(frame.first_lit_mask.width, frame.first_lit_mask.height);
   for (std::size_t p = 0; p < mask.pixels.size(); ++p)
@@ -225,7 +139,7 @@ nlohmann::json method_json(const MethodRun& run, const DiffOptions& options) {
 }
 
 int run_diff(const DiffOptions& options) {
-  const std::vector<gpu::ShadowMethod> methods = parse_methods(options.methods);
+  const std::vector<gpu::ShadowMethod> methods = parse_shadow_methods(options.methods, "--methods");
   if (options.zpass && options.zfail) throw CLI::ValidationError("--zpass", "excludes --zfail");
   if (options.shadowmap_size < 1 || options.shadowmap_size > gpu::kMaxShadowMapSize)
     throw CLI::ValidationError("--shadowmap-size", fmt::format("must be in [1, {}], got {}", gpu::kMaxShadowMapSize,
@@ -236,77 +150,19 @@ int run_diff(const DiffOptions& options) {
   const Soup merged = merged_soup(scene);
   if (merged.triangles.empty()) throw InputError(options.input, "no triangle to render");
   const std::size_t light_count = scene.lights.size();
-  double rounded_seconds = 0.0;  // the float-rounded scene's exact image
 
-  // The reference: every triangle of the scene receives and casts, as in the GL methods. The
-  // GPU gets the scene in float: where that rounding changes the exact answer, the pixel is
-  // ambiguous (exact/input_rounding.h), so the scene is imaged twice.
-  const ExactImage exact = exact_image_of_float_input(merged, scene.lights, scene.camera, exact_options(), &rounded_seconds);
-
-  // The volume methods' inputs (as in render): canonical soup, edge table, cpu's exact chains.
-  const bool any_volume = std::any_of(methods.begin(), methods.end(), gpu::draws_volume);
-  std::optional<CanonicalSoup> canonical;
-  EdgeTable table;
-  std::vector<HomogeneousMesh> cpu_volumes;
-  if (any_volume) {
-    canonical = canonical_soup(merged);
-    table = build_edge_table(canonical->soup);
-  }
-  if (std::find(methods.begin(), methods.end(), gpu::ShadowMethod::cpu) != methods.end())
-    for (const Light& light : scene.lights) {
-      const EdgeMultiplicities m = exact_multiplicities(canonical->soup, table, light);
-      cpu_volumes.push_back(chain_mesh(assemble_chain(canonical->soup, table, m, light), canonical->soup, light));
-    }
-
-  std::optional<gpu::EglContext> context;
-  try {
-    context.emplace(gpu::EglContextOptions{options.device, gpu::kGlDebugByDefault});
-  } catch (const gpu::GlEnvironmentError& e) {
-    throw gpu::GlEnvironmentError(
-        "diff needs OpenGL 4.5 core through headless EGL (a GPU driver or Mesa's llvmpipe: packages "
-        "libegl-mesa0 libgl1-mesa-dri); " + std::string(e.what()));
-  }
-  const std::vector<gpu::ShadedSoupPart> parts = shaded_parts(scene);
-  const gpu::OffscreenTarget target(scene.camera.width, scene.camera.height);
-  gpu::ShadowMethodOptions method_options;
-  method_options.stencil = options.zpass ? gpu::StencilMethod::zpass : gpu::StencilMethod::zfail;
-  method_options.shadow_map_size = static_cast<std::uint32_t>(options.shadowmap_size);
-
-  // Each method renders each light alone (its stencil and mask are that light's), so that
-  // every light is compared, not only the first.
-  std::vector<MethodRun> runs;
-  for (gpu::ShadowMethod method : methods) {
-    MethodRun run{method, {}};
-    for (std::size_t k = 0; k < light_count; ++k) {
-      gpu::ShadowMethodScene method_scene;
-      method_scene.receivers = parts;
-      method_scene.lights = std::span<const Light>(&scene.lights[k], 1);
-      if (canonical) method_scene.canonical = &canonical->soup;
-      method_scene.table = &table;
-      if (method == gpu::ShadowMethod::cpu) method_scene.cpu_volumes = std::span<const HomogeneousMesh>(&cpu_volumes[k], 1);
-      gpu::ShadowMethodRenderer renderer(method, method_scene, method_options);
-      LightRun l;
-      l.frame = renderer.render(target, scene.camera);
-      try {
-        renderer.check_capacity();
-      } catch (const gpu::VolumeCapacityError& e) {
-        l.capacity_error = e.what();  // what was drawn is still compared and certified (open)
-      }
-      const std::vector<std::uint8_t> covered = coverage(l.frame.colour);
-      RenderedPixels rendered{scene.camera.width, scene.camera.height, covered, l.frame.first_lit_mask.pixels, {}};
-      if (gpu::draws_volume(method)) rendered.counts = l.frame.first_stencil.pixels;
-      l.comparison = compare_pixels(exact, k, rendered);
-      if (gpu::draws_volume(method)) {
-        l.closure = certify_captured_closure(renderer.first_volume()).certificate;
-        l.volume_triangles = renderer.volume_triangles();
-      }
-      const std::vector<double> ms = renderer.render_frames(target, scene.camera, kTimedFrames);
-      l.gl_ms = std::accumulate(ms.begin(), ms.end(), 0.0) / static_cast<double>(ms.size());
-      run.lights.push_back(std::move(l));
-    }
-    runs.push_back(std::move(run));
-  }
-  const bool passed = std::none_of(runs.begin(), runs.end(), [](const MethodRun& r) { return r.failed(); });
+  const gpu::EglContext context = open_gl_context("diff", options.device);
+  SceneComparisonOptions comparison_options;
+  comparison_options.method_options.stencil = options.zpass ? gpu::StencilMethod::zpass : gpu::StencilMethod::zfail;
+  comparison_options.method_options.shadow_map_size = static_cast<std::uint32_t>(options.shadowmap_size);
+  comparison_options.timed_frames = kTimedFrames;
+  // A progress bar only on a terminal: logs and pipes get no carriage returns.
+  comparison_options.progress = isatty(fileno(stderr)) != 0;
+  const SceneComparison comparison = compare_scene(scene, methods, comparison_options);
+  const ExactImage& exact = comparison.exact;
+  const double rounded_seconds = comparison.rounded_seconds;
+  const std::vector<MethodRun>& runs = comparison.runs;
+  const bool passed = comparison.passed();
 
   // Images: the exact masks and counts, and per method its mask and overlay.
   const auto exact_images = [&](std::size_t k) {
@@ -341,8 +197,8 @@ int run_diff(const DiffOptions& options) {
       {"input", options.input},
       {"size", {scene.camera.width, scene.camera.height}},
       {"stencil", options.zpass ? "zpass" : "zfail"},
-      {"renderer", context->renderer()},
-      {"device", context->device()},
+      {"renderer", context.renderer()},
+      {"device", context.device()},
       {"lights", light_count},
       {"triangles", merged.triangles.size()},
       {"exact_seconds", exact.stats.seconds},
@@ -370,7 +226,7 @@ int run_diff(const DiffOptions& options) {
     report.facts = {{"image", fmt::format("{}x{}, {} light(s), {} triangles", scene.camera.width, scene.camera.height,
                                           light_count, merged.triangles.size())},
                     {"stencil", options.zpass ? "z-pass" : "z-fail"},
-                    {"renderer", context->renderer()},
+                    {"renderer", context.renderer()},
                     {"exact image", fmt::format("{:.2f} s (tree {:.2f}, hits {:.2f}, footprints {:.2f}, counts {:.2f}; "
                                                 "{} rays, {} counts), and {:.2f} s for the float-rounded scene",
                                                 exact.stats.seconds, exact.stats.tree_seconds, exact.stats.hit_seconds,
@@ -400,7 +256,7 @@ int run_diff(const DiffOptions& options) {
   }
 
   fmt::print("{}: {} triangles, {} light(s), {}x{}, {} on {}\n", options.input, merged.triangles.size(), light_count,
-             scene.camera.width, scene.camera.height, options.zpass ? "zpass" : "zfail", context->renderer());
+             scene.camera.width, scene.camera.height, options.zpass ? "zpass" : "zfail", context.renderer());
   fmt::print("  exact image: {:.2f} s (tree {:.2f}, hits {:.2f}, footprints {:.2f}, counts {:.2f}), float-rounded "
              "scene {:.2f} s; ambiguous pixels {}\n",
              exact.stats.seconds, exact.stats.tree_seconds, exact.stats.hit_seconds, exact.stats.footprint_seconds,

@@ -7,17 +7,23 @@
 
 #include <atomic>
 #include <chrono>
+#include <condition_variable>
 #include <cstdio>
 #include <filesystem>
-#include <future>
 #include <memory>
+#include <mutex>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <stop_token>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "cli/exit_code.h"
+#include "cli/fuzz_gl.h"
+#include "cli/image_size.h"
 #include "cli/output_file.h"
+#include "cli/scene_comparison.h"
 #include "exact/fuzz_campaign.h"
 #include "exact/fuzz_reproducer.h"
 #include "exact/fuzz_run.h"
@@ -45,36 +51,63 @@ struct FuzzOptions {
   unsigned threads = 0;  // 0: every core
   std::size_t max_reproducers = 4;
   bool shrink_findings = false;
+  std::string gl_methods = "cpu,cs,gs,ts,pertri";
+  std::string gl_size = "64x48";
+  std::optional<int> device;
 };
 
 using Clock = std::chrono::steady_clock;
 
-// Runs the campaign on another thread and shows its progress on stderr meanwhile.
+// Shows the progress of work running on the calling thread: a line on stderr from a helper
+// thread, until destroyed. (The work stays on the calling thread: GL contexts are per thread.)
+class ProgressLine {
+ public:
+  ProgressLine(std::string what, std::uint64_t total, const std::atomic<std::uint64_t>& done)
+      : thread_([this, what = std::move(what), total, &done](std::stop_token stop) { show(stop, what, total, done); }) {}
+  ~ProgressLine() {
+    thread_.request_stop();
+    wake_.notify_all();
+  }
+  ProgressLine(const ProgressLine&) = delete;
+  ProgressLine& operator=(const ProgressLine&) = delete;
+
+ private:
+  void show(std::stop_token stop, const std::string& what, std::uint64_t total,
+            const std::atomic<std::uint64_t>& done) {
+    const auto start = Clock::now();
+    const bool terminal = isatty(fileno(stderr)) != 0;
+    const auto period = terminal ? kTerminalProgressPeriod : kLogProgressPeriod;
+    bool shown = false;
+    std::unique_lock lock(mutex_);
+    while (!wake_.wait_for(lock, stop, period, [] { return false; })) {
+      if (stop.stop_requested()) break;
+      const std::uint64_t n = done.load();
+      const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+      const double rate = seconds > 0.0 ? static_cast<double>(n) / seconds : 0.0;
+      const double left = rate > 0.0 ? static_cast<double>(total - n) / rate : 0.0;
+      const std::string line =
+          fmt::format("{}: {}/{} cases, {:.0f} cases/s, {:.0f} s left", what, n, total, rate, left);
+      if (terminal)
+        fmt::print(stderr, "\r{:<70}", line);
+      else
+        fmt::print(stderr, "{}\n", line);
+      std::fflush(stderr);
+      shown = true;
+    }
+    if (shown && terminal) fmt::print(stderr, "\r{:<70}\r", "");
+  }
+
+  std::mutex mutex_;
+  std::condition_variable_any wake_;
+  std::jthread thread_;  // last: started once the members it uses exist
+};
+
+// Runs the campaign on this thread and shows its progress on stderr meanwhile.
 FuzzCampaignResult run_with_progress(FuzzCampaignOptions& campaign) {
   std::atomic<std::uint64_t> done{0};
   campaign.progress = &done;
-  const auto start = Clock::now();
-  std::future<FuzzCampaignResult> future =
-      std::async(std::launch::async, [&campaign] { return run_fuzz_campaign(campaign); });
-  const bool terminal = isatty(fileno(stderr)) != 0;
-  const auto period = terminal ? kTerminalProgressPeriod : kLogProgressPeriod;
-  bool shown = false;
-  while (future.wait_for(period) != std::future_status::ready) {
-    const std::uint64_t n = done.load();
-    const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
-    const double rate = seconds > 0.0 ? static_cast<double>(n) / seconds : 0.0;
-    const double left = rate > 0.0 ? static_cast<double>(campaign.cases - n) / rate : 0.0;
-    const std::string line =
-        fmt::format("fuzz: {}/{} cases, {:.0f} cases/s, {:.0f} s left", n, campaign.cases, rate, left);
-    if (terminal)
-      fmt::print(stderr, "\r{:<70}", line);
-    else
-      fmt::print(stderr, "{}\n", line);
-    std::fflush(stderr);
-    shown = true;
-  }
-  if (shown && terminal) fmt::print(stderr, "\r{:<70}\r", "");
-  return future.get();
+  const ProgressLine progress("fuzz", campaign.cases, done);
+  return run_fuzz_campaign(campaign);
 }
 
 std::string family_list(const std::vector<std::uint64_t>& counts) {
@@ -189,9 +222,44 @@ nlohmann::json tally_json(const FuzzRun& run, const FuzzRunTally& t) {
           {"failures_by_placement", by_placement}};
 }
 
+void print_gl_summary(const FuzzGlOptions& gl, const FuzzGlResult& result, const gpu::EglContext& context) {
+  fmt::print("GL methods: {}x{} images of each case's fuzz view (docs/fuzzing.md), z-fail, on {}\n", gl.width,
+             gl.height, context.renderer());
+  fmt::print("  {:<16}{:>5}{:>10}{:>9}{:>12}{:>12}{:>12}{:>12}{:>10}\n", "run", "must", "failures", "closure",
+             "hard-error", "hard px", "ambiguous", "agree", "capacity");
+  for (std::size_t m = 0; m < gl.methods.size(); ++m) {
+    const FuzzGlTally& t = result.methods[m];
+    fmt::print("  {:<16}{:>5}{:>10}{:>9}{:>12}{:>12}{:>12}{:>12}{:>10}\n", gl_run_name(gl.methods[m]),
+               robust(gl.methods[m]) ? "yes" : "no", t.failures, t.closure_failures, t.hard_errors,
+               t.hard_error_pixels, t.ambiguous_pixels, t.agree_pixels, t.capacity_errors);
+  }
+  const double rate = result.seconds > 0.0 ? static_cast<double>(result.cases) / result.seconds : 0.0;
+  fmt::print(
+      "  (closure, hard-error, capacity: cases; hard px, ambiguous, agree: pixels summed over the cases)\n"
+      "{} cases in {:.2f} s on one GL thread: {:.1f} cases/s ({:.2f} s of it exact images)\n",
+      result.cases, result.seconds, rate, result.exact_seconds);
+}
+
+nlohmann::json gl_tally_json(gpu::ShadowMethod method, const FuzzGlTally& t) {
+  nlohmann::json by_family = nlohmann::json::object(), by_placement = nlohmann::json::object();
+  for (std::size_t i = 0; i < t.failures_by_family.size(); ++i)
+    by_family[std::string(family_name(static_cast<SoupFamily>(i)))] = t.failures_by_family[i];
+  for (std::size_t i = 0; i < t.failures_by_placement.size(); ++i)
+    by_placement[std::string(placement_name(static_cast<LightPlacement>(i)))] = t.failures_by_placement[i];
+  return {{"must_not_fail", robust(method)},
+          {"failures", t.failures},
+          {"closure_failures", t.closure_failures},
+          {"hard_errors", t.hard_errors},
+          {"capacity_errors", t.capacity_errors},
+          {"hard_error_pixels", t.hard_error_pixels},
+          {"ambiguous_pixels", t.ambiguous_pixels},
+          {"agree_pixels", t.agree_pixels},
+          {"volume_triangles", t.volume_triangles},
+          {"failures_by_family", by_family},
+          {"failures_by_placement", by_placement}};
+}
+
 int run_fuzz(const FuzzOptions& options) {
-  if (options.gl)
-    throw CLI::ValidationError("--gl", "not yet: the GL methods' captured volumes are not wired into fuzz yet");
   FuzzCampaignOptions campaign;
   campaign.seed = options.seed;
   campaign.cases = options.cases;
@@ -207,8 +275,37 @@ int run_fuzz(const FuzzOptions& options) {
       options.threads > 0 ? options.threads : static_cast<unsigned>(tbb::info::default_concurrency());
   const tbb::global_control parallelism(tbb::global_control::max_allowed_parallelism, threads);
 
+  // The GL part's options are checked, and its context made current on this thread, before
+  // the exact part runs: a machine without EGL fails at once (exit 2, the driver's message).
+  FuzzGlOptions gl;
+  std::optional<gpu::EglContext> context;
+  if (options.gl) {
+    gl.seed = options.seed;
+    gl.cases = options.cases;
+    gl.triangles = options.triangles;
+    gl.methods = parse_shadow_methods(options.gl_methods, "--gl-methods");
+    Camera size;
+    apply_image_size(options.gl_size, size, "--gl-size");
+    gl.width = size.width;
+    gl.height = size.height;
+    gl.max_shrunk_per_method = options.max_reproducers;
+    context.emplace(open_gl_context("fuzz --gl", options.device));
+  }
+
   const FuzzCampaignResult result = run_with_progress(campaign);
   print_summary(options, campaign, result, threads);
+
+  // Then the GL methods, case after case on this one thread (its context).
+  std::optional<FuzzGlResult> gl_result;
+  if (options.gl) {
+    std::atomic<std::uint64_t> done{0};
+    gl.progress = &done;
+    {
+      const ProgressLine progress("fuzz --gl", gl.cases, done);
+      gl_result = run_fuzz_gl(gl);
+    }
+    print_gl_summary(gl, *gl_result, *context);
+  }
 
   std::vector<WrittenReproducer> written;
   for (const ShrunkFailure& shrunk : result.shrunk) written.push_back(write_reproducer(options, campaign, shrunk));
@@ -221,10 +318,26 @@ int run_fuzz(const FuzzOptions& options) {
   if (!result.shrunk.empty())
     fmt::print("shrunk {} failures in {:.2f} s; reproducers in {}\n", result.shrunk.size(), result.shrink_seconds,
                options.out_dir);
+  std::vector<GlReproducer> gl_written;
+  if (gl_result) {
+    for (const ShrunkGlFailure& shrunk : gl_result->shrunk)
+      gl_written.push_back(write_gl_reproducer(options.out_dir, gl, shrunk));
+    for (const GlReproducer& w : gl_written)
+      fmt::print("{} {} case {}: {}, shrunk {} -> {} triangles ({}), replays with\n  {}\n",
+                 w.failure == "closure" ? "OPEN VOLUME" : "HARD ERRORS", w.method, w.case_index, w.failure,
+                 w.original_triangles, w.triangles, w.replayed ? "diff fails the same way" : "REPLAY DID NOT REPRODUCE",
+                 w.command);
+    if (!gl_result->shrunk.empty())
+      fmt::print("shrunk {} GL failures in {:.2f} s; reproducers in {}\n", gl_result->shrunk.size(),
+                 gl_result->shrink_seconds, options.out_dir);
+  }
 
   bool must_not_fail_failed = false;
   for (std::size_t r = 0; r < campaign.runs.size(); ++r)
     if (must_not_fail(campaign.runs[r]) && result.runs[r].failures > 0) must_not_fail_failed = true;
+  if (gl_result)
+    for (std::size_t m = 0; m < gl.methods.size(); ++m)
+      if (robust(gl.methods[m]) && gl_result->methods[m].failures > 0) must_not_fail_failed = true;
 
   if (!options.json_file.empty()) {
     nlohmann::json methods = nlohmann::json::object();
@@ -245,6 +358,34 @@ int run_fuzz(const FuzzOptions& options) {
                              {"file", w.json.string()},
                              {"command", w.command},
                              {"replayed", w.replayed}});
+    for (const GlReproducer& w : gl_written)
+      reproducers.push_back({{"run", w.method},
+                             {"case", w.case_index},
+                             {"failure", w.failure},
+                             {"original_triangles", w.original_triangles},
+                             {"triangles", w.triangles},
+                             {"file", w.json.string()},
+                             {"command", w.command},
+                             {"replayed", w.replayed}});
+    nlohmann::json gl_json = nullptr;
+    if (gl_result) {
+      nlohmann::json names = nlohmann::json::array();
+      for (std::size_t m = 0; m < gl.methods.size(); ++m) {
+        methods[gl_run_name(gl.methods[m])] = gl_tally_json(gl.methods[m], gl_result->methods[m]);
+        names.push_back(gl_run_name(gl.methods[m]));
+      }
+      gl_json = {{"renderer", context->renderer()},
+                 {"device", context->device()},
+                 {"size", {gl.width, gl.height}},
+                 {"methods", names},
+                 {"cases", gl_result->cases},
+                 {"seconds", gl_result->seconds},
+                 {"cases_per_second", gl_result->seconds > 0.0
+                                          ? static_cast<double>(gl_result->cases) / gl_result->seconds
+                                          : 0.0},
+                 {"exact_seconds", gl_result->exact_seconds},
+                 {"shrink_seconds", gl_result->shrink_seconds}};
+    }
     write_json_file(
         options.json_file,
         {{"seed", campaign.seed},
@@ -261,11 +402,13 @@ int run_fuzz(const FuzzOptions& options) {
          {"placements", placements},
          {"methods", methods},
          {"must_not_fail_failed", must_not_fail_failed},
+         {"gl", gl_json},
          {"reproducers", reproducers}});
   }
   if (must_not_fail_failed) {
     fmt::print(stderr,
-               "shadowcert: a method that must not fail (exact, peciva, refedge) failed: see the reproducers\n");
+               "shadowcert: a method that must not fail (exact, peciva, refedge; with --gl cpu, cs, gs, ts, pertri) "
+               "failed: see the reproducers\n");
     return kExitCheckFailed;
   }
   return kExitOk;
@@ -287,7 +430,16 @@ void add_fuzz_command(CLI::App& app, int& exit_code) {
                   "Comma-separated runs: exact, kim, peciva, refedge (both precisions), a run such as "
                   "refedge-float, or all")
       ->capture_default_str();
-  cmd->add_flag("--gl", options->gl, "Also the GL methods' captured volumes (not yet: a usage error for now)");
+  CLI::Option* gl_flag = cmd->add_flag("--gl", options->gl,
+                "Also render every case with the GL methods (one EGL context, after the exact part): closure of "
+                "each captured volume and hard errors against the exact image");
+  cmd->add_option("--gl-methods", options->gl_methods,
+                  "With --gl: comma-separated GL methods (cpu, cs, gs, ts, pertri; shadowmap as a baseline)")
+      ->capture_default_str()
+      ->needs(gl_flag);
+  cmd->add_option("--gl-size", options->gl_size, "With --gl: image size WxH")->capture_default_str()->needs(gl_flag);
+  cmd->add_option("--device", options->device, "With --gl: EGL device N (default: a hardware device, else llvmpipe)")
+      ->needs(gl_flag);
   cmd->add_option("--out", options->out_dir, "Folder for shrunk reproducers (written only on failures)")
       ->capture_default_str();
   cmd->add_option("--json", options->json_file, "Write the summary as a JSON object to FILE");

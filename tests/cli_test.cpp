@@ -390,12 +390,83 @@ TEST(CliFuzz, ShrinkFindings_KimReproducersThatCertifyReplays) {
 }
 
 TEST(CliFuzz, BadOptions_ExitTwo) {
-  EXPECT_EQ(run_cli("fuzz --gl --cases 1").exit_code, 2);  // GL methods not wired in yet
-  EXPECT_NE(run_cli("fuzz --gl --cases 1").output.find("not yet"), std::string::npos);
+  EXPECT_EQ(run_cli("fuzz --gl-methods cs --cases 1").exit_code, 2);  // GL options need --gl
+  EXPECT_EQ(run_cli("fuzz --gl-size 32x24 --cases 1").exit_code, 2);
+  EXPECT_EQ(run_cli("fuzz --gl --gl-methods cs,bogus --cases 1").exit_code, 2);
+  EXPECT_NE(run_cli("fuzz --gl --gl-methods bogus --cases 1").output.find("bogus"), std::string::npos);
+  EXPECT_EQ(run_cli("fuzz --gl --gl-size 0x24 --cases 1").exit_code, 2);
   EXPECT_EQ(run_cli("fuzz --cases 0").exit_code, 2);
   EXPECT_EQ(run_cli("fuzz --triangles 0").exit_code, 2);
   EXPECT_EQ(run_cli("fuzz --methods refedge-half --cases 1").exit_code, 2);
   EXPECT_EQ(run_cli("fuzz --bogus").exit_code, 2);
+}
+
+// fuzz --gl (docs/fuzzing.md, "The GL methods"): cases 0 to 11 of seed 1 at 30 triangles pass
+// every robust GL method on llvmpipe; every pixel of every case is judged once per method.
+TEST(CliFuzz, TinyGlCampaign_ExitsZeroJsonHasEveryGlMethod) {
+  const fs::path dir = temp_dir() / "fuzz_gl";
+  const fs::path json = dir / "gl.json";
+  const RunResult r = run_cli("fuzz --gl --seed 1 --cases 12 --triangles 30 --gl-size 32x24 --out " +
+                              (dir / "out").string() + " --json " + json.string());
+  if (render_unavailable(r)) GTEST_SKIP() << r.output;
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("gl-pertri"), std::string::npos) << r.output;  // the GL table
+  const nlohmann::json j = read_json(json);
+  ASSERT_TRUE(j["gl"].is_object()) << j.dump(2);
+  EXPECT_EQ(j["gl"]["cases"], 12);
+  EXPECT_EQ(j["gl"]["size"], nlohmann::json::array({32, 24}));
+  EXPECT_GT(j["gl"]["cases_per_second"].get<double>(), 0.0);
+  EXPECT_FALSE(j["gl"]["renderer"].get<std::string>().empty());
+  for (const char* run : {"gl-cpu", "gl-cs", "gl-gs", "gl-ts", "gl-pertri"}) {
+    SCOPED_TRACE(run);
+    ASSERT_TRUE(j["methods"].contains(run));
+    const nlohmann::json& m = j["methods"][run];
+    EXPECT_EQ(m["must_not_fail"], true);
+    EXPECT_EQ(m["failures"], 0);
+    EXPECT_EQ(m["closure_failures"], 0);
+    EXPECT_EQ(m["hard_errors"], 0);
+    EXPECT_EQ(m["hard_error_pixels"], 0);
+    EXPECT_EQ(m["hard_error_pixels"].get<std::uint64_t>() + m["ambiguous_pixels"].get<std::uint64_t>() +
+                  m["agree_pixels"].get<std::uint64_t>(),
+              12u * 32u * 24u);
+    EXPECT_GT(m["agree_pixels"].get<std::uint64_t>(), 0u);
+    EXPECT_GT(m["volume_triangles"].get<std::uint64_t>(), 0u);
+  }
+  EXPECT_TRUE(j["methods"].contains("exact"));  // the exact part ran as without --gl
+  EXPECT_EQ(j["must_not_fail_failed"], false);
+  EXPECT_FALSE(fs::exists(dir / "out"));
+}
+
+// Case 19 of seed 1 (30 triangles): the light exactly on a triangle's plane (on_plane). Exactly
+// it casts nothing; cs evaluates its light side in float, gets a nonzero sign and shadows a
+// half-space: hard errors (docs/fuzzing.md, "What the GL campaign found"). If this test starts
+// failing because cs passes, that finding was fixed: pin another failing case.
+TEST(CliFuzz, GlFailure_ShrunkToASceneThatDiffReplays) {
+  const fs::path dir = temp_dir() / "fuzz_gl_failure";
+  const fs::path json = dir / "gl.json";
+  const RunResult r = run_cli("fuzz --gl --seed 1 --cases 20 --triangles 30 --methods exact --gl-methods cs "
+                              "--max-reproducers 1 --out " + (dir / "out").string() + " --json " + json.string());
+  if (render_unavailable(r)) GTEST_SKIP() << r.output;
+  ASSERT_EQ(r.exit_code, 1) << r.output;
+  const nlohmann::json j = read_json(json);
+  EXPECT_EQ(j["must_not_fail_failed"], true);
+  EXPECT_EQ(j["methods"]["gl-cs"]["failures"], 1);
+  ASSERT_EQ(j["reproducers"].size(), 1u) << r.output;
+  const nlohmann::json& rep = j["reproducers"][0];
+  EXPECT_EQ(rep["run"], "gl-cs");
+  EXPECT_EQ(rep["case"], 19);
+  EXPECT_EQ(rep["failure"], "hard_errors");
+  EXPECT_EQ(rep["replayed"], true);
+  EXPECT_LT(rep["triangles"].get<int>(), rep["original_triangles"].get<int>());
+  // The printed command, run as printed, fails the same way.
+  const std::string command = rep["command"].get<std::string>();
+  ASSERT_EQ(command.rfind("shadowcert diff ", 0), 0u) << command;
+  const fs::path diffed = dir / "diff.json";
+  const RunResult replay = run_cli(command.substr(std::string("shadowcert ").size()) + " --json " + diffed.string());
+  EXPECT_EQ(replay.exit_code, 1) << replay.output;
+  const nlohmann::json d = read_json(diffed);
+  EXPECT_GT(d["methods"]["cs"]["hard_errors"].get<int>(), 0);
+  EXPECT_EQ(d["methods"]["cs"]["closed"], true);
 }
 
 TEST(CliFuzz, RegressionReproducer_CertifyReplaysItsRecordedCommand) {

@@ -1,7 +1,8 @@
 #pragma once
-// The hard cases of DESIGN.md §6 as named (soup, light) scenes, one per configuration that
-// tests/hard_cases_test.cpp certifies, for tests that run every method over all of them
-// (tests/float_method_hard_cases_test.cpp). Header-only, test code only.
+// The hard cases of DESIGN.md §6: the soups tests/hard_cases_test.cpp certifies (one builder
+// each, the only copy), and the same configurations as named (soup, light) scenes for tests
+// that run every method over all of them (tests/float_method_hard_cases_test.cpp).
+// Header-only, test code only.
 #include <cmath>
 #include <cstdint>
 #include <random>
@@ -38,7 +39,9 @@ inline Soup cube_on_floor() {
   return s;
 }
 
-// k triangles on the edge (0,0,0)-(0,1,0), apexes on the half circle z > 0, alternately flipped.
+// k triangles on the edge (0,0,0)-(0,1,0), apexes on the half circle z > 0, alternately
+// flipped: with the light in the plane z = 0 away from the edge every apex lies on the same
+// side of the plane (edge, light), so |m| = k (DESIGN.md §6: beyond 32, one patch).
 inline Soup half_fan(std::uint32_t k) {
   Soup s;
   s.vertices = {{0.0, 0.0, 0.0}, {0.0, 1.0, 0.0}};
@@ -48,6 +51,104 @@ inline Soup half_fan(std::uint32_t k) {
     s.triangles.push_back(i % 2 == 0 ? Triangle{0, 1, i + 2} : Triangle{1, 0, i + 2});
   }
   return s;
+}
+
+// Grazing, sliver and zero-area triangles.
+inline Soup slivers() {
+  return soup_of({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0.5, 1e-12, 0}, {0.5, 0.3, 1e-9}, {0, 1, 0}, {1, 1, 1e-15}},
+                 {{0, 1, 2},   // zero area: collinear, distinct
+                  {0, 2, 3},   // sliver
+                  {0, 1, 4},   // grazing the light below
+                  {1, 5, 6},   // nearly vertical
+                  {2, 6, 5}});
+}
+
+// A unit cube plus faces with repeated indices, and one naming a bitwise copy of a vertex.
+inline Soup repeated_indices() {
+  Soup s = unit_cube();
+  s.triangles.push_back({0, 0, 7});
+  s.triangles.push_back({3, 3, 3});
+  s.triangles.push_back({1, 5, 1});
+  s.vertices.push_back(s.vertices[6]);  // a bitwise duplicate vertex, welded to 6
+  s.triangles.push_back({6, 8, 2});
+  return s;
+}
+
+// Every face of a unit cube twice, every third one a third time reversed.
+inline Soup duplicated_triangles() {
+  Soup s = unit_cube();
+  const std::size_t n = s.triangles.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const Triangle t = s.triangles[i];
+    s.triangles.push_back(t);
+    if (i % 3 == 0) s.triangles.push_back({t[0], t[2], t[1]});
+  }
+  return s;
+}
+
+// Three overlapping squares in y = 0 and a coplanar pair in y = 1.
+inline Soup coplanar_overlaps() {
+  Soup s = floor_quad(1.0);
+  append(s, translated(floor_quad(1.0), {0.5, 0.0, 0.25}));
+  append(s, translated(floor_quad(0.5), {0.0, 0.0, 0.0}));
+  append(s, translated(floor_quad(1.0), {0.0, 1.0, 0.0}));  // and a coplanar pair above
+  append(s, translated(floor_quad(0.75), {0.25, 1.0, 0.0}));
+  return s;
+}
+
+// Coordinates offset by kFarOffset with 1e-3 features: a small sphere and a small cube.
+inline constexpr Vec3 kFarOffset{1e6, 1e6, -1e6};
+inline Soup offset_1e6_features() {
+  Soup s = translated(scaled(uv_sphere({0, 0, 0}, 1.0, 10, 5), 1e-3), kFarOffset);
+  append(s, translated(scaled(unit_cube(), 1e-3), {kFarOffset[0] + 2e-3, kFarOffset[1], kFarOffset[2]}));
+  return s;
+}
+
+// A unit cube and a sphere beside it, scaled about the origin.
+inline Soup cube_and_sphere_scaled(double scale) {
+  Soup s = scaled(unit_cube(), scale);
+  append(s, scaled(uv_sphere({2.0, 0.5, 0.5}, 0.6, 12, 6), scale));
+  return s;
+}
+
+// Left square split in two; the right square's edge has a vertex (1, 0.5) on the left's
+// diagonal-free edge x = 1: a T-junction. A crack: the third square stops short of the second.
+inline Soup t_junctions_and_cracks() {
+  return soup_of({{0, 0, 0}, {1, 0, 0}, {1, 0, 1}, {0, 0, 1}, {1, 0, 0.5}, {2, 0, 0}, {2, 0, 1}, {2.001, 0, 0},
+                  {3, 0, 0}, {3, 0, 1}, {2.001, 0, 1}},
+                 {{0, 2, 1}, {0, 3, 2}, {1, 4, 5}, {4, 2, 6}, {4, 6, 5}, {7, 10, 9}, {7, 9, 8}});
+}
+
+// Two tetrahedra sharing only a vertex, and two triangles sharing only a vertex.
+inline Soup bow_ties() {
+  return soup_of({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {-1, 0, 0}, {0, -1, 0}, {0, 0, -1}, {3, 0, 0},
+                  {4, 0, 0}, {3, 1, 0}, {2, 0, 0}, {3, -1, 0.5}},
+                 {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}, {0, 4, 5}, {0, 6, 4}, {4, 6, 5}, {0, 5, 6}, {7, 8, 9},
+                  {7, 10, 11}});
+}
+
+// Soups snapped to the grid {-2, ..., 2}^3: 20 vertices, 40 triangles each (repeated indices
+// and collinear triples included), each with a point light at y = 3 and a directional light,
+// all drawn from one std::mt19937_64(seed) in that order.
+struct GridSoup {
+  Soup soup;
+  Light point;
+  Light directional;
+};
+inline std::vector<GridSoup> integer_grid_soups(std::uint64_t seed, int rounds) {
+  std::mt19937_64 rng(seed);
+  std::uniform_int_distribution<int> grid(-2, 2);
+  std::vector<GridSoup> soups;
+  for (int round = 0; round < rounds; ++round) {
+    Soup s;
+    for (int i = 0; i < 20; ++i) s.vertices.push_back({double(grid(rng)), double(grid(rng)), double(grid(rng))});
+    std::uniform_int_distribution<std::uint32_t> pick(0, 19);
+    for (int i = 0; i < 40; ++i) s.triangles.push_back({pick(rng), pick(rng), pick(rng)});
+    const Light point = point_light(grid(rng), 3.0, grid(rng));
+    const Light directional = directional_light(grid(rng), 1.0, grid(rng));
+    soups.push_back({std::move(s), point, directional});
+  }
+  return soups;
 }
 
 // The pinned soup of tests/closure_certificate_test.cpp: two triangles on a tilted plane
@@ -77,96 +178,45 @@ inline std::vector<HardCaseScene> hard_case_scenes() {
   Soup two_boxes = unit_cube();
   append(two_boxes, box({2.0, 0.0, 0.0}, {3.0, 1.0, 1.0}));
   add("light at a vertex between two boxes", two_boxes, point_light(2.0, 1.0, 0.0));
-  const Soup slivers =
-      soup_of({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0.5, 1e-12, 0}, {0.5, 0.3, 1e-9}, {0, 1, 0}, {1, 1, 1e-15}},
-              {{0, 1, 2}, {0, 2, 3}, {0, 1, 4}, {1, 5, 6}, {2, 6, 5}});
-  add("grazing, sliver and zero-area triangles, light above", slivers, point_light(0.7, 5.0, 1e-9));
-  add("grazing, sliver and zero-area triangles, light grazing", slivers, point_light(9.0, 1e-12, 0.0));
-  Soup repeated = unit_cube();
-  repeated.triangles.push_back({0, 0, 7});
-  repeated.triangles.push_back({3, 3, 3});
-  repeated.triangles.push_back({1, 5, 1});
-  repeated.vertices.push_back(repeated.vertices[6]);
-  repeated.triangles.push_back({6, 8, 2});
-  add("repeated indices", repeated, point_light(0.3, 3.0, 0.4));
-  Soup duplicated = unit_cube();
-  for (std::size_t i = 0, n = duplicated.triangles.size(); i < n; ++i) {
-    const Triangle t = duplicated.triangles[i];
-    duplicated.triangles.push_back(t);
-    if (i % 3 == 0) duplicated.triangles.push_back({t[0], t[2], t[1]});
-  }
+  add("grazing, sliver and zero-area triangles, light above", slivers(), point_light(0.7, 5.0, 1e-9));
+  add("grazing, sliver and zero-area triangles, light grazing", slivers(), point_light(9.0, 1e-12, 0.0));
+  add("repeated indices", repeated_indices(), point_light(0.3, 3.0, 0.4));
+  const Soup duplicated = duplicated_triangles();
   add("duplicate and flipped duplicate triangles, point light", duplicated, point_light(0.3, 3.0, 0.4));
   add("duplicate and flipped duplicate triangles, directional light", duplicated, directional_light(0.2, 1.0, -0.3));
-  Soup overlaps = floor_quad(1.0);
-  append(overlaps, translated(floor_quad(1.0), {0.5, 0.0, 0.25}));
-  append(overlaps, translated(floor_quad(0.5), {0.0, 0.0, 0.0}));
-  append(overlaps, translated(floor_quad(1.0), {0.0, 1.0, 0.0}));
-  append(overlaps, translated(floor_quad(0.75), {0.25, 1.0, 0.0}));
-  add("coplanar overlaps", overlaps, point_light(0.2, 4.0, 0.3));
+  add("coplanar overlaps", coplanar_overlaps(), point_light(0.2, 4.0, 0.3));
   for (std::uint32_t k : {1u, 2u, 33u, 256u})
     add("half fan of " + std::to_string(k) + " on one edge", half_fan(k), point_light(-3.0, 0.5, 0.0));
   add("non-manifold fan of 256", nonmanifold_fan(256), point_light(0.3, 0.45, 2.0));
-  const Vec3 offset{1e6, 1e6, -1e6};
-  Soup far = translated(scaled(uv_sphere({0, 0, 0}, 1.0, 10, 5), 1e-3), offset);
-  append(far, translated(scaled(unit_cube(), 1e-3), {offset[0] + 2e-3, offset[1], offset[2]}));
+  const Vec3& offset = kFarOffset;
+  const Soup far = offset_1e6_features();
   add("offset 1e6 with 1e-3 features, point light", far,
       point_light(offset[0] + 1e-3, offset[1] + 5e-3, offset[2] + 2e-4));
   add("offset 1e6 with 1e-3 features, directional light", far, directional_light(0.1, 1.0, 0.2));
   for (const double scale : {1e-6, 1e-3, 1.0, 1e3, 1e6}) {
-    Soup s = scaled(unit_cube(), scale);
-    append(s, scaled(uv_sphere({2.0, 0.5, 0.5}, 0.6, 12, 6), scale));
+    const Soup s = cube_and_sphere_scaled(scale);
     char name[64];
     std::snprintf(name, sizeof name, "cube and sphere at scale %g", scale);
     add(name, s, point_light(1.1 * scale, 4.0 * scale, 0.3 * scale));
   }
-  const Soup cracks = soup_of({{0, 0, 0},
-                               {1, 0, 0},
-                               {1, 0, 1},
-                               {0, 0, 1},
-                               {1, 0, 0.5},
-                               {2, 0, 0},
-                               {2, 0, 1},
-                               {2.001, 0, 0},
-                               {3, 0, 0},
-                               {3, 0, 1},
-                               {2.001, 0, 1}},
-                              {{0, 2, 1}, {0, 3, 2}, {1, 4, 5}, {4, 2, 6}, {4, 6, 5}, {7, 10, 9}, {7, 9, 8}});
+  const Soup cracks = t_junctions_and_cracks();
   add("T-junctions and cracks", cracks, point_light(1.2, 3.0, 0.4));
   add("T-junctions and cracks, light above the T vertex", cracks, point_light(1.0, 3.0, 0.5));
-  const Soup bow_ties = soup_of(
-      {{0, 0, 0},
-       {1, 0, 0},
-       {0, 1, 0},
-       {0, 0, 1},
-       {-1, 0, 0},
-       {0, -1, 0},
-       {0, 0, -1},
-       {3, 0, 0},
-       {4, 0, 0},
-       {3, 1, 0},
-       {2, 0, 0},
-       {3, -1, 0.5}},
-      {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}, {0, 4, 5}, {0, 6, 4}, {4, 6, 5}, {0, 5, 6}, {7, 8, 9}, {7, 10, 11}});
-  add("bow-tie vertices", bow_ties, point_light(0.2, 3.0, 0.1));
-  add("bow-tie vertices, light on the axis through the shared vertex", bow_ties, point_light(0.0, 0.0, 4.0));
+  const Soup bow_tie_soup = bow_ties();
+  add("bow-tie vertices", bow_tie_soup, point_light(0.2, 3.0, 0.1));
+  add("bow-tie vertices, light on the axis through the shared vertex", bow_tie_soup, point_light(0.0, 0.0, 4.0));
   add("directional light parallel to cube faces (x)", unit_cube(), directional_light(1.0, 0.0, 0.0));
   add("directional light parallel to cube faces (z)", unit_cube(), directional_light(1.0, 1.0, 0.0));
   add("directional light parallel to the floor", cube_on_floor(), directional_light(0.0, 0.0, -1.0));
   add("light above a cube on a floor (camera inside a volume)", cube_on_floor(), point_light(0.1, 4.0, 0.2));
   add("light inside a closed sphere", uv_sphere({0, 0, 0}, 1.0, 16, 8), point_light(0.1, 0.2, -0.05));
   add("light inside a closed cube", unit_cube(), point_light(0.5, 0.5, 0.5));
-  // Soups snapped to the grid {-2, ..., 2}^3, drawn as in tests/hard_cases_test.cpp (seed 128).
-  std::mt19937_64 rng(128);
-  std::uniform_int_distribution<int> grid(-2, 2);
-  for (int round = 0; round < 4; ++round) {
-    Soup s;
-    for (int i = 0; i < 20; ++i) s.vertices.push_back({double(grid(rng)), double(grid(rng)), double(grid(rng))});
-    std::uniform_int_distribution<std::uint32_t> pick(0, 19);
-    for (int i = 0; i < 40; ++i) s.triangles.push_back({pick(rng), pick(rng), pick(rng)});
-    const Light point = point_light(grid(rng), 3.0, grid(rng));
-    const Light directional = directional_light(grid(rng), 1.0, grid(rng));
-    add("integer grid soup " + std::to_string(round) + ", point light", s, point);
-    add("integer grid soup " + std::to_string(round) + ", directional light", s, directional);
+  // Soups snapped to the grid {-2, ..., 2}^3, as in tests/hard_cases_test.cpp (seed 128).
+  int round = 0;
+  for (const GridSoup& g : integer_grid_soups(128, 4)) {
+    add("integer grid soup " + std::to_string(round) + ", point light", g.soup, g.point);
+    add("integer grid soup " + std::to_string(round) + ", directional light", g.soup, g.directional);
+    ++round;
   }
   scenes.push_back(pinned_tilted_plane());
   return scenes;

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "certificate_test_support.h"
+#include "hard_case_scenes.h"
 #include "scene/procedural_mesh.h"
 
 namespace {
@@ -22,39 +23,6 @@ using namespace shadowcert::test_support;
 
 void expect_all_certified(const Soup& soup, const Light& light, std::uint64_t seed) {
   for (const MethodRun& run : consistent_runs()) expect_certified(soup, light, run, seed);
-}
-
-Soup translated(Soup s, const Vec3& by) {
-  for (Vec3& v : s.vertices)
-    for (int i = 0; i < 3; ++i) v[i] += by[i];
-  return s;
-}
-
-Soup scaled(Soup s, double factor) {
-  for (Vec3& v : s.vertices)
-    for (double& x : v) x *= factor;
-  return s;
-}
-
-// A cube standing on a floor: the floor's triangles are exactly coplanar with y = 0.
-Soup cube_on_floor() {
-  Soup s = floor_quad(3.0);
-  append(s, box({-0.5, 0.0, -0.5}, {0.5, 1.0, 0.5}));
-  return s;
-}
-
-// k triangles on the edge (0,0,0)-(0,1,0), apexes on the half circle z > 0, alternately
-// flipped: with the light in the plane z = 0 away from the edge every apex lies on the same
-// side of the plane (edge, light), so |m| = k (DESIGN.md §6: beyond 32, one patch).
-Soup half_fan(std::uint32_t k) {
-  Soup s;
-  s.vertices = {{0.0, 0.0, 0.0}, {0.0, 1.0, 0.0}};
-  for (std::uint32_t i = 0; i < k; ++i) {
-    const double angle = std::acos(-1.0) * (i + 0.5) / k;
-    s.vertices.push_back({std::cos(angle), 0.5, std::sin(angle)});
-    s.triangles.push_back(i % 2 == 0 ? Triangle{0, 1, i + 2} : Triangle{1, 0, i + 2});
-  }
-  return s;
 }
 
 TEST(HardCases, LightExactlyOnTrianglePlanes_FloorAtGrazing) {
@@ -89,45 +57,23 @@ TEST(HardCases, LightAtAVertex) {
 }
 
 TEST(HardCases, GrazingSliverAndZeroAreaTriangles) {
-  Soup s = soup_of({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0.5, 1e-12, 0}, {0.5, 0.3, 1e-9}, {0, 1, 0}, {1, 1, 1e-15}},
-                   {{0, 1, 2},   // zero area: collinear, distinct
-                    {0, 2, 3},   // sliver
-                    {0, 1, 4},   // grazing the light below
-                    {1, 5, 6},   // nearly vertical
-                    {2, 6, 5}});
+  const Soup s = slivers();
   expect_all_certified(s, point_light(0.7, 5.0, 1e-9), 107);
   expect_all_certified(s, point_light(9.0, 1e-12, 0.0), 108);
 }
 
 TEST(HardCases, RepeatedIndices) {
-  Soup s = unit_cube();
-  s.triangles.push_back({0, 0, 7});
-  s.triangles.push_back({3, 3, 3});
-  s.triangles.push_back({1, 5, 1});
-  s.vertices.push_back(s.vertices[6]);  // a bitwise duplicate vertex, welded to 6
-  s.triangles.push_back({6, 8, 2});
-  expect_all_certified(s, point_light(0.3, 3.0, 0.4), 109);
+  expect_all_certified(repeated_indices(), point_light(0.3, 3.0, 0.4), 109);
 }
 
 TEST(HardCases, DuplicateAndFlippedDuplicateTriangles) {
-  Soup s = unit_cube();
-  const std::size_t n = s.triangles.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    const Triangle t = s.triangles[i];
-    s.triangles.push_back(t);
-    if (i % 3 == 0) s.triangles.push_back({t[0], t[2], t[1]});
-  }
+  const Soup s = duplicated_triangles();
   expect_all_certified(s, point_light(0.3, 3.0, 0.4), 110);
   expect_all_certified(s, directional_light(0.2, 1.0, -0.3), 111);
 }
 
 TEST(HardCases, CoplanarOverlaps) {
-  Soup s = floor_quad(1.0);
-  append(s, translated(floor_quad(1.0), {0.5, 0.0, 0.25}));
-  append(s, translated(floor_quad(0.5), {0.0, 0.0, 0.0}));
-  append(s, translated(floor_quad(1.0), {0.0, 1.0, 0.0}));  // and a coplanar pair above
-  append(s, translated(floor_quad(0.75), {0.25, 1.0, 0.0}));
-  expect_all_certified(s, point_light(0.2, 4.0, 0.3), 112);
+  expect_all_certified(coplanar_overlaps(), point_light(0.2, 4.0, 0.3), 112);
 }
 
 TEST(HardCases, FansUpTo256TrianglesOnOneEdge) {
@@ -143,38 +89,26 @@ TEST(HardCases, FansUpTo256TrianglesOnOneEdge) {
 }
 
 TEST(HardCases, CoordinatesOffsetBy1e6With1e3Features) {
-  const Vec3 offset{1e6, 1e6, -1e6};
-  Soup s = translated(scaled(uv_sphere({0, 0, 0}, 1.0, 10, 5), 1e-3), offset);
-  append(s, translated(scaled(unit_cube(), 1e-3), {offset[0] + 2e-3, offset[1], offset[2]}));
+  const Vec3& offset = kFarOffset;
+  const Soup s = offset_1e6_features();
   expect_all_certified(s, point_light(offset[0] + 1e-3, offset[1] + 5e-3, offset[2] + 2e-4), 115);
   expect_all_certified(s, directional_light(0.1, 1.0, 0.2), 116);
 }
 
 TEST(HardCases, ScalesFrom1eMinus6To1e6) {
   for (const double scale : {1e-6, 1e-3, 1.0, 1e3, 1e6}) {
-    Soup s = scaled(unit_cube(), scale);
-    append(s, scaled(uv_sphere({2.0, 0.5, 0.5}, 0.6, 12, 6), scale));
-    expect_all_certified(s, point_light(1.1 * scale, 4.0 * scale, 0.3 * scale), 117);
+    expect_all_certified(cube_and_sphere_scaled(scale), point_light(1.1 * scale, 4.0 * scale, 0.3 * scale), 117);
   }
 }
 
 TEST(HardCases, TJunctionsAndCracks) {
-  // Left square split in two; the right square's edge has a vertex (1, 0.5) on the left's
-  // diagonal-free edge x = 1: a T-junction. A crack: the third square stops short of the second.
-  const Soup s = soup_of({{0, 0, 0}, {1, 0, 0}, {1, 0, 1}, {0, 0, 1}, {1, 0, 0.5}, {2, 0, 0}, {2, 0, 1},
-                          {2.001, 0, 0}, {3, 0, 0}, {3, 0, 1}, {2.001, 0, 1}},
-                         {{0, 2, 1}, {0, 3, 2}, {1, 4, 5}, {4, 2, 6}, {4, 6, 5}, {7, 10, 9}, {7, 9, 8}});
+  const Soup s = t_junctions_and_cracks();
   expect_all_certified(s, point_light(1.2, 3.0, 0.4), 118);
   expect_all_certified(s, point_light(1.0, 3.0, 0.5), 119);  // above the T vertex
 }
 
 TEST(HardCases, BowTieVertices) {
-  // Two tetrahedra sharing only a vertex, and two triangles sharing only a vertex.
-  const Soup s = soup_of({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {-1, 0, 0}, {0, -1, 0}, {0, 0, -1},
-                          {3, 0, 0}, {4, 0, 0}, {3, 1, 0}, {2, 0, 0}, {3, -1, 0.5}},
-                         {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2},
-                          {0, 4, 5}, {0, 6, 4}, {4, 6, 5}, {0, 5, 6},
-                          {7, 8, 9}, {7, 10, 11}});
+  const Soup s = bow_ties();
   expect_all_certified(s, point_light(0.2, 3.0, 0.1), 120);
   expect_all_certified(s, point_light(0.0, 0.0, 4.0), 121);  // on the axis through the bow-tie vertex
 }
@@ -210,15 +144,11 @@ TEST(HardCases, LightInsideAClosedCaster) {
 TEST(HardCases, SoupsSnappedToASmallIntegerGrid) {
   const std::uint64_t seed = 128;
   std::cout << "seed " << seed << "\n";
-  std::mt19937_64 rng(seed);
-  std::uniform_int_distribution<int> grid(-2, 2);
-  for (int round = 0; round < 4; ++round) {
-    Soup s;
-    for (int i = 0; i < 20; ++i) s.vertices.push_back({double(grid(rng)), double(grid(rng)), double(grid(rng))});
-    std::uniform_int_distribution<std::uint32_t> pick(0, 19);
-    for (int i = 0; i < 40; ++i) s.triangles.push_back({pick(rng), pick(rng), pick(rng)});
-    expect_all_certified(s, point_light(grid(rng), 3.0, grid(rng)), seed + round);
-    expect_all_certified(s, directional_light(grid(rng), 1.0, grid(rng)), seed + round);
+  int round = 0;
+  for (const GridSoup& g : integer_grid_soups(seed, 4)) {
+    expect_all_certified(g.soup, g.point, seed + round);
+    expect_all_certified(g.soup, g.directional, seed + round);
+    ++round;
   }
 }
 

@@ -17,7 +17,6 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <array>
 #include <chrono>
 #include <cstdint>
 #include <fstream>
@@ -49,9 +48,9 @@ constexpr int kCycles = 100;
 // the driver's caches (compiled shaders, llvmpipe's thread and allocator pools).
 constexpr int kWarmUpCycles = 10;
 // Resident-set growth allowed over the 90 measured cycles. It absorbs allocator fragmentation
-// and driver bookkeeping (measured on llvmpipe: 0 to 1.5 MiB, printed per method). Keeping
-// every cycle's objects alive instead (a deliberate leak, tried once) grew it by 7.6 MiB (cpu),
-// 66 MiB (cs), 129 MiB (ts), 134 MiB (pertri) and 283 MiB (gs) over the same cycles, so a
+// and driver bookkeeping (measured on llvmpipe: 0 to 0.7 MiB, printed per method). Keeping
+// every cycle's renderer alive instead (a deliberate leak, tried once) grew it by 60 MiB (cpu),
+// 117 MiB (cs), 182 MiB (ts), 257 MiB (pertri) and 338 MiB (gs) over the same cycles, so a
 // leak of the method's buffers cannot hide under the bound; the name checks catch any GL
 // object that outlives its owner, however small.
 constexpr long kMaxRssGrowthBytes = 4L << 20;

@@ -19,7 +19,7 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
-#include <cmath>
+#include <cstdlib>
 #include <cstdint>
 #include <filesystem>
 #include <iostream>
@@ -342,7 +342,7 @@ TEST_P(HardCaseRenderTest, EveryMethodIsClosedAndCountsAsCpuOffBoundaries) {
       expect_drawn_volume_closed(renderer);
       std::cout << label << ", " << shadow_method_name(method) << " against " << reference_name << ": " << c.shadowed
                 << " shadowed, " << c.boundary << " boundary pixels, " << c.differing_boundary << " of them differ; "
-                << c.differing_inside << " others differ\n";
+                << c.differing_inside << " others differ (largest step " << c.largest_inside_step << ")\n";
       expect_equal_off_boundaries(method, c);
       if (l == 0) { EXPECT_GE(c.shadowed, kMinShadowedPixels) << "the camera should see the first light's shadow"; }
     }
@@ -399,27 +399,10 @@ TEST_F(GlTest, CameraInsideAVolume_ZFailEqualsCpuZPassIsOffByTheEyesCount) {
 
 // ---- an edge with 100 opposite triangles ------------------------------------------------------
 
-// compute_volume_test.cpp's half fan: 100 blades on the edge (0,0,0)-(0,1,0), apexes at x > 0,
-// alternately flipped, a wall at z = 3 behind it (seen from the light). With the light in the
-// plane x = 0, every apex lies on one side of the plane (edge, light): |m| = 100, beyond gs's
-// 4 and ts's 16 opposites per record and cs's single edge invocation.
+// volume_test_support.h's half fan of 100 blades before its wall: with the light in the plane
+// x = 0, |m| = 100, beyond gs's 4 and ts's 16 opposites per record and cs's single edge
+// invocation.
 constexpr std::uint32_t kBlades = 100;
-
-Soup half_fan_and_wall() {
-  constexpr double kPi = 3.14159265358979323846;
-  Soup soup;
-  soup.vertices = {{0.0, 0.0, 0.0}, {0.0, 1.0, 0.0}};
-  for (std::uint32_t i = 0; i < kBlades; ++i) {
-    const double angle = -kPi / 2 + kPi * (i + 0.5) / kBlades;
-    soup.vertices.push_back({std::cos(angle), 0.5, std::sin(angle)});
-    soup.triangles.push_back(i % 2 == 0 ? Triangle{0, 1, i + 2} : Triangle{1, 0, i + 2});
-  }
-  const auto w = static_cast<std::uint32_t>(soup.vertices.size());
-  soup.vertices.insert(soup.vertices.end(), {{-6.0, -6.0, 3.0}, {6.0, -6.0, 3.0}, {6.0, 6.0, 3.0}, {-6.0, 6.0, 3.0}});
-  soup.triangles.push_back({w, w + 1, w + 2});
-  soup.triangles.push_back({w, w + 2, w + 3});
-  return soup;
-}
 
 // The side quads drawn on the edge a-b: +1 per triangle that holds the directed edge a -> b and
 // a far vertex (w = 0), -1 per one with b -> a (vertices compared by value: GPU-built volumes
@@ -443,12 +426,12 @@ std::int64_t drawn_side_multiplicity(const HomogeneousMesh& volume, const Vec4f&
 TEST_F(GlTest, EdgeWithHundredOppositeTriangles_EveryMethodReachesMultiplicity100AndCountsAsCpu) {
   Camera camera;
   camera.eye = {4.0, 3.0, -6.0};  // on the light's side, looking at the fan and the wall
-  camera.target = {0.0, 0.5, 3.0};
+  camera.target = {0.0, 0.5, kHalfFanWallZ};
   camera.width = 256;
   camera.height = 192;
-  const Rig rig(half_fan_and_wall(), camera);
+  const Rig rig(half_fan_and_wall(kBlades), camera);
   const Vec4f edge_start{0.0f, 0.0f, 0.0f, 1.0f}, edge_end{0.0f, 1.0f, 0.0f, 1.0f};
-  for (const Light& light : {Light{{0.0, 0.5, -5.0, 1.0}}, Light{{0.0, 0.2, -1.0, 0.0}}}) {
+  for (const Light& light : {kHalfFanLight, Light{{0.0, 0.2, -1.0, 0.0}}}) {
     SCOPED_TRACE(light.directional() ? "directional" : "point");
     const HomogeneousMesh cpu_mesh = cpu_volume(rig.prepared, light);
     ShadowMethodRenderer cpu = rig.renderer(ShadowMethod::cpu, light, &cpu_mesh);

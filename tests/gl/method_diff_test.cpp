@@ -19,18 +19,15 @@
 #include <filesystem>
 #include <iostream>
 #include <set>
-#include <span>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "core/homogeneous_mesh.h"
 #include "exact/captured_volume.h"
-#include "exact/chain_mesh.h"
-#include "exact/edge_multiplicity.h"
 #include "exact/exact_image.h"
 #include "exact/input_rounding.h"
 #include "exact/pixel_comparison.h"
-#include "exact/shadow_volume_chain.h"
 #include "exact/soup_file.h"
 #include "gl_test_support.h"
 #include "gpu/depth_precision.h"
@@ -55,30 +52,18 @@ constexpr std::uint32_t kHeight = 72;
 const std::set<std::pair<std::string, ShadowMethod>> kKnownDefects{
     {"light_one_ulp_off_floor_plane", ShadowMethod::cpu}};
 
-// One scene prepared as `shadowcert diff` prepares it.
-struct DiffScene {
-  Scene scene;
-  Soup soup;
-  Prepared prepared;
-  std::vector<ShadedSoupPart> parts;
-  std::vector<HomogeneousMesh> cpu_volumes;
+// One scene prepared as `shadowcert diff` prepares it: every method's inputs, and the exact
+// image at kWidth x kHeight.
+struct DiffScene : MethodInputs {
   ExactImage exact;
 
-  explicit DiffScene(Scene s) : scene(std::move(s)), soup(merged_soup(scene)), prepared(prepare(soup)) {
+  explicit DiffScene(Scene s) : MethodInputs(std::move(s)) {
     scene.camera.width = kWidth;
     scene.camera.height = kHeight;
-    for (const SceneMesh& mesh : scene.meshes) parts.push_back({&mesh.soup});
-    for (const Light& light : scene.lights) {
-      const EdgeMultiplicities m = exact_multiplicities(prepared.canonical.soup, prepared.table, light);
-      cpu_volumes.push_back(
-          chain_mesh(assemble_chain(prepared.canonical.soup, prepared.table, m, light), prepared.canonical.soup, light));
-    }
     ExactImageOptions options;
     options.depth_band = [](double view_depth) { return depth_band(view_depth); };
     exact = exact_image_of_float_input(soup, scene.lights, scene.camera, options);
   }
-  DiffScene(const DiffScene&) = delete;
-  DiffScene& operator=(const DiffScene&) = delete;
 };
 
 struct LightResult {
@@ -89,13 +74,7 @@ struct LightResult {
 // Renders light `k` alone with `method` and compares; `cpu_volume` replaces cpu's exact chain.
 LightResult run_light(const DiffScene& d, ShadowMethod method, std::size_t k, const ShadowMethodOptions& options,
                       const HomogeneousMesh* cpu_volume = nullptr) {
-  ShadowMethodScene s;
-  s.receivers = d.parts;
-  s.lights = std::span<const Light>(&d.scene.lights[k], 1);
-  s.canonical = &d.prepared.canonical.soup;
-  s.table = &d.prepared.table;
-  if (method == ShadowMethod::cpu) s.cpu_volumes = std::span<const HomogeneousMesh>(cpu_volume ? cpu_volume : &d.cpu_volumes[k], 1);
-  ShadowMethodRenderer renderer(method, s, options);
+  ShadowMethodRenderer renderer(method, d.light_scene(k, cpu_volume), options);
   const OffscreenTarget target(d.scene.camera.width, d.scene.camera.height);
   const StencilShadowFrame frame = renderer.render(target, d.scene.camera);
   renderer.check_capacity();

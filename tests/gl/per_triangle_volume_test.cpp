@@ -12,28 +12,18 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <array>
-#include <bit>
 #include <cstdint>
 #include <iostream>
-#include <map>
-#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
 
-#include "exact/chain_mesh.h"
 #include "exact/edge_multiplicity.h"
-#include "exact/shadow_volume_chain.h"
 #include "gl_test_support.h"
 #include "volume_test_support.h"
-#include "gpu/offscreen_target.h"
-#include "gpu/shadow_volume_geometry.h"
-#include "gpu/stencil_shadow_renderer.h"
-#include "scene/canonical_soup.h"
-#include "scene/edge_table.h"
+#include "gpu/shadow_method_renderer.h"
+#include "scene/merged_soup.h"
 #include "scene/procedural_mesh.h"
-#include "scene/scene_file.h"
 
 namespace shadowcert::gpu {
 namespace {
@@ -96,33 +86,11 @@ TEST_F(GlTest, CapturedPerTriangleVolumesAreClosed) {
 
 TEST_F(GlTest, StencilCountsMatchCpuExceptOnBoundaries) {
   const Scene scene = default_scene();
-  const Soup soup = merged_soup(scene);
-  const Prepared p = prepare(soup);
-  const Light& light = scene.lights.front();
-  const EdgeMultiplicities exact = exact_multiplicities(p.canonical.soup, p.table, light);
-  const ShadowVolumeMesh cpu_volume(
-      chain_mesh(assemble_chain(p.canonical.soup, p.table, exact, light), p.canonical.soup, light));
-  const ComputeVolumeSoup gpu_soup(p.canonical.soup, p.table);
-  PerTriangleShadowVolume pertri_volume(gpu_soup);
-  pertri_volume.build(light);
-
-  const ShadedSoupMesh receivers(soup);
-  const OffscreenTarget target(scene.camera.width, scene.camera.height);
-  const StencilShadowRenderer renderer;
-  const std::array cpu_light{LightVolume{light, &cpu_volume, {}}};
-  const std::array pertri_light{LightVolume{light, nullptr, pertri_volume.draw()}};
-  const StencilShadowFrame cpu = renderer.render(target, receivers, scene.camera, cpu_light);
-  const StencilShadowFrame pertri = renderer.render(target, receivers, scene.camera, pertri_light);
-
-  ASSERT_EQ(cpu.first_stencil.pixels.size(), pertri.first_stencil.pixels.size());
-  std::size_t differing = 0, shadowed = 0;
-  for (std::size_t i = 0; i < cpu.first_stencil.pixels.size(); ++i) {
-    differing += cpu.first_stencil.pixels[i] != pertri.first_stencil.pixels[i];
-    shadowed += cpu.first_stencil.pixels[i] != 0;
-  }
-  std::cout << "pertri vs cpu: " << differing << " differing stencil pixels of " << shadowed << " shadowed\n";
-  EXPECT_GT(shadowed, 10000u);  // the scene's shadows are in view: the comparison means something
-  EXPECT_LE(differing, kMaxBoundaryPixels);
+  const StencilDifference c =
+      stencil_difference_from_cpu(ShadowMethod::pertri, merged_soup(scene), scene.lights.front(), scene.camera);
+  std::cout << "pertri vs cpu: " << c.differing << " differing stencil pixels of " << c.shadowed << " shadowed\n";
+  EXPECT_GT(c.shadowed, 10000u);  // the scene's shadows are in view: the comparison means something
+  EXPECT_LE(c.differing, kMaxBoundaryPixels);
 }
 
 }  // namespace

@@ -17,16 +17,12 @@
 #include <stdexcept>
 #include <string>
 
-#include "exact/chain_mesh.h"
-#include "exact/edge_multiplicity.h"
-#include "exact/shadow_volume_chain.h"
 #include "gl_test_support.h"
 #include "volume_test_support.h"
 #include "gpu/camera_transform.h"
 #include "gpu/shadow_volume_geometry.h"
 #include "gpu/stencil_shadow_renderer.h"
-#include "scene/canonical_soup.h"
-#include "scene/edge_table.h"
+#include "scene/merged_soup.h"
 #include "scene/scene_file.h"
 
 namespace shadowcert::gpu {
@@ -131,10 +127,7 @@ TEST_F(GlTest, LitMaskAgreesWithCpuExceptOnABandThatNarrowsWithSize) {
   const Scene scene = default_scene();
   const Soup soup = merged_soup(scene);
   const Light& light = scene.lights.front();
-  const CanonicalSoup canonical = canonical_soup(soup);
-  const EdgeTable table = build_edge_table(canonical.soup);
-  const EdgeMultiplicities exact = exact_multiplicities(canonical.soup, table, light);
-  const ShadowVolumeMesh volume(chain_mesh(assemble_chain(canonical.soup, table, exact, light), canonical.soup, light));
+  const ShadowVolumeMesh volume(cpu_volume(prepare(soup), light));
   const ShadedSoupMesh receivers(soup);
   const OffscreenTarget target(scene.camera.width, scene.camera.height);
   const std::array cpu_light{LightVolume{light, &volume, {}}};

@@ -14,12 +14,10 @@
 #include <string>
 #include <vector>
 
-#include "exact/chain_mesh.h"
-#include "exact/edge_multiplicity.h"
-#include "exact/shadow_volume_chain.h"
 #include "gl_test_support.h"
 #include "gpu/compute_volume.h"
 #include "gpu/offscreen_target.h"
+#include "gpu/stencil_shadow_renderer.h"
 #include "volume_test_support.h"
 
 namespace shadowcert::gpu {
@@ -36,28 +34,14 @@ constexpr std::uint32_t kHeight = 120;
 // median of the whole over a few frames on a shared machine: this much slack absorbs that.
 constexpr double kMedianSumSlack = 0.25;
 
-// default.json with its inputs for every method, sized down.
-struct DefaultInputs {
+// default.json, sized down, with `more_lights` after its own, and its inputs for every method.
+MethodInputs default_inputs(const std::vector<Light>& more_lights = {}) {
   Scene scene = default_scene();
-  Soup soup = merged_soup(scene);
-  Prepared prepared = prepare(soup);
-  std::vector<ShadedSoupPart> parts;
-  std::vector<HomogeneousMesh> cpu_volumes;
-
-  DefaultInputs() {
-    scene.camera.width = kWidth;
-    scene.camera.height = kHeight;
-    for (const SceneMesh& mesh : scene.meshes) parts.push_back({&mesh.soup});
-    for (const Light& light : scene.lights) {
-      const EdgeMultiplicities m = exact_multiplicities(prepared.canonical.soup, prepared.table, light);
-      cpu_volumes.push_back(
-          chain_mesh(assemble_chain(prepared.canonical.soup, prepared.table, m, light), prepared.canonical.soup, light));
-    }
-  }
-  [[nodiscard]] ShadowMethodScene method_scene() const {
-    return {parts, scene.lights, &prepared.canonical.soup, &prepared.table, cpu_volumes};
-  }
-};
+  scene.camera.width = kWidth;
+  scene.camera.height = kHeight;
+  scene.lights.insert(scene.lights.end(), more_lights.begin(), more_lights.end());
+  return MethodInputs(std::move(scene));
+}
 
 std::vector<VolumeTriangle> triangles_of(const HomogeneousMesh& mesh) {
   std::vector<VolumeTriangle> out;
@@ -89,16 +73,9 @@ using ShadowMethodRendererTest = GlTest;
 // hand from the method's classes, bit for bit (same GL calls, same inputs). The eye sits under
 // the open box, inside its volume, where z-pass and z-fail differ: so the option is passed on.
 TEST_F(ShadowMethodRendererTest, TwoLightsZpass_SameFrameAsTheMethodsOwnClasses) {
-  DefaultInputs in;
+  MethodInputs in = default_inputs({Light{{-2.0, 6.0, 1.0, 1.0}}});
   in.scene.camera.eye = {-0.2, 0.4, -1.2};
   in.scene.camera.target = {0.5, 0.2, 4.0};
-  in.scene.lights.push_back(Light{{-2.0, 6.0, 1.0, 1.0}});
-  in.cpu_volumes.clear();
-  for (const Light& light : in.scene.lights) {
-    const EdgeMultiplicities m = exact_multiplicities(in.prepared.canonical.soup, in.prepared.table, light);
-    in.cpu_volumes.push_back(chain_mesh(assemble_chain(in.prepared.canonical.soup, in.prepared.table, m, light),
-                                        in.prepared.canonical.soup, light));
-  }
   const OffscreenTarget target(kWidth, kHeight);
   const ShadedSoupMesh receivers(in.parts);
   StencilShadowOptions by_hand;
@@ -138,7 +115,7 @@ TEST_F(ShadowMethodRendererTest, TwoLightsZpass_SameFrameAsTheMethodsOwnClasses)
 }
 
 TEST_F(ShadowMethodRendererTest, ShadowMap_SameFrameAsShadowMapRendererWithItsOptions) {
-  const DefaultInputs in;
+  const MethodInputs in = default_inputs();
   const OffscreenTarget target(kWidth, kHeight);
   ShadowMethodOptions options;
   options.shadow_map_size = 512;
@@ -163,7 +140,7 @@ TEST_F(ShadowMethodRendererTest, ShadowMap_SameFrameAsShadowMapRendererWithItsOp
 // For every volume method: the first volume as reported is what was drawn (cpu: the mesh it
 // was given; GPU methods: closed, one triangle per three drawn vertices).
 TEST_F(ShadowMethodRendererTest, EveryVolumeMethod_FirstVolumeIsWhatWasDrawn) {
-  const DefaultInputs in;
+  const MethodInputs in = default_inputs();
   const OffscreenTarget target(kWidth, kHeight);
   for (ShadowMethod method : kShadowMethods) {
     if (!draws_volume(method)) continue;
@@ -185,7 +162,7 @@ TEST_F(ShadowMethodRendererTest, EveryVolumeMethod_FirstVolumeIsWhatWasDrawn) {
 }
 
 TEST_F(ShadowMethodRendererTest, TimedFrames_CoverTheMethodsStages) {
-  const DefaultInputs in;
+  const MethodInputs in = default_inputs();
   const OffscreenTarget target(kWidth, kHeight);
   ShadowMethodRenderer renderer(ShadowMethod::gs, in.method_scene());
   EXPECT_EQ(renderer.render_frames(target, in.scene.camera, 3).size(), 3u);
@@ -203,7 +180,7 @@ TEST_F(ShadowMethodRendererTest, TimedFrames_CoverTheMethodsStages) {
 }
 
 TEST_F(ShadowMethodRendererTest, MissingInputs_Throw) {
-  const DefaultInputs in;
+  const MethodInputs in = default_inputs();
   ShadowMethodScene no_light = in.method_scene();
   no_light.lights = {};
   EXPECT_THROW(ShadowMethodRenderer(ShadowMethod::shadowmap, no_light), std::invalid_argument);
