@@ -1,13 +1,19 @@
 #pragma once
-// Plumbing shared by the compute-built volumes (gpu/compute_volume.h `cs`,
-// gpu/per_triangle_volume.h `pertri`): storage uploads, 1D work split over a 2D grid, the
-// indirect draw command with its request counter, and synchronous readbacks. Internal to
-// gpu/: the shaders' layouts (Command, local size 64) are fixed here once.
+// Plumbing shared by the GPU-built volumes (gpu/compute_volume.h `cs`,
+// gpu/per_triangle_volume.h `pertri`, and the capture and finish passes of `gs` and `ts`):
+// storage uploads, 1D work split over a 2D grid, the indirect draw command with its request
+// counter, the light uniform, and synchronous readbacks. Internal to gpu/: the shaders'
+// layouts (Command, local size 64) are fixed here once.
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
+#include "core/light.h"
 #include "gpu/gl_error.h"
 #include "gpu/gl_object.h"
 
@@ -32,6 +38,20 @@ void upload(const Buffer& buffer, const std::vector<T>& data) {
   const std::uint32_t none = 0;
   glNamedBufferStorage(buffer.name(), data.empty() ? sizeof none : static_cast<GLsizeiptr>(data.size() * sizeof(T)),
                        data.empty() ? static_cast<const void*>(&none) : data.data(), 0);
+}
+
+// Sets a volume shader's `light` uniform (vec4 (l, w)) for a build: the light rounded once to
+// float, as FloatSide<float> in exact/edge_multiplicity.cpp rounds it, so that the shaders'
+// signs are refedge float32's. `function` names the caller for the error: throws
+// std::invalid_argument("<function>: the light must be finite, w in {0, 1}, not (0,0,0,0)")
+// for a light DESIGN.md §1 does not define (nothing is set then).
+inline void set_light_uniform(GLuint program, GLint location, const Light& light, const char* function) {
+  const std::array<double, 4>& l = light.position;
+  if (!(std::isfinite(l[0]) && std::isfinite(l[1]) && std::isfinite(l[2])) || (l[3] != 0.0 && l[3] != 1.0) ||
+      (l[3] == 0.0 && l[0] == 0.0 && l[1] == 0.0 && l[2] == 0.0))
+    throw std::invalid_argument(std::string(function) + ": the light must be finite, w in {0, 1}, not (0,0,0,0)");
+  glProgramUniform4f(program, location, static_cast<float>(l[0]), static_cast<float>(l[1]), static_cast<float>(l[2]),
+                     static_cast<float>(l[3]));
 }
 
 // One invocation per item; the shaders skip ids past their item count and fold the y rows

@@ -1,7 +1,6 @@
 #include "gpu/compute_volume.h"
 
 #include <algorithm>
-#include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -103,14 +102,8 @@ ComputeShadowVolume::ComputeShadowVolume(const ComputeVolumeSoup& soup)
 }
 
 void ComputeShadowVolume::build(const Light& light) {
-  const std::array<double, 4>& l = light.position;
-  if (!(std::isfinite(l[0]) && std::isfinite(l[1]) && std::isfinite(l[2])) || (l[3] != 0.0 && l[3] != 1.0) ||
-      (l[3] == 0.0 && l[0] == 0.0 && l[1] == 0.0 && l[2] == 0.0))
-    throw std::invalid_argument("ComputeShadowVolume::build: the light must be finite, w in {0, 1}, not (0,0,0,0)");
   const GLuint program = program_.name();
-  // The light rounded once to float, as FloatSide<float> in exact/edge_multiplicity.cpp does.
-  glProgramUniform4f(program, kLightLocation, static_cast<float>(l[0]), static_cast<float>(l[1]),
-                     static_cast<float>(l[2]), static_cast<float>(l[3]));
+  compute_pass::set_light_uniform(program, kLightLocation, light, "ComputeShadowVolume::build");
   glProgramUniform1ui(program, kCapacityLocation, static_cast<GLuint>(capacity_));
   glProgramUniform1ui(program, kEdgeCountLocation, soup_->edge_count());
 

@@ -1,7 +1,6 @@
 #include "gpu/geometry_shader_volume.h"
 
 #include <algorithm>
-#include <cmath>
 #include <cstddef>
 #include <limits>
 #include <stdexcept>
@@ -93,15 +92,8 @@ GeometryShaderShadowVolume::GeometryShaderShadowVolume(const ComputeVolumeSoup& 
 }
 
 void GeometryShaderShadowVolume::build(const Light& light) {
-  const std::array<double, 4>& l = light.position;
-  if (!(std::isfinite(l[0]) && std::isfinite(l[1]) && std::isfinite(l[2])) || (l[3] != 0.0 && l[3] != 1.0) ||
-      (l[3] == 0.0 && l[0] == 0.0 && l[1] == 0.0 && l[2] == 0.0))
-    throw std::invalid_argument(
-        "GeometryShaderShadowVolume::build: the light must be finite, w in {0, 1}, not (0,0,0,0)");
   const GLuint program = program_.name();
-  // The light rounded once to float, as cs and FloatSide<float> in exact/ do.
-  glProgramUniform4f(program, kLightLocation, static_cast<float>(l[0]), static_cast<float>(l[1]),
-                     static_cast<float>(l[2]), static_cast<float>(l[3]));
+  compute_pass::set_light_uniform(program, kLightLocation, light, "GeometryShaderShadowVolume::build");
   glProgramUniform1ui(program, kRecordCountLocation, record_count_);
   glProgramUniform1ui(finish_.name(), kFinishCapacityLocation, static_cast<GLuint>(capacity_));
 

@@ -2,7 +2,6 @@
 
 #include <array>
 #include <algorithm>
-#include <cmath>
 #include <limits>
 #include <stdexcept>
 
@@ -77,14 +76,8 @@ PerTriangleShadowVolume::PerTriangleShadowVolume(const ComputeVolumeSoup& soup)
 }
 
 void PerTriangleShadowVolume::build(const Light& light) {
-  const std::array<double, 4>& l = light.position;
-  if (!(std::isfinite(l[0]) && std::isfinite(l[1]) && std::isfinite(l[2])) || (l[3] != 0.0 && l[3] != 1.0) ||
-      (l[3] == 0.0 && l[0] == 0.0 && l[1] == 0.0 && l[2] == 0.0))
-    throw std::invalid_argument("PerTriangleShadowVolume::build: the light must be finite, w in {0, 1}, not (0,0,0,0)");
   const GLuint program = program_.name();
-  // The light rounded once to float, as FloatSide<float> in exact/edge_multiplicity.cpp does.
-  glProgramUniform4f(program, kLightLocation, static_cast<float>(l[0]), static_cast<float>(l[1]),
-                     static_cast<float>(l[2]), static_cast<float>(l[3]));
+  compute_pass::set_light_uniform(program, kLightLocation, light, "PerTriangleShadowVolume::build");
   glProgramUniform1ui(program, kCapacityLocation, static_cast<GLuint>(capacity_));
   glProgramUniform1ui(program, kWindowVerticesLocation, static_cast<GLuint>(window_vertices_));
 

@@ -1,7 +1,6 @@
 #include "gpu/tessellation_volume.h"
 
 #include <algorithm>
-#include <cmath>
 #include <cstddef>
 #include <limits>
 #include <stdexcept>
@@ -114,14 +113,8 @@ TessellationShadowVolume::TessellationShadowVolume(const ComputeVolumeSoup& soup
 }
 
 void TessellationShadowVolume::build(const Light& light) {
-  const std::array<double, 4>& l = light.position;
-  if (!(std::isfinite(l[0]) && std::isfinite(l[1]) && std::isfinite(l[2])) || (l[3] != 0.0 && l[3] != 1.0) ||
-      (l[3] == 0.0 && l[0] == 0.0 && l[1] == 0.0 && l[2] == 0.0))
-    throw std::invalid_argument(
-        "TessellationShadowVolume::build: the light must be finite, w in {0, 1}, not (0,0,0,0)");
   const GLuint program = program_.name();
-  glProgramUniform4f(program, kLightLocation, static_cast<float>(l[0]), static_cast<float>(l[1]),
-                     static_cast<float>(l[2]), static_cast<float>(l[3]));
+  compute_pass::set_light_uniform(program, kLightLocation, light, "TessellationShadowVolume::build");
   glProgramUniform1ui(finish_.name(), kFinishCapacityLocation, static_cast<GLuint>(capacity_));
 
   const Command reset{};

@@ -42,20 +42,7 @@ layout(location = 4) uniform uint edge_count;  // where the triangle signs start
 
 const uint kNoRoom = 0xFFFFFFFFu;
 
-#include "light_side_formula.glsl"
-
-// Sign of D on an ascending index triple (a < b < c): the one evaluation a triangle gets.
-int sorted_side(uint a, uint b, uint c) {
-  const float value = light_side_value(vertices[a].xyz, vertices[b].xyz, vertices[c].xyz);
-  return value > 0.0 ? 1 : (value < 0.0 ? -1 : 0);
-}
-
-// x_inf = (x - l, 0) for a point light, (-l, 0) for a directional one (DESIGN.md §3).
-vec4 far_vertex(vec4 x) {
-  if (light.w == 0.0) return vec4(-light.xyz, 0.0);
-  precise vec3 d = x.xyz - light.xyz;
-  return vec4(d, 0.0);
-}
+#include "reference_edge.glsl"
 
 // Reserves n vertices; kNoRoom when they do not fit (the count still records the request).
 uint reserve(uint n) {
@@ -74,17 +61,7 @@ void edge_pass(uint e) {
   const uint v = edges[e].y;
   int m = 0;
   for (uint i = first_opposite[e]; i < first_opposite[e + 1u]; ++i) {
-    const uint o = opposite_vertex[i];
-    // Milet 2014, Algorithm 3: the three places o can take relative to u < v.
-    int s;
-    if (o < u) {
-      s = sorted_side(o, u, v);   // (u, v, o) is a rotation of (o, u, v): even
-    } else if (o < v) {
-      s = -sorted_side(u, o, v);  // one transposition: odd
-    } else {
-      s = sorted_side(u, v, o);
-    }
-    m -= s;
+    m -= opposite_side(u, v, opposite_vertex[i]);
   }
   signs[e] = m;
   if (m == 0) return;
@@ -109,16 +86,7 @@ void triangle_pass(uint t) {
   const uint a = triangle_index[3u * t];
   const uint b = triangle_index[3u * t + 1u];
   const uint c = triangle_index[3u * t + 2u];
-  if (a == b || b == c || c == a) {  // no edges, casts nothing
-    signs[edge_count + t] = 0;
-    return;
-  }
-  const uint lo = min(a, min(b, c));
-  const uint hi = max(a, max(b, c));
-  const uint mid = a + b + c - lo - hi;  // exact in uint arithmetic (wraps cancel)
-  const int inversions = int(a > b) + int(a > c) + int(b > c);
-  const int sorted = sorted_side(lo, mid, hi);
-  const int s = (inversions % 2 == 0) ? sorted : -sorted;  // D(a, b, c) from D(lo, mid, hi)
+  const int s = triangle_side(a, b, c);  // 0 for a repeated index: no edges, casts nothing
   signs[edge_count + t] = s;
   if (s == 0) return;
   // Front cap t' (normal towards the light), back cap t' at infinity, reversed.

@@ -1,5 +1,6 @@
 // Included (cmake/EmbedShaders.cmake resolves the include directive naming this file at build
-// time) by every shader that takes a triangle's sign: cs, gs, ts and pertri. It mirrors
+// time) by reference_edge.glsl, which every shader that takes a sign includes: cs, gs, ts and
+// pertri. It mirrors
 // core/light_side_formula.h operation for operation (Milet 2014, Algorithm 4):
 //   X = C - A;  Y = l - A w;  N = X x Y;  value = N . (B - A)
 // with `precise` so no stage fuses or reorders it; the including shader declares

@@ -4,8 +4,8 @@
 // V(t) of DESIGN.md §3: front cap t' (t, reversed when s = -1), for each directed edge (u, v)
 // of t' the side quad (v, u, u_inf, v_inf) as two triangles, and the back cap (t' at
 // infinity, reversed). s(t) is taken ONCE, by the reference-edge evaluation of
-// compute_volume.comp.glsl's triangle pass (sorted canonical indices, `precise` light-side
-// value, parity), and used for caps and sides alike: each V(t) is closed on its own, whatever
+// compute_volume.comp.glsl's triangle pass (reference_edge.glsl's triangle_side: sorted
+// canonical indices, `precise` light-side value, parity), and used for caps and sides alike: each V(t) is closed on its own, whatever
 // the rounding (a per-edge re-evaluation could flip one side and open it).
 layout(local_size_x = 64) in;
 
@@ -36,14 +36,7 @@ layout(location = 4) uniform uint window_vertices;   // vertices per window
 
 const uint kNoRoom = 0xFFFFFFFFu;
 
-#include "light_side_formula.glsl"
-
-// x_inf = (x - l, 0) for a point light, (-l, 0) for a directional one (DESIGN.md §3).
-vec4 far_vertex(vec4 x) {
-  if (light.w == 0.0) return vec4(-light.xyz, 0.0);
-  precise vec3 d = x.xyz - light.xyz;
-  return vec4(d, 0.0);
-}
+#include "reference_edge.glsl"
 
 void store(uint at, vec4 x) {
   const uint window = at / window_vertices;
@@ -69,17 +62,7 @@ void triangle_pass(uint t) {
   const uint a = triangle_index[3u * t];
   const uint b = triangle_index[3u * t + 1u];
   const uint c = triangle_index[3u * t + 2u];
-  if (a == b || b == c || c == a) {  // no edges, casts nothing
-    signs[t] = 0;
-    return;
-  }
-  const uint lo = min(a, min(b, c));
-  const uint hi = max(a, max(b, c));
-  const uint mid = a + b + c - lo - hi;  // exact in uint arithmetic (wraps cancel)
-  const int inversions = int(a > b) + int(a > c) + int(b > c);
-  const float value = light_side_value(vertices[lo].xyz, vertices[mid].xyz, vertices[hi].xyz);
-  const int sorted = value > 0.0 ? 1 : (value < 0.0 ? -1 : 0);
-  const int s = (inversions % 2 == 0) ? sorted : -sorted;  // D(a, b, c) from D(lo, mid, hi)
+  const int s = triangle_side(a, b, c);  // 0 for a repeated index: no edges, casts nothing
   signs[t] = s;
   if (s == 0) return;
   // t' = (p0, p1, p2): its normal faces the light.

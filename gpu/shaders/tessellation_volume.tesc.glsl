@@ -8,9 +8,9 @@
 //           m = 0 discards the patch (outer level 0).
 //   kind 1, a TRIANGLE (a, b, c, 1, unused): one isoline, on which the geometry shader emits
 //           gs's caps.
-// The sign evaluation is geometry_shader_volume.geom.glsl's (itself compute_volume.comp.glsl's),
-// copied operation for operation (sort by canonical index, core/light_side_formula.h's order,
-// `precise`, parity): the volumes of cs, gs and ts are made of the same signs.
+// The signs are reference_edge.glsl's, as in cs and gs (sort by canonical index,
+// core/light_side_formula.h's order, `precise`, parity): the volumes of cs, gs and ts are made
+// of the same signs.
 layout(vertices = 1) out;
 
 const uint kOppositesPerRecord = 16u;  // == kTessellationOppositesPerRecord (tessellation_volume.h)
@@ -26,13 +26,7 @@ flat in uint record_word[];
 patch out uvec4 item;
 patch out int multiplicity;
 
-#include "light_side_formula.glsl"
-
-// Sign of D on an ascending index triple (a < b < c): the one evaluation a triangle gets.
-int sorted_side(uint a, uint b, uint c) {
-  const float value = light_side_value(vertices[a].xyz, vertices[b].xyz, vertices[c].xyz);
-  return value > 0.0 ? 1 : (value < 0.0 ? -1 : 0);
-}
+#include "reference_edge.glsl"
 
 void main() {
   const uint u = record_word[0];
@@ -45,17 +39,7 @@ void main() {
   if (kind != kTriangleKind) {
     int m = 0;
     for (uint i = 0u; i < count; ++i) {
-      const uint o = record_word[4u + i];
-      // Milet 2014, Algorithm 3: the three places o can take relative to u < v.
-      int s;
-      if (o < u) {
-        s = sorted_side(o, u, v);   // (u, v, o) is a rotation of (o, u, v): even
-      } else if (o < v) {
-        s = -sorted_side(u, o, v);  // one transposition: odd
-      } else {
-        s = sorted_side(u, v, o);
-      }
-      m -= s;
+      m -= opposite_side(u, v, record_word[4u + i]);
     }
     multiplicity = m;
     lines = float(abs(m));  // 0 discards the patch

@@ -40,28 +40,21 @@ using namespace test;
 // test's output (4 on llvmpipe); the bound leaves room for another rasteriser's ties.
 constexpr std::size_t kMaxBoundaryPixels = 64;
 
-std::vector<std::pair<std::string, Soup>> test_soups() {
+NamedSoups test_soups() {
   return {{"default scene", merged_soup(default_scene())},
           {"uv sphere", uv_sphere({0.2, 0.1, -0.3}, 1.0, 32, 16)},
           {"fan of 100", nonmanifold_fan(100)}};
 }
 
 TEST_F(GlTest, MultiplicitiesAndCapSignsEqualCpuRefedgeFloat32) {
-  for (const auto& [name, soup] : test_soups()) {
-    const Prepared p = prepare(soup);
-    const ComputeVolumeSoup gpu_soup(p.canonical.soup, p.table);
-    ComputeShadowVolume volume(gpu_soup);
-    for (const Light& light : {kPointLight, kDirectionalLight}) {
-      SCOPED_TRACE(name + (light.directional() ? ", directional" : ", point"));
-      const EdgeMultiplicities cpu = refedge_multiplicities(p.canonical.soup, p.table, light, Precision::float32);
-      volume.build(light);
-      EXPECT_EQ(volume.read_multiplicities(), cpu.multiplicity);
-      std::vector<std::int32_t> cpu_signs;
-      for (Sign s : cpu.triangle_sign) cpu_signs.push_back(to_int(s));
-      EXPECT_EQ(volume.read_triangle_signs(), cpu_signs);
-      EXPECT_LE(volume.read_requested_vertices(), volume.capacity_vertices());
-    }
-  }
+  for_each_build<ComputeShadowVolume>(
+      test_soups(), {kPointLight, kDirectionalLight},
+      [](const ComputeShadowVolume& volume, const Prepared& p, const Light& light) {
+        const EdgeMultiplicities cpu = refedge_multiplicities(p.canonical.soup, p.table, light, Precision::float32);
+        EXPECT_EQ(volume.read_multiplicities(), cpu.multiplicity);
+        EXPECT_EQ(volume.read_triangle_signs(), triangle_signs(cpu));
+        EXPECT_LE(volume.read_requested_vertices(), volume.capacity_vertices());
+      });
 }
 
 // A half fan (volume_test_support.h) lit from the plane x = 0: |m| = k, the worst case the
@@ -82,19 +75,10 @@ TEST_F(GlTest, HalfFanEdgeReachesMultiplicityK) {
 }
 
 TEST_F(GlTest, CapturedVolumeIsClosed) {
-  for (const auto& [name, soup] : test_soups()) {
-    const Prepared p = prepare(soup);
-    const ComputeVolumeSoup gpu_soup(p.canonical.soup, p.table);
-    ComputeShadowVolume volume(gpu_soup);
-    for (const Light& light : {kPointLight, kDirectionalLight}) {
-      SCOPED_TRACE(name + (light.directional() ? ", directional" : ", point"));
-      volume.build(light);
-      const std::vector<VolumeTriangle> triangles = volume.read_triangles();
-      EXPECT_EQ(triangles.size() * 3, volume.read_requested_vertices());
-      EXPECT_FALSE(triangles.empty());
-      EXPECT_TRUE(unbalanced_edges(triangles).empty());
-    }
-  }
+  for_each_build<ComputeShadowVolume>(test_soups(), {kPointLight, kDirectionalLight},
+                                      [](const ComputeShadowVolume& volume, const Prepared&, const Light&) {
+                                        expect_drawn_closed(volume);
+                                      });
 }
 
 TEST_F(GlTest, StencilCountsMatchCpuExceptOnBoundaries) {

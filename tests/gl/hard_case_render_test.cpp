@@ -25,6 +25,7 @@
 #include <iostream>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/homogeneous_mesh.h"
@@ -268,6 +269,14 @@ std::string light_label(std::size_t index, const Light& light) {
   return "light " + std::to_string(index) + (light.directional() ? " (directional)" : " (point)");
 }
 
+// One frame of a method and the volume it drew (cpu: the exact chain as uploaded; GPU-built
+// methods: the triangles read back after the frame, unwelded).
+struct MethodFrame {
+  ShadowMethod method;
+  StencilShadowFrame frame;
+  HomogeneousMesh volume;
+};
+
 // One soup and camera, prepared once: the target every method draws into, and the visible
 // triangle at each pixel.
 struct Rig {
@@ -278,14 +287,15 @@ struct Rig {
         target(camera.width, camera.height),
         ids(visible_triangles(soup, camera, target)) {}
 
-  // `method` lit by `light` alone (one_light_renderer); cpu draws `*cpu`, which must outlive it.
-  [[nodiscard]] ShadowMethodRenderer renderer(ShadowMethod method, const Light& light, const HomogeneousMesh* cpu,
-                                              StencilMethod stencil = StencilMethod::zfail) const {
-    return one_light_renderer(method, soup, prepared, light, cpu, stencil);
-  }
-  // One frame of `renderer`, which builds its GPU volume.
-  [[nodiscard]] StencilShadowFrame render(ShadowMethodRenderer& renderer) const {
-    return renderer.render(target, camera);
+  // A frame of `method` lit by `light` alone, as `render --method` draws it (one_light_renderer;
+  // cpu draws cpu_volume(prepared, light)); the volume must not have overflowed its buffers.
+  [[nodiscard]] MethodFrame draw(ShadowMethod method, const Light& light,
+                                 StencilMethod stencil = StencilMethod::zfail) const {
+    const HomogeneousMesh cpu = method == ShadowMethod::cpu ? cpu_volume(prepared, light) : HomogeneousMesh{};
+    ShadowMethodRenderer renderer = one_light_renderer(method, soup, prepared, light, &cpu, stencil);
+    StencilShadowFrame frame = renderer.render(target, camera);
+    EXPECT_NO_THROW(renderer.check_capacity()) << shadow_method_name(method) << ": the drawn volume is truncated";
+    return {method, std::move(frame), renderer.first_volume()};
   }
 
   Soup soup;
@@ -295,15 +305,13 @@ struct Rig {
   TriangleIds ids;
 };
 
-// After a frame of `renderer`: the volume it drew did not overflow and is closed (exact/,
-// DESIGN.md §4.1, on the float triangles as drawn, read back for the GPU-built methods).
-void expect_drawn_volume_closed(const ShadowMethodRenderer& renderer) {
-  SCOPED_TRACE(std::string(shadow_method_name(renderer.method())));
-  EXPECT_NO_THROW(renderer.check_capacity()) << "overflow: the drawn volume is truncated";
-  const HomogeneousMesh drawn = renderer.first_volume();
-  const CapturedClosure closure = certify_captured_closure(drawn);
+// The volume `drawn` drew is closed: exact/'s certificate (DESIGN.md §4.1) on its float
+// triangles as drawn.
+void expect_closed(const MethodFrame& drawn) {
+  const CapturedClosure closure = certify_captured_closure(drawn.volume);
   EXPECT_TRUE(closure.certificate.closed)
-      << closure.certificate.unbalanced.size() << " unbalanced edges of " << drawn.triangles.size() << " triangles";
+      << shadow_method_name(drawn.method) << ": " << closure.certificate.unbalanced.size() << " unbalanced edges of "
+      << drawn.volume.triangles.size() << " triangles";
 }
 
 class HardCaseRenderTest : public GlTest, public ::testing::WithParamInterface<std::string> {};
@@ -317,29 +325,25 @@ TEST_P(HardCaseRenderTest, EveryMethodIsClosedAndCountsAsCpuOffBoundaries) {
     const Light& light = scene.lights[l];
     const std::string label = GetParam() + ", " + light_label(l, light);
     SCOPED_TRACE(label);
-    const HomogeneousMesh cpu_mesh = cpu_volume(rig.prepared, light);
-    ShadowMethodRenderer cpu = rig.renderer(ShadowMethod::cpu, light, &cpu_mesh);
-    StencilShadowFrame reference = rig.render(cpu);
-    expect_drawn_volume_closed(cpu);
+    const MethodFrame cpu = rig.draw(ShadowMethod::cpu, light);
+    expect_closed(cpu);
+    StencilShadowFrame reference = cpu.frame;
     std::string reference_name = "cpu";
     if (const std::size_t flat = float_flat_triangles(rig.prepared.canonical.soup, light); flat != 0) {
       if (!rounded_rig) rounded_rig.emplace(rounded_to_float(rig.soup), rig.camera);
-      const Light rounded_light = rounded_to_float(light);
-      const HomogeneousMesh rounded_mesh = cpu_volume(rounded_rig->prepared, rounded_light);
-      ShadowMethodRenderer rounded_cpu = rounded_rig->renderer(ShadowMethod::cpu, rounded_light, &rounded_mesh);
-      reference = rounded_rig->render(rounded_cpu);
-      expect_drawn_volume_closed(rounded_cpu);
+      const MethodFrame rounded_cpu = rounded_rig->draw(ShadowMethod::cpu, rounded_to_float(light));
+      expect_closed(rounded_cpu);
+      reference = rounded_cpu.frame;
       reference_name = "exact chain of the float inputs";
-      const CountComparison cpu_off = compare_counts(reference, rig.render(cpu), rig.ids);
+      const CountComparison cpu_off = compare_counts(reference, cpu.frame, rig.ids);
       std::cout << label << ": " << flat << " casting triangles are flat in float; cpu differs from the float "
                 << "inputs' exact chain on " << cpu_off.differing_boundary + cpu_off.differing_inside << " pixels\n";
     }
-    for (ShadowMethod method : kShadowMethods) {
-      if (!builds_volume_on_gpu(method)) continue;
+    for (ShadowMethod method : kGpuBuiltMethods) {
       SCOPED_TRACE(std::string(shadow_method_name(method)) + " against " + reference_name);
-      ShadowMethodRenderer renderer = rig.renderer(method, light, nullptr);
-      const CountComparison c = compare_counts(reference, rig.render(renderer), rig.ids);
-      expect_drawn_volume_closed(renderer);
+      const MethodFrame drawn = rig.draw(method, light);
+      expect_closed(drawn);
+      const CountComparison c = compare_counts(reference, drawn.frame, rig.ids);
       std::cout << label << ", " << shadow_method_name(method) << " against " << reference_name << ": " << c.shadowed
                 << " shadowed, " << c.boundary << " boundary pixels, " << c.differing_boundary << " of them differ; "
                 << c.differing_inside << " others differ (largest step " << c.largest_inside_step << ")\n";
@@ -373,18 +377,14 @@ TEST_F(GlTest, CameraInsideAVolume_ZFailEqualsCpuZPassIsOffByTheEyesCount) {
         OccluderCounter(rig.prepared.canonical.soup, light).count(scene.camera.eye);
     ASSERT_TRUE(eye_count.has_value()) << "the eye must not lie on a volume boundary";
     ASSERT_GE(*eye_count, 1u) << "the eye must be inside a shadow volume";
-    const HomogeneousMesh cpu_mesh = cpu_volume(rig.prepared, light);
-    ShadowMethodRenderer cpu = rig.renderer(ShadowMethod::cpu, light, &cpu_mesh);
-    const StencilShadowFrame reference = rig.render(cpu);
-    for (ShadowMethod method : kShadowMethods) {
-      if (!draws_volume(method)) continue;
+    const StencilShadowFrame reference = rig.draw(ShadowMethod::cpu, light).frame;
+    for (ShadowMethod method : kVolumeMethods) {
       SCOPED_TRACE(std::string(shadow_method_name(method)));
-      ShadowMethodRenderer zfail_renderer = rig.renderer(method, light, &cpu_mesh, StencilMethod::zfail);
-      const CountComparison zfail = compare_counts(reference, rig.render(zfail_renderer), rig.ids);
+      const CountComparison zfail =
+          compare_counts(reference, rig.draw(method, light, StencilMethod::zfail).frame, rig.ids);
       expect_equal_off_boundaries(method, zfail);
       // z-pass counts the faces between the eye and P: n(P) - n(eye).
-      ShadowMethodRenderer zpass_renderer = rig.renderer(method, light, &cpu_mesh, StencilMethod::zpass);
-      const StencilShadowFrame zpass_frame = rig.render(zpass_renderer);
+      const StencilShadowFrame zpass_frame = rig.draw(method, light, StencilMethod::zpass).frame;
       const CountComparison zpass = compare_counts(reference, zpass_frame, rig.ids, static_cast<int>(*eye_count));
       expect_equal_off_boundaries(method, zpass);
       const CountComparison zpass_as_zfail = compare_counts(reference, zpass_frame, rig.ids);
@@ -433,16 +433,13 @@ TEST_F(GlTest, EdgeWithHundredOppositeTriangles_EveryMethodReachesMultiplicity10
   const Vec4f edge_start{0.0f, 0.0f, 0.0f, 1.0f}, edge_end{0.0f, 1.0f, 0.0f, 1.0f};
   for (const Light& light : {kHalfFanLight, Light{{0.0, 0.2, -1.0, 0.0}}}) {
     SCOPED_TRACE(light.directional() ? "directional" : "point");
-    const HomogeneousMesh cpu_mesh = cpu_volume(rig.prepared, light);
-    ShadowMethodRenderer cpu = rig.renderer(ShadowMethod::cpu, light, &cpu_mesh);
-    const StencilShadowFrame reference = rig.render(cpu);
-    for (ShadowMethod method : kShadowMethods) {
-      if (!draws_volume(method)) continue;
+    const StencilShadowFrame reference = rig.draw(ShadowMethod::cpu, light).frame;
+    for (ShadowMethod method : kVolumeMethods) {
       SCOPED_TRACE(std::string(shadow_method_name(method)));
-      ShadowMethodRenderer renderer = rig.renderer(method, light, &cpu_mesh);
-      const CountComparison c = compare_counts(reference, rig.render(renderer), rig.ids);
-      expect_drawn_volume_closed(renderer);
-      const std::int64_t m = drawn_side_multiplicity(renderer.first_volume(), edge_start, edge_end);
+      const MethodFrame drawn = rig.draw(method, light);
+      expect_closed(drawn);
+      const CountComparison c = compare_counts(reference, drawn.frame, rig.ids);
+      const std::int64_t m = drawn_side_multiplicity(drawn.volume, edge_start, edge_end);
       EXPECT_EQ(std::abs(m), static_cast<std::int64_t>(kBlades));
       std::cout << "half fan of " << kBlades << ", " << (light.directional() ? "directional" : "point") << ", "
                 << shadow_method_name(method) << ": drawn m = " << m << ", " << c.shadowed << " shadowed, "

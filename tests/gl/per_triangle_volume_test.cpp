@@ -42,46 +42,31 @@ using namespace test;
 // llvmpipe, all +-1); the bound leaves room for another rasteriser's ties.
 constexpr std::size_t kMaxBoundaryPixels = 256;
 
-std::vector<std::pair<std::string, Soup>> test_soups() {
+NamedSoups test_soups() {
   return {{"default scene", merged_soup(default_scene())},
           {"uv sphere", uv_sphere({0.2, 0.1, -0.3}, 1.0, 32, 16)}};
 }
 
 TEST_F(GlTest, PerTriangleSignsEqualCpuRefedgeFloat32) {
-  for (const auto& [name, soup] : test_soups()) {
-    const Prepared p = prepare(soup);
-    const ComputeVolumeSoup gpu_soup(p.canonical.soup, p.table);
-    PerTriangleShadowVolume volume(gpu_soup);
-    for (const Light& light : {kPointLight, kDirectionalLight}) {
-      SCOPED_TRACE(name + (light.directional() ? ", directional" : ", point"));
-      const EdgeMultiplicities cpu = refedge_multiplicities(p.canonical.soup, p.table, light, Precision::float32);
-      volume.build(light);
-      std::vector<std::int32_t> cpu_signs;
-      for (Sign s : cpu.triangle_sign) cpu_signs.push_back(to_int(s));
-      EXPECT_EQ(volume.read_triangle_signs(), cpu_signs);
-      EXPECT_LE(volume.read_requested_vertices(), volume.capacity_vertices());
-    }
-  }
+  for_each_build<PerTriangleShadowVolume>(
+      test_soups(), {kPointLight, kDirectionalLight},
+      [](const PerTriangleShadowVolume& volume, const Prepared& p, const Light& light) {
+        const EdgeMultiplicities cpu = refedge_multiplicities(p.canonical.soup, p.table, light, Precision::float32);
+        EXPECT_EQ(volume.read_triangle_signs(), triangle_signs(cpu));
+        EXPECT_LE(volume.read_requested_vertices(), volume.capacity_vertices());
+      });
 }
 
 TEST_F(GlTest, CapturedPerTriangleVolumesAreClosed) {
-  for (const auto& [name, soup] : test_soups()) {
-    const Prepared p = prepare(soup);
-    const ComputeVolumeSoup gpu_soup(p.canonical.soup, p.table);
-    PerTriangleShadowVolume volume(gpu_soup);
-    for (const Light& light : {kPointLight, kDirectionalLight}) {
-      SCOPED_TRACE(name + (light.directional() ? ", directional" : ", point"));
-      volume.build(light);
-      const std::vector<VolumeTriangle> triangles = volume.read_triangles();
-      std::size_t casting = 0;
-      for (std::int32_t s : volume.read_triangle_signs()) casting += s != 0;
-      // 8 triangles per casting triangle for a point light, 4 for a directional one.
-      EXPECT_EQ(triangles.size(), casting * (light.directional() ? 4u : 8u));
-      EXPECT_EQ(triangles.size() * 3, volume.read_requested_vertices());
-      EXPECT_FALSE(triangles.empty());
-      EXPECT_TRUE(unbalanced_edges(triangles).empty());
-    }
-  }
+  for_each_build<PerTriangleShadowVolume>(
+      test_soups(), {kPointLight, kDirectionalLight},
+      [](const PerTriangleShadowVolume& volume, const Prepared&, const Light& light) {
+        const std::vector<VolumeTriangle> triangles = expect_drawn_closed(volume);
+        std::size_t casting = 0;
+        for (std::int32_t s : volume.read_triangle_signs()) casting += s != 0;
+        // 8 triangles per casting triangle for a point light, 4 for a directional one.
+        EXPECT_EQ(triangles.size(), casting * (light.directional() ? 4u : 8u));
+      });
 }
 
 TEST_F(GlTest, StencilCountsMatchCpuExceptOnBoundaries) {

@@ -60,24 +60,15 @@ constexpr std::size_t kMinShadowedPixels = 10000;
 constexpr std::uint32_t kBlades = 100;
 
 TYPED_TEST(RecordVolumeTest, CapturedVolumeIsClosed) {
-  const std::vector<std::pair<std::string, Soup>> soups{{"default scene", merged_soup(default_scene())},
-                                                        {"uv sphere", uv_sphere({0.2, 0.1, -0.3}, 1.0, 32, 16)},
-                                                        {"fan of 100", nonmanifold_fan(100)},
-                                                        {"half fan", half_fan_and_wall(kBlades)}};
-  for (const auto& [name, soup] : soups) {
-    const Prepared p = prepare(soup);
-    const ComputeVolumeSoup gpu_soup(p.canonical.soup, p.table);
-    TypeParam volume(gpu_soup, p.table);
-    EXPECT_GE(volume.record_count(), p.table.size());
-    for (const Light& light : {kPointLight, kDirectionalLight, kHalfFanLight}) {
-      SCOPED_TRACE(name + (light.directional() ? ", directional" : ", point"));
-      volume.build(light);
-      const std::vector<VolumeTriangle> triangles = volume.read_triangles();
-      EXPECT_EQ(triangles.size() * 3, volume.read_requested_vertices());
-      EXPECT_FALSE(triangles.empty());
-      EXPECT_TRUE(unbalanced_edges(triangles).empty());
-    }
-  }
+  const NamedSoups soups{{"default scene", merged_soup(default_scene())},
+                         {"uv sphere", uv_sphere({0.2, 0.1, -0.3}, 1.0, 32, 16)},
+                         {"fan of 100", nonmanifold_fan(100)},
+                         {"half fan", half_fan_and_wall(kBlades)}};
+  for_each_build<TypeParam>(soups, {kPointLight, kDirectionalLight, kHalfFanLight},
+                            [](const TypeParam& volume, const Prepared& p, const Light&) {
+                              EXPECT_GE(volume.record_count(), p.table.size());
+                              expect_drawn_closed(volume);
+                            });
 }
 
 TYPED_TEST(RecordVolumeTest, StencilCountsMatchCpuExceptOnBoundaries) {

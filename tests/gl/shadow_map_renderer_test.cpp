@@ -10,7 +10,6 @@
 #include <gtest/gtest.h>
 
 #include <array>
-#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <iostream>
@@ -18,12 +17,12 @@
 #include <string>
 
 #include "gl_test_support.h"
-#include "volume_test_support.h"
-#include "gpu/camera_transform.h"
 #include "gpu/shadow_volume_geometry.h"
 #include "gpu/stencil_shadow_renderer.h"
 #include "scene/merged_soup.h"
 #include "scene/scene_file.h"
+#include "triangle_over_floor.h"
+#include "volume_test_support.h"
 
 namespace shadowcert::gpu {
 namespace {
@@ -31,39 +30,9 @@ namespace {
 using test::GlTest;
 using namespace test;
 
-// As tests/gl/stencil_shadow_renderer_test.cpp: a triangle at y = 1 over a floor at y = 0.
-constexpr std::array<Vec3, 3> kOccluder{{{-1.0, 1.0, -1.0}, {1.0, 1.0, -1.0}, {0.0, 1.0, 1.0}}};
-constexpr double kFloorHalfSize = 10.0;
-
-Soup scene_soup() {
-  Soup soup;
-  const double h = kFloorHalfSize;
-  soup.vertices = {{-h, 0.0, -h}, {h, 0.0, -h}, {h, 0.0, h}, {-h, 0.0, h}, kOccluder[0], kOccluder[1], kOccluder[2]};
-  soup.triangles = {{0, 1, 2}, {0, 2, 3}, {4, 5, 6}};
-  return soup;
-}
-
-Camera side_camera() {
-  Camera camera;
-  camera.eye = {6.0, 5.0, 0.0};
-  camera.target = {1.5, 0.0, -0.5};
-  camera.up = {0.0, 1.0, 0.0};
-  camera.fov_y_degrees = 60.0;
-  camera.width = 128;
-  camera.height = 96;
-  return camera;
-}
-
-struct Pixel {
-  std::uint32_t x, row;
-};
-Pixel pixel_of(const Camera& camera, const Vec3& p) {
-  const auto image = project_to_image(camera, p);
-  return {static_cast<std::uint32_t>(std::floor(image.x)), static_cast<std::uint32_t>(std::floor(image.y))};
-}
-
+// triangle_over_floor.h's scene through a size x size shadow map.
 StencilShadowFrame render_triangle(const Camera& camera, const Light& light, std::uint32_t size) {
-  const Soup soup = scene_soup();
+  const Soup soup = triangle_over_floor();
   const ShadedSoupMesh receivers(soup);
   const ShadowMapRenderer renderer(size);
   const OffscreenTarget target(camera.width, camera.height);
@@ -71,45 +40,21 @@ StencilShadowFrame render_triangle(const Camera& camera, const Light& light, std
   return renderer.render(target, receivers, soup_bounds(soup), camera, lights);
 }
 
-void expect_shadow_pattern(const Camera& camera, const StencilShadowFrame& frame, std::span<const Vec3> shadowed,
-                           std::span<const Vec3> lit) {
-  const Pixel first = pixel_of(camera, shadowed[0]);
-  const std::uint8_t shadowed_red = frame.colour.at(first.x, first.row)[0];
-  for (const Vec3& p : shadowed) {
-    const Pixel px = pixel_of(camera, p);
-    EXPECT_EQ(*frame.first_lit_mask.at(px.x, px.row), 0) << "shadowed point (" << p[0] << ", " << p[2] << ")";
-    EXPECT_EQ(*frame.first_stencil.at(px.x, px.row), 1) << "the counts image says 1 where shadowed";
-  }
-  for (const Vec3& p : lit) {
-    const Pixel px = pixel_of(camera, p);
-    EXPECT_EQ(*frame.first_lit_mask.at(px.x, px.row), 255) << "lit point (" << p[0] << ", " << p[2] << ")";
-    EXPECT_EQ(*frame.first_stencil.at(px.x, px.row), 0);
-    EXPECT_GT(frame.colour.at(px.x, px.row)[0], shadowed_red + 50) << "the lit floor must be brighter";
-    EXPECT_EQ(frame.colour.at(px.x, px.row)[3], 255);
-  }
-}
-
-// Point light at (-3, 3, 0): the floor shadow is the triangle (0, -1.5), (3, -1.5),
-// (1.5, 1.5) in (x, z); every point is >= 0.4 world units from its boundary (the stencil
-// test's points), many texels of even a 256^2 map fitted to the 20 x 20 floor.
+// Point light kSideLight (triangle_over_floor.h): every test point is >= 0.4 world units from
+// the shadow's boundary, many texels of even a 256^2 map fitted to the 20 x 20 floor.
 TEST_F(GlTest, PointLightShadowOfATriangleOnTheFloor) {
-  constexpr Light kLight{{-3.0, 3.0, 0.0, 1.0}};
-  constexpr std::array<Vec3, 3> kShadowed{{{1.5, 0.0, -0.5}, {1.5, 0.0, 0.5}, {1.0, 0.0, -1.0}}};
-  constexpr std::array<Vec3, 4> kLit{{{4.5, 0.0, -0.5}, {1.5, 0.0, -3.0}, {1.5, 0.0, 3.0}, {3.5, 0.0, 1.0}}};
   const Camera camera = side_camera();
   for (std::uint32_t size : {256u, kDefaultShadowMapSize}) {
     SCOPED_TRACE("size " + std::to_string(size));
-    expect_shadow_pattern(camera, render_triangle(camera, kLight, size), kShadowed, kLit);
+    expect_shadow_pattern(camera, render_triangle(camera, kSideLight, size), kSideShadowed, kSideLit);
   }
 }
 
-// Directional light towards (-1, 1, 0): the shadow is the triangle (0, -1), (2, -1), (1, 1).
+// Directional light kDirectionalSideLight (triangle_over_floor.h).
 TEST_F(GlTest, DirectionalLightShadowOfATriangleOnTheFloor) {
-  constexpr Light kLight{{-1.0, 1.0, 0.0, 0.0}};
-  constexpr std::array<Vec3, 2> kShadowed{{{1.0, 0.0, -0.3}, {1.2, 0.0, -0.7}}};
-  constexpr std::array<Vec3, 3> kLit{{{3.5, 0.0, -0.5}, {1.0, 0.0, 2.5}, {1.0, 0.0, -2.5}}};
   const Camera camera = side_camera();
-  expect_shadow_pattern(camera, render_triangle(camera, kLight, kDefaultShadowMapSize), kShadowed, kLit);
+  expect_shadow_pattern(camera, render_triangle(camera, kDirectionalSideLight, kDefaultShadowMapSize),
+                        kDirectionalShadowed, kDirectionalLit);
 }
 
 TEST_F(GlTest, SizesOutsideTheRangeAreRejected) {

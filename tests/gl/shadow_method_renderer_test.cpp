@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -142,8 +143,7 @@ TEST_F(ShadowMethodRendererTest, ShadowMap_SameFrameAsShadowMapRendererWithItsOp
 TEST_F(ShadowMethodRendererTest, EveryVolumeMethod_FirstVolumeIsWhatWasDrawn) {
   const MethodInputs in = default_inputs();
   const OffscreenTarget target(kWidth, kHeight);
-  for (ShadowMethod method : kShadowMethods) {
-    if (!draws_volume(method)) continue;
+  for (ShadowMethod method : kVolumeMethods) {
     SCOPED_TRACE(std::string(shadow_method_name(method)));
     ShadowMethodRenderer renderer(method, in.method_scene());
     (void)renderer.render(target, in.scene.camera);
@@ -193,6 +193,28 @@ TEST_F(ShadowMethodRendererTest, MissingInputs_Throw) {
   ShadowMethodScene no_receiver = in.method_scene();
   no_receiver.receivers = {};
   EXPECT_THROW(ShadowMethodRenderer(ShadowMethod::cs, no_receiver), std::invalid_argument);
+}
+
+// A light DESIGN.md §1 does not define (a NaN coordinate, w outside {0, 1}, the null
+// direction) is rejected by every GPU-built method's build, in the first frame, naming it.
+TEST_F(ShadowMethodRendererTest, UndefinedLights_RejectedByEveryGpuBuild) {
+  const MethodInputs in = default_inputs();
+  const OffscreenTarget target(kWidth, kHeight);
+  const std::array<Light, 3> undefined{Light{{std::nan(""), 4.0, 0.0, 1.0}}, Light{{1.0, 4.0, 0.0, 0.5}},
+                                       Light{{0.0, 0.0, 0.0, 0.0}}};
+  for (ShadowMethod method : kGpuBuiltMethods) {
+    for (const Light& light : undefined) {
+      SCOPED_TRACE(std::string(shadow_method_name(method)) + ", w = " + std::to_string(light.position[3]));
+      ShadowMethodRenderer renderer(method, one_light_scene(in.parts, in.prepared, light, nullptr));
+      try {
+        (void)renderer.render(target, in.scene.camera);
+        ADD_FAILURE() << "the light was accepted";
+      } catch (const std::invalid_argument& error) {
+        EXPECT_NE(std::string(error.what()).find("::build: the light must be finite"), std::string::npos)
+            << error.what();
+      }
+    }
+  }
 }
 
 }  // namespace

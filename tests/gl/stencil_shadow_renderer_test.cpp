@@ -8,28 +8,17 @@
 #include <gtest/gtest.h>
 
 #include <array>
-#include <cmath>
-#include <span>
+#include <cstdint>
+#include <stdexcept>
+#include <utility>
 
 #include "gl_test_support.h"
-#include "gpu/camera_transform.h"
+#include "triangle_over_floor.h"
 
 namespace shadowcert::gpu {
 namespace {
 
-using test::GlTest;
-
-// The occluder: a triangle in the plane y = 1; the floor: a large square at y = 0.
-constexpr std::array<Vec3, 3> kOccluder{{{-1.0, 1.0, -1.0}, {1.0, 1.0, -1.0}, {0.0, 1.0, 1.0}}};
-constexpr double kFloorHalfSize = 10.0;
-
-Soup scene_soup() {
-  Soup soup;
-  const double h = kFloorHalfSize;
-  soup.vertices = {{-h, 0.0, -h}, {h, 0.0, -h}, {h, 0.0, h}, {-h, 0.0, h}, kOccluder[0], kOccluder[1], kOccluder[2]};
-  soup.triangles = {{0, 1, 2}, {0, 2, 3}, {4, 5, 6}};
-  return soup;
-}
+using namespace test;  // the scene: triangle_over_floor.h
 
 std::array<float, 4> finite(const Vec3& p) {
   return {static_cast<float>(p[0]), static_cast<float>(p[1]), static_cast<float>(p[2]), 1.0f};
@@ -71,43 +60,13 @@ ShadowVolumeGeometry triangle_volume(const Light& light) {
   return g;
 }
 
-// Looking down at about 45 degrees from the +x side: the floor region the occluder hides from
-// this eye (its projection from the eye onto y = 0) is x in [-2.75, -0.25], |z| <= 1.25,
-// away from every test point below.
-Camera side_camera() {
-  Camera camera;
-  camera.eye = {6.0, 5.0, 0.0};
-  camera.target = {1.5, 0.0, -0.5};
-  camera.up = {0.0, 1.0, 0.0};
-  camera.fov_y_degrees = 60.0;
-  camera.width = 128;
-  camera.height = 96;
-  return camera;
-}
-
-struct Pixel {
-  std::uint32_t x, row;
-};
-Pixel pixel_of(const Camera& camera, const Vec3& p) {
-  const auto image = project_to_image(camera, p);
-  return {static_cast<std::uint32_t>(std::floor(image.x)), static_cast<std::uint32_t>(std::floor(image.y))};
-}
-
-// Point light at (-3, 3, 0): a floor point of the shadow is L + 3/2 (p - L) for p on the
-// occluder, so the shadow is the triangle (0, -1.5), (3, -1.5), (1.5, 1.5) in (x, z); at
-// z = 0.5 it spans x in [1, 2], at z = -1 x in [0.25, 2.75]. Every test point is >= 0.4
-// world units (several pixels at this camera) from the shadow's boundary.
-constexpr Light kSideLight{{-3.0, 3.0, 0.0, 1.0}};
-constexpr std::array<Vec3, 3> kShadowedPoint{{{1.5, 0.0, -0.5}, {1.5, 0.0, 0.5}, {1.0, 0.0, -1.0}}};
-constexpr std::array<Vec3, 4> kLitPoint{{{4.5, 0.0, -0.5}, {1.5, 0.0, -3.0}, {1.5, 0.0, 3.0}, {3.5, 0.0, 1.0}}};
-
 StencilShadowFrame render(const Camera& camera, const Light& light, StencilMethod method, int copies = 1) {
   ShadowVolumeGeometry g = triangle_volume(light);
   const std::size_t faces = g.triangles.size();
   for (int c = 1; c < copies; ++c)
     for (std::size_t f = 0; f < faces; ++f) g.triangles.push_back(g.triangles[f]);
   const ShadowVolumeMesh volume(g);
-  const Soup soup = scene_soup();
+  const Soup soup = triangle_over_floor();
   const ShadedSoupMesh receivers(soup);
   const StencilShadowRenderer renderer;
   const OffscreenTarget target(camera.width, camera.height);
@@ -116,31 +75,14 @@ StencilShadowFrame render(const Camera& camera, const Light& light, StencilMetho
 }
 
 std::uint8_t stencil_at(const StencilShadowFrame& f, Pixel p) { return *f.first_stencil.at(p.x, p.row); }
-std::uint8_t red_at(const StencilShadowFrame& f, Pixel p) { return f.colour.at(p.x, p.row)[0]; }
 
-void expect_shadow_pattern(const Camera& camera, const StencilShadowFrame& frame,
-                           std::span<const Vec3> shadowed, std::span<const Vec3> lit) {
-  const std::uint8_t shadowed_red = red_at(frame, pixel_of(camera, shadowed[0]));
-  for (const Vec3& p : shadowed) {
-    const Pixel px = pixel_of(camera, p);
-    EXPECT_EQ(stencil_at(frame, px), 1) << "shadowed point (" << p[0] << ", " << p[2] << ") pixel " << px.x << "," << px.row;
-    EXPECT_EQ(*frame.first_lit_mask.at(px.x, px.row), 0);
-  }
-  for (const Vec3& p : lit) {
-    const Pixel px = pixel_of(camera, p);
-    EXPECT_EQ(stencil_at(frame, px), 0) << "lit point (" << p[0] << ", " << p[2] << ") pixel " << px.x << "," << px.row;
-    EXPECT_EQ(*frame.first_lit_mask.at(px.x, px.row), 255);
-    EXPECT_GT(red_at(frame, px), shadowed_red + 50) << "the lit floor must be brighter than the shadow";
-    EXPECT_EQ(frame.colour.at(px.x, px.row)[3], 255) << "covered pixels have alpha 255";
-  }
-}
-
+// Point light kSideLight (triangle_over_floor.h): both stencil methods count the floor shadow.
 TEST_F(GlTest, PointLightShadowOnTheFloorZFailAndZPass) {
   const Camera camera = side_camera();
   for (StencilMethod method : {StencilMethod::zfail, StencilMethod::zpass}) {
     SCOPED_TRACE(method == StencilMethod::zfail ? "zfail" : "zpass");
     const StencilShadowFrame frame = render(camera, kSideLight, method);
-    expect_shadow_pattern(camera, frame, kShadowedPoint, kLitPoint);
+    expect_shadow_pattern(camera, frame, kSideShadowed, kSideLit);
   }
 }
 
@@ -165,19 +107,14 @@ TEST_F(GlTest, EyeInsideTheVolumeZFailCountsRightZPassDoesNot) {
   EXPECT_EQ(stencil_at(zpass, centre), 0) << "z-pass misses the volume the eye is inside";
 }
 
-// Directional light towards l = (-1, 1, 0): a floor point of the shadow is p + (1, -1, 0) for
-// p on the occluder, the triangle (0, -1), (2, -1), (1, 1) in (x, z); at z = -0.3 it spans
-// x in [0.35, 1.65], at z = -0.7 x in [0.15, 1.85]. Side faces meet the one far vertex
-// (-l, 0); there is no back cap.
+// Directional light (triangle_over_floor.h's kDirectionalSideLight): side faces meet the one
+// far vertex (-l, 0); there is no back cap.
 TEST_F(GlTest, DirectionalLightShadow) {
   const Camera camera = side_camera();
-  constexpr Light kDirectional{{-1.0, 1.0, 0.0, 0.0}};
-  constexpr std::array<Vec3, 2> kShadowed{{{1.0, 0.0, -0.3}, {1.2, 0.0, -0.7}}};
-  constexpr std::array<Vec3, 3> kLit{{{3.5, 0.0, -0.5}, {1.0, 0.0, 2.5}, {1.0, 0.0, -2.5}}};
   for (StencilMethod method : {StencilMethod::zfail, StencilMethod::zpass}) {
     SCOPED_TRACE(method == StencilMethod::zfail ? "zfail" : "zpass");
-    const StencilShadowFrame frame = render(camera, kDirectional, method);
-    expect_shadow_pattern(camera, frame, kShadowed, kLit);
+    const StencilShadowFrame frame = render(camera, kDirectionalSideLight, method);
+    expect_shadow_pattern(camera, frame, kDirectionalShadowed, kDirectionalLit);
   }
 }
 
@@ -185,14 +122,14 @@ TEST_F(GlTest, DirectionalLightShadow) {
 TEST_F(GlTest, CountsWrapModulo256) {
   const Camera camera = side_camera();
   const StencilShadowFrame frame = render(camera, kSideLight, StencilMethod::zfail, 257);
-  for (const Vec3& p : kShadowedPoint) EXPECT_EQ(stencil_at(frame, pixel_of(camera, p)), 1);
-  for (const Vec3& p : kLitPoint) EXPECT_EQ(stencil_at(frame, pixel_of(camera, p)), 0);
+  for (const Vec3& p : kSideShadowed) EXPECT_EQ(stencil_at(frame, pixel_of(camera, p)), 1);
+  for (const Vec3& p : kSideLit) EXPECT_EQ(stencil_at(frame, pixel_of(camera, p)), 0);
   const StencilShadowFrame two = render(camera, kSideLight, StencilMethod::zfail, 2);
-  EXPECT_EQ(stencil_at(two, pixel_of(camera, kShadowedPoint[0])), 2);
+  EXPECT_EQ(stencil_at(two, pixel_of(camera, kSideShadowed[0])), 2);
 }
 
 TEST_F(GlTest, LightWithoutVolumeIsRejected) {
-  const Soup soup = scene_soup();
+  const Soup soup = triangle_over_floor();
   const ShadedSoupMesh receivers(soup);
   const StencilShadowRenderer renderer;
   const OffscreenTarget target(8, 8);

@@ -1,26 +1,35 @@
 #pragma once
 // What the GL volume tests share: the canonical soup and edge table of a test soup, the
-// default scene, the reference volume, one method lit by one light, and the closure check of
-// captured triangles. The reference every method is compared with is the exact cpu chain as
-// GPU geometry, exact/chain_mesh.h's chain_mesh (what render --method cpu draws): tests that
-// use it link shadowcert_exact (CPU reference only: gpu/ never does). Scenes are merged into
-// one soup as the CLI merges them (scene/merged_soup.h).
+// default scene and the half fan, the reference volume, any method of
+// gpu/shadow_method_renderer.h lit by one light (as `render --method` draws it) and its stencil
+// difference from cpu, the per-soup, per-light build loop of the volume classes' own tests, and
+// the closure check of captured triangles. The reference every method is compared with is the
+// exact cpu chain as GPU geometry, exact/chain_mesh.h's chain_mesh (what render --method cpu
+// draws): tests that include this header link shadowcert_exact (CPU reference only: gpu/ never
+// does; tests/gl/CMakeLists.txt). Scenes are merged into one soup as the CLI merges them
+// (scene/merged_soup.h). Test code only.
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <initializer_list>
+#include <iterator>
 #include <map>
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
 #include "core/camera.h"
 #include "core/homogeneous_mesh.h"
 #include "core/scene.h"
+#include "core/sign.h"
 #include "exact/chain_mesh.h"
 #include "exact/edge_multiplicity.h"
 #include "exact/shadow_volume_chain.h"
@@ -56,6 +65,16 @@ inline Scene default_scene() {
                       throw std::runtime_error("default.json should need no mesh file: " + file.string());
                     });
 }
+
+// kShadowMethods that draw a shadow volume (all but shadowmap) and those of them that build it
+// on the GPU (cs, gs, ts, pertri), in kShadowMethods' order.
+inline std::vector<ShadowMethod> shadow_methods_where(bool (*keep)(ShadowMethod)) {
+  std::vector<ShadowMethod> out;
+  std::copy_if(kShadowMethods.begin(), kShadowMethods.end(), std::back_inserter(out), keep);
+  return out;
+}
+inline const std::vector<ShadowMethod> kVolumeMethods = shadow_methods_where(draws_volume);
+inline const std::vector<ShadowMethod> kGpuBuiltMethods = shadow_methods_where(builds_volume_on_gpu);
 
 // The exact chain of `light` over p's canonical soup (exact multiplicities, assembled) as the
 // float triangles `render --method cpu` uploads (exact/chain_mesh.h): the reference volume.
@@ -178,6 +197,42 @@ inline Soup half_fan_and_wall(std::uint32_t blades) {
   return soup;
 }
 
+// The soups a per-method test runs over, each with a name for traces.
+using NamedSoups = std::vector<std::pair<std::string, Soup>>;
+
+// For every soup of `soups` and light of `lights`: one `Volume` (ComputeShadowVolume,
+// PerTriangleShadowVolume, or the record methods GeometryShaderShadowVolume and
+// TessellationShadowVolume, which also take the edge table) per soup, on the uploaded soup,
+// built for each light in turn; `check(volume, prepared, light)` runs after each build inside
+// a SCOPED_TRACE naming the soup and the light's kind.
+template <class Volume, class Check>
+void for_each_build(const NamedSoups& soups, std::initializer_list<Light> lights, Check check) {
+  for (const auto& [name, soup] : soups) {
+    const Prepared p = prepare(soup);
+    const ComputeVolumeSoup gpu_soup(p.canonical.soup, p.table);
+    Volume volume = [&] {
+      if constexpr (std::is_constructible_v<Volume, const ComputeVolumeSoup&, const EdgeTable&>) {
+        return Volume(gpu_soup, p.table);
+      } else {
+        return Volume(gpu_soup);
+      }
+    }();
+    for (const Light& light : lights) {
+      SCOPED_TRACE(name + (light.directional() ? ", directional" : ", point"));
+      volume.build(light);
+      check(volume, p, light);
+    }
+  }
+}
+
+// A multiplicity computation's triangle signs s(t) as the ints the GPU methods store.
+inline std::vector<std::int32_t> triangle_signs(const EdgeMultiplicities& m) {
+  std::vector<std::int32_t> out;
+  out.reserve(m.triangle_sign.size());
+  for (Sign s : m.triangle_sign) out.push_back(to_int(s));
+  return out;
+}
+
 // Every directed edge (a, b) of the welded triangles minus its reverse: zero when closed.
 inline std::map<std::pair<std::uint32_t, std::uint32_t>, int> unbalanced_edges(const std::vector<VolumeTriangle>& triangles) {
   std::map<std::array<std::uint32_t, 4>, std::uint32_t> ids;  // bitwise weld of vec4 vertices
@@ -197,6 +252,17 @@ inline std::map<std::pair<std::uint32_t, std::uint32_t>, int> unbalanced_edges(c
   }
   std::erase_if(balance, [](const auto& entry) { return entry.second == 0; });
   return balance;
+}
+
+// What `volume` drew after its last build, read back: every vertex it asked for (no
+// overflow), at least one triangle, and closed (unbalanced_edges empty). Returns the triangles.
+template <class Volume>
+std::vector<VolumeTriangle> expect_drawn_closed(const Volume& volume) {
+  std::vector<VolumeTriangle> triangles = volume.read_triangles();
+  EXPECT_EQ(triangles.size() * 3, volume.read_requested_vertices());
+  EXPECT_FALSE(triangles.empty());
+  EXPECT_TRUE(unbalanced_edges(triangles).empty());
+  return triangles;
 }
 
 }  // namespace shadowcert::gpu::test
