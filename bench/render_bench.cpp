@@ -38,9 +38,7 @@
 #include "core/camera.h"
 #include "core/light.h"
 #include "core/soup.h"
-#include "exact/chain_mesh.h"
-#include "exact/edge_multiplicity.h"
-#include "exact/shadow_volume_chain.h"
+#include "exact/cpu_volume.h"
 #include "gpu/camera_transform.h"
 #include "gpu/egl_context.h"
 #include "gpu/frame_timing.h"
@@ -141,11 +139,7 @@ GridScene& grid_scene(std::uint64_t triangles, const Settings& settings) {
 
 const std::vector<HomogeneousMesh>& cpu_volumes(GridScene& s) {
   if (s.cpu_volumes.empty()) {
-    for (const Light& light : s.lights) {
-      const EdgeMultiplicities m = exact_multiplicities(s.canonical.soup, s.table, light);
-      s.cpu_volumes.push_back(
-          chain_mesh(assemble_chain(s.canonical.soup, s.table, m, light), s.canonical.soup, light));
-    }
+    for (const Light& light : s.lights) s.cpu_volumes.push_back(cpu_volume_mesh(s.canonical.soup, s.table, light));
   }
   return s.cpu_volumes;
 }

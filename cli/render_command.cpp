@@ -17,9 +17,7 @@
 #include "cli/scene_input.h"
 #include "core/input_error.h"
 #include "exact/captured_volume.h"
-#include "exact/chain_mesh.h"
-#include "exact/edge_multiplicity.h"
-#include "exact/shadow_volume_chain.h"
+#include "exact/cpu_volume.h"
 #include "gpu/egl_context.h"
 #include "gpu/frame_timing.h"
 #include "gpu/gl_environment_error.h"
@@ -143,7 +141,8 @@ int run_render(const RenderOptions& options) {
   if (merged.triangles.empty()) throw InputError(options.input, "no triangle to render");
 
   // The volumes' inputs: the canonical soup and edge table (the GPU-built methods read them),
-  // and for cpu one exact chain per light (DESIGN.md §3) as homogeneous floats.
+  // and for cpu one exact chain per light (DESIGN.md §3) of the float-rounded input, as
+  // homogeneous floats (exact/cpu_volume.h).
   auto stage = Clock::now();
   std::optional<CanonicalSoup> canonical;
   EdgeTable table;
@@ -153,10 +152,7 @@ int run_render(const RenderOptions& options) {
     table = build_edge_table(canonical->soup);
   }
   if (method == gpu::ShadowMethod::cpu) {
-    for (const Light& light : scene.lights) {
-      const EdgeMultiplicities m = exact_multiplicities(canonical->soup, table, light);
-      cpu_volumes.push_back(chain_mesh(assemble_chain(canonical->soup, table, m, light), canonical->soup, light));
-    }
+    for (const Light& light : scene.lights) cpu_volumes.push_back(cpu_volume_mesh(canonical->soup, table, light));
   }
   const double chain_seconds = seconds_since(stage);
 
@@ -280,7 +276,8 @@ void add_render_command(CLI::App& app, int& exit_code) {
       "another; --counts, --mask and the pixel counts are for the FIRST light");
   cmd->add_option("input", options->input, "Mesh file (.obj .off .ply .stl) or scene (.json)")->required();
   cmd->add_option("--method", options->method,
-                  "How the volume is built: cpu (the exact chain from exact/, drawn as is), cs (compute "
+                  "How the volume is built: cpu (the exact chain of the float-rounded input from exact/, drawn as "
+                  "is; exact/cpu_volume.h), cs (compute "
                   "shader, float reference-edge multiplicities, rebuilt every frame; gpu/compute_volume.h), "
                   "pertri (compute shader, every triangle's closed volume, no silhouette, rebuilt every frame; "
                   "gpu/per_triangle_volume.h), gs (geometry shader over edge records, float reference-edge "

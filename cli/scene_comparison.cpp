@@ -11,10 +11,8 @@
 
 #include "cli/mesh_palette.h"
 #include "exact/captured_volume.h"
-#include "exact/chain_mesh.h"
-#include "exact/edge_multiplicity.h"
+#include "exact/cpu_volume.h"
 #include "exact/input_rounding.h"
-#include "exact/shadow_volume_chain.h"
 #include "gpu/depth_precision.h"
 #include "gpu/gl_environment_error.h"
 #include "gpu/offscreen_target.h"
@@ -125,10 +123,7 @@ SceneComparison compare_scene(const Scene& scene, const std::vector<gpu::ShadowM
     table = build_edge_table(canonical->soup);
   }
   if (std::find(methods.begin(), methods.end(), gpu::ShadowMethod::cpu) != methods.end())
-    for (const Light& light : scene.lights) {
-      const EdgeMultiplicities m = exact_multiplicities(canonical->soup, table, light);
-      cpu_volumes.push_back(chain_mesh(assemble_chain(canonical->soup, table, m, light), canonical->soup, light));
-    }
+    for (const Light& light : scene.lights) cpu_volumes.push_back(cpu_volume_mesh(canonical->soup, table, light));
 
   const std::vector<gpu::ShadedSoupPart> parts = shaded_parts(scene);
   const gpu::OffscreenTarget target(camera.width, camera.height);

@@ -4,8 +4,9 @@
 // marked by the float-rounded scene, exact/input_rounding.h) by exact/pixel_comparison.h; the
 // volume it drew is certified by exact/captured_volume.h.
 //  1. the default scene and every scene of data/scenes/hard/: zero hard errors and closed
-//     volumes for every robust method (cpu, cs, gs, ts, pertri) with z-fail, one known defect
-//     excepted (kKnownDefects);
+//     volumes for every robust method (cpu, cs, gs, ts, pertri) with z-fail; cpu included on
+//     light_one_ulp_off_floor_plane.json, as it draws the exact chain of the float-rounded
+//     input (exact/cpu_volume.h);
 //  2. planted faults in cpu's volume (a side quad dropped, a cap reversed) are caught as open
 //     volumes and as hard errors;
 //  3. the shadow map, a baseline, shows hard errors at low resolution and fewer as it grows.
@@ -17,8 +18,6 @@
 #include <cctype>
 #include <cstdint>
 #include <filesystem>
-#include <iostream>
-#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -43,14 +42,6 @@ using namespace test;
 
 constexpr std::uint32_t kWidth = 96;
 constexpr std::uint32_t kHeight = 72;
-
-// The one pair that fails and why: cpu draws the exact chain of the DOUBLE scene in float. With
-// the light 2^-52 above the floor the floor casts exactly, but in float the light is in its
-// plane and the chain's back cap collapses, so cpu's counts are wrong beyond the floor's own
-// (ambiguous) pixels; the GPU-built methods, which build from the float input, are right. The
-// diff reports it: a defect of cpu's volume, not of the comparison (docs/diff.md).
-const std::set<std::pair<std::string, ShadowMethod>> kKnownDefects{
-    {"light_one_ulp_off_floor_plane", ShadowMethod::cpu}};
 
 // One scene prepared as `shadowcert diff` prepares it: every method's inputs, and the exact
 // image at kWidth x kHeight.
@@ -98,11 +89,6 @@ void expect_robust_methods_exact(const DiffScene& d, const std::string& name) {
       EXPECT_TRUE(r.closed);
       // Not vacuous: most pixels are compared (the hard scenes' grazing lights leave less).
       EXPECT_GT(r.comparison.agree, kWidth * kHeight / 3);
-      if (kKnownDefects.count({name, method}) != 0) {
-        std::cout << "[ known    ] " << name << " " << shadow_method_name(method) << " light " << k << ": "
-                  << r.comparison.hard_errors << " hard errors (kKnownDefects)\n";
-        continue;
-      }
       EXPECT_EQ(r.comparison.hard_errors, 0u) << "coverage " << r.comparison.coverage_errors << ", lit "
                                               << r.comparison.lit_errors << ", count " << r.comparison.count_errors;
     }

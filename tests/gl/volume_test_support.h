@@ -4,8 +4,8 @@
 // gpu/shadow_method_renderer.h lit by one light (as `render --method` draws it) and its stencil
 // difference from cpu, the per-soup, per-light build loop of the volume classes' own tests, and
 // the closure check of captured triangles. The reference every method is compared with is the
-// exact cpu chain as GPU geometry, exact/chain_mesh.h's chain_mesh (what render --method cpu
-// draws): tests that include this header link shadowcert_exact (CPU reference only: gpu/ never
+// exact cpu chain as GPU geometry, exact/cpu_volume.h's cpu_volume_mesh (what render --method
+// cpu draws): tests that include this header link shadowcert_exact (CPU reference only: gpu/ never
 // does; tests/gl/CMakeLists.txt). Scenes are merged into one soup as the CLI merges them
 // (scene/merged_soup.h). Test code only.
 #include <gtest/gtest.h>
@@ -30,9 +30,8 @@
 #include "core/homogeneous_mesh.h"
 #include "core/scene.h"
 #include "core/sign.h"
-#include "exact/chain_mesh.h"
+#include "exact/cpu_volume.h"
 #include "exact/edge_multiplicity.h"
-#include "exact/shadow_volume_chain.h"
 #include "gpu/compute_volume.h"
 #include "gpu/offscreen_target.h"
 #include "gpu/shadow_method_renderer.h"
@@ -76,12 +75,11 @@ inline std::vector<ShadowMethod> shadow_methods_where(bool (*keep)(ShadowMethod)
 inline const std::vector<ShadowMethod> kVolumeMethods = shadow_methods_where(draws_volume);
 inline const std::vector<ShadowMethod> kGpuBuiltMethods = shadow_methods_where(builds_volume_on_gpu);
 
-// The exact chain of `light` over p's canonical soup (exact multiplicities, assembled) as the
-// float triangles `render --method cpu` uploads (exact/chain_mesh.h): the reference volume.
+// The exact chain of `light` over p's canonical soup, both rounded to float as the GPU receives
+// them, as the float triangles `render --method cpu` uploads (exact/cpu_volume.h): the
+// reference volume.
 inline HomogeneousMesh cpu_volume(const Prepared& p, const Light& light) {
-  const Soup& canonical = p.canonical.soup;
-  const EdgeMultiplicities m = exact_multiplicities(canonical, p.table, light);
-  return chain_mesh(assemble_chain(canonical, p.table, m, light), canonical, light);
+  return cpu_volume_mesh(p.canonical.soup, p.table, light);
 }
 
 // What ShadowMethodRenderer needs to draw `light` alone over `receivers`, the casters being
