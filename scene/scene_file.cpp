@@ -151,8 +151,10 @@ Light read_light(const JsonField& field) {
 }
 
 // No "lights": one point light above the middle of the scene's bounding box, as high above
-// its top as the box is across, so that every caster's shadow falls down and outwards.
-Light default_light(const std::vector<SceneMesh>& meshes) {
+// its top as the box is across, so that every caster's shadow falls down and outwards. A box
+// near the double range can put that point past it: an error on `root` (found by the scene
+// fuzzer: a box scaled by 1e308), never an infinite light.
+Light default_light(const std::vector<SceneMesh>& meshes, const JsonField& root) {
   Vec3 lo{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
           std::numeric_limits<double>::infinity()};
   Vec3 hi{-lo[0], -lo[1], -lo[2]};
@@ -167,6 +169,8 @@ Light default_light(const std::vector<SceneMesh>& meshes) {
   const double diagonal = std::hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
   const double height = diagonal > 0.0 ? diagonal : 1.0;
   light.position = {lo[0] / 2 + hi[0] / 2, hi[1] + height, lo[2] / 2 + hi[2] / 2, 1.0};
+  if (!std::isfinite(light.position[0]) || !std::isfinite(light.position[1]) || !std::isfinite(light.position[2]))
+    root.fail("the default light (above the meshes, as high as they are across) overflows a double: give 'lights'");
   return light;
 }
 
@@ -240,7 +244,7 @@ Scene parse_scene(std::string_view json_text, const std::string& file_name, cons
     if (n == 0) lights->fail("needs at least one light (leave 'lights' out for the default one)");
     for (std::size_t i = 0; i < n; ++i) scene.lights.push_back(read_light(lights->element(i)));
   } else {
-    scene.lights.push_back(default_light(scene.meshes));
+    scene.lights.push_back(default_light(scene.meshes, root));
   }
   if (const auto camera = root.member("camera")) scene.camera = read_camera(*camera);
   return scene;

@@ -303,6 +303,8 @@ TEST(LoadScene, BadScenes_ErrorNamesFileKeyAndProblem) {
       {"open_box_params.json", "unknown key 'size' in meshes[0].params (it takes no keys)", 0},
       {"overflowing_transform.json", "meshes[0].transform: maps a vertex to a non-finite coordinate", 0},
       {"description_type.json", "description: expected a string, got number", 0},
+      // Found by fuzz/scene_file_fuzzer (docs/fuzzing-parsers.md): a box scaled by 1e308.
+      {"default_light_overflow.json", "the default light (above the meshes, as high as they are across) overflows", 0},
   };
   std::size_t files = 0;
   for (const auto& entry : std::filesystem::directory_iterator(kTestScenes / "bad")) files += entry.is_regular_file();
