@@ -45,6 +45,8 @@ class Records {
     return false;
   }
   [[nodiscard]] const std::vector<std::string_view>& tokens() const { return tokens_; }
+  // The current line as written, comment included.
+  [[nodiscard]] std::string_view text() const { return lines_.line(); }
   // The current line; at the end of the text, the last line.
   [[nodiscard]] std::size_t line() const { return lines_.number(); }
   [[noreturn]] void fail_here(const std::string& message) const { fail(file_, lines_.number(), message); }
@@ -246,6 +248,14 @@ class OffChecker {
     if (keyword->textures && !keyword->colors)
       records_.fail_here("texture coordinates without colors (" + std::string(records_.tokens()[0]) +
                          "): CGAL's OFF reader reads them from an uninitialised offset (write STCOFF)");
+    // CGAL's header scanner takes the character that ends the keyword as its delimiter, so a
+    // '#' right after it does not start a comment there: "4OFF#BINARY" is binary OFF to CGAL
+    // (found by the OFF fuzzer: CGAL then read text as big-endian counts).
+    const std::string_view keyword_token = records_.tokens()[0];
+    const auto after_keyword = static_cast<std::size_t>(keyword_token.data() - records_.text().data()) + keyword_token.size();
+    if (after_keyword < records_.text().size() && records_.text()[after_keyword] == '#')
+      records_.fail_here("a comment right after the keyword " + quoted(keyword_token) +
+                         " (CGAL reads it as part of the header): put a space before the '#'");
     keyword_ = *keyword;
     std::size_t first_count = 1;
     if (records_.tokens().size() == 1) {
@@ -267,8 +277,19 @@ class OffChecker {
         records_.fail_here("expected the counts 'vertices faces edges' (three non-negative integers)");
       counts[c] = *value;
     }
+    // CGAL doubles the edge count in int arithmetic (its halfedge estimate), which overflows
+    // above INT_MAX / 2; the count is otherwise unused, so 0 is what most files write.
+    constexpr long long kLargestEdgeCount = std::numeric_limits<int>::max() / 2;
+    if (counts[2] > kLargestEdgeCount)
+      records_.fail_here("edge count " + std::to_string(counts[2]) + " is over " +
+                         std::to_string(kLargestEdgeCount) + " (CGAL doubles it as an int; write 0)");
     vertex_count_ = static_cast<std::size_t>(counts[0]);
     face_count_ = static_cast<std::size_t>(counts[1]);
+    // With no usable edge count CGAL estimates halfedges as int((V + F + 10) * 2.1), a
+    // float-to-int overflow past about 1.02e9 elements; no file that large reads anyway.
+    if (static_cast<double>(vertex_count_ + face_count_ + 10) * 2.1 > std::numeric_limits<int>::max())
+      records_.fail_here("vertices + faces = " + std::to_string(vertex_count_ + face_count_) +
+                         " is more than CGAL's OFF reader can count (at most 1022611250)");
     // Also what CGAL needs: it fails on a last vertex line without '\n' when no face follows.
     if (face_count_ == 0) records_.fail_here("the header declares no face");
   }

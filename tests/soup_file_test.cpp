@@ -209,6 +209,9 @@ TEST(ReadSoup, OffVariantsWithColorsNormalsTextures_SamePointsAndTriangle) {
       {"normals and colors", "CNOFF\n3 1 0\n0 0 0 0 0 1 9 9 9\n1 0 0 0 0 1 9 9 9\n0 1 0 0 0 1 9 9 9\n3 0 1 2\n"},
       {"textures and colors", "STCOFF\n3 1 0\n0 0 0 1 0 0\n1 0 0 2 1 0\n0 1 0 3 0 1\n3 0 1 2\n"},
       {"homogeneous", "4OFF\n3 1 0\n0 0 0 1\n2 0 0 2\n0 1 0 1\n3 0 1 2\n"},
+      {"comment after the keyword", "OFF # written by hand\n3 1 0 # counts\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"},
+      // The largest edge count CGAL can double as an int; one more is in the bad corpus.
+      {"largest edge count", "OFF\n3 1 1073741823\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"},
   };
   for (const auto& [what, text] : files) {
     SCOPED_TRACE(what);
