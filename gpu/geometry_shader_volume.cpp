@@ -50,6 +50,8 @@ GeometryShaderShadowVolume::GeometryShaderShadowVolume(const ComputeVolumeSoup& 
   // Records: an edge's opposites in chunks of kOppositesPerRecord (Milet's per-edge loop,
   // split so that the geometry shader's output has a small fixed bound).
   std::vector<std::uint32_t> records;
+  // At most one partial record per edge beyond the full ones.
+  records.reserve(kRecordWords * (table.size() + table.opposite_vertex.size() / kOppositesPerRecord));
   std::uint64_t record_count = 0;
   for (std::size_t e = 0; e < table.size(); ++e) {
     for (std::uint32_t first = table.first_opposite[e]; first < table.first_opposite[e + 1];
