@@ -38,10 +38,9 @@ Sign entry_parity(std::uint32_t u, std::uint32_t v, std::uint32_t o) {
 }
 
 void require_valid(const char* function, const Soup& canonical, const EdgeTable& table, const Light& light) {
-  const std::array<double, 4>& l = light.position;
-  if (!(std::isfinite(l[0]) && std::isfinite(l[1]) && std::isfinite(l[2])) || (l[3] != 0.0 && l[3] != 1.0))
+  if (!light.well_formed())
     throw std::invalid_argument(std::string(function) + ": the light must have finite coordinates and w = 0 or 1");
-  if (l[3] == 0.0 && l[0] == 0.0 && l[1] == 0.0 && l[2] == 0.0)
+  if (!light.defined())
     throw std::invalid_argument(std::string(function) + ": a directional light needs a nonzero direction");
   const std::size_t entries = table.opposite_vertex.size();
   if (table.first_opposite.size() != table.edges.size() + 1 || table.opposite_triangle.size() != entries ||

@@ -85,10 +85,9 @@ void validate(const Soup& soup, std::span<const Light> lights) {
     }
   if (soup.triangles.size() >= kUndefinedCount) throw std::invalid_argument("exact_image: too many triangles");
   for (const Light& light : lights) {
-    const auto& l = light.position;
-    if (!std::isfinite(l[0]) || !std::isfinite(l[1]) || !std::isfinite(l[2]) || (l[3] != 0.0 && l[3] != 1.0))
+    if (!light.well_formed())
       throw std::invalid_argument("exact_image: a light needs finite coordinates and w = 0 or w = 1");
-    if (l[3] == 0.0 && l[0] == 0.0 && l[1] == 0.0 && l[2] == 0.0)
+    if (!light.defined())
       throw std::invalid_argument("exact_image: a directional light needs a nonzero direction");
   }
 }

@@ -64,7 +64,7 @@ Interval permanent(const Vec3& a, const Vec3& b, const Vec3& c, const std::array
 
 bool float_sign_is_decided(const Vec3& a, const Vec3& b, const Vec3& c, const Light& light, Precision precision) {
   const std::array<double, 4>& l = light.position;
-  if (!std::isfinite(l[0]) || !std::isfinite(l[1]) || !std::isfinite(l[2]) || (l[3] != 0.0 && l[3] != 1.0))
+  if (!light.well_formed())
     throw std::invalid_argument("float_sign_is_decided: the light needs finite coordinates and w = 0 or w = 1");
   const PrecisionConstants k = constants(precision);
   CGAL::Protect_FPU_rounding<true> rounding_up;  // what Interval_nt<false> requires

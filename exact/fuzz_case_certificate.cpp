@@ -42,10 +42,9 @@ constexpr std::uint64_t kStraddleStream = 22;
 constexpr std::uint64_t kBoxStream = 23;
 
 void require_valid_light(const Light& light) {
-  const auto& l = light.position;
-  if (!std::isfinite(l[0]) || !std::isfinite(l[1]) || !std::isfinite(l[2]) || (l[3] != 0.0 && l[3] != 1.0))
+  if (!light.well_formed())
     throw std::invalid_argument("certify_fuzz_case: the light needs finite coordinates and w = 0 or w = 1");
-  if (l[3] == 0.0 && l[0] == 0.0 && l[1] == 0.0 && l[2] == 0.0)
+  if (!light.defined())
     throw std::invalid_argument("certify_fuzz_case: a directional light needs a nonzero direction");
 }
 

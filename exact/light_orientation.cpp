@@ -117,10 +117,10 @@ Sign orient_unchecked(const HomogeneousPoint& p, const HomogeneousPoint& q, cons
 
 Sign light_orientation(const Vec3& a, const Vec3& b, const Vec3& c, const Light& light) {
   const std::array<double, 4>& l = light.position;
-  if (!finite_coordinates(l) || (l[3] != 0.0 && l[3] != 1.0))
+  if (!light.well_formed())
     throw std::invalid_argument("light_orientation: the light must have finite coordinates and w = 0 or w = 1");
   if (l[3] == 0.0) {
-    if (l[0] == 0.0 && l[1] == 0.0 && l[2] == 0.0)
+    if (!light.defined())
       throw std::invalid_argument("light_orientation: a directional light needs a nonzero direction");
     return directional_orientation(a, b, c, l);
   }

@@ -17,10 +17,8 @@ void require(bool ok, const std::string& what) {
 
 void require_consistent(const Soup& canonical, const EdgeTable& table, const EdgeMultiplicities& m,
                         const Light& light) {
-  const auto& l = light.position;
-  require(std::isfinite(l[0]) && std::isfinite(l[1]) && std::isfinite(l[2]) && (l[3] == 0.0 || l[3] == 1.0),
-          "the light needs finite coordinates and w = 0 or w = 1");
-  require(l[3] == 1.0 || l[0] != 0.0 || l[1] != 0.0 || l[2] != 0.0, "a directional light needs a nonzero direction");
+  require(light.well_formed(), "the light needs finite coordinates and w = 0 or w = 1");
+  require(light.defined(), "a directional light needs a nonzero direction");
   require(m.multiplicity.size() == table.size(), "one multiplicity per edge of the table is needed");
   require(m.triangle_sign.size() == canonical.triangles.size(), "one cap sign per soup triangle is needed");
   // Far ids n + i (point light) must fit 32 bits, and closure packs two ids and a bit in 64.

@@ -286,10 +286,12 @@ class OffChecker {
     vertex_count_ = static_cast<std::size_t>(counts[0]);
     face_count_ = static_cast<std::size_t>(counts[1]);
     // With no usable edge count CGAL estimates halfedges as int((V + F + 10) * 2.1), a
-    // float-to-int overflow past about 1.02e9 elements; no file that large reads anyway.
-    if (static_cast<double>(vertex_count_ + face_count_ + 10) * 2.1 > std::numeric_limits<int>::max())
+    // float-to-int overflow past this many elements; no file that large reads anyway.
+    constexpr auto kLargestElementCount = static_cast<std::size_t>(std::numeric_limits<int>::max() / 2.1) - 10;
+    if (vertex_count_ + face_count_ > kLargestElementCount)
       records_.fail_here("vertices + faces = " + std::to_string(vertex_count_ + face_count_) +
-                         " is more than CGAL's OFF reader can count (at most 1022611250)");
+                         " is more than CGAL's OFF reader can count (at most " +
+                         std::to_string(kLargestElementCount) + ")");
     // Also what CGAL needs: it fails on a last vertex line without '\n' when no face follows.
     if (face_count_ == 0) records_.fail_here("the header declares no face");
   }

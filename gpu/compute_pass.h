@@ -46,10 +46,9 @@ void upload(const Buffer& buffer, const std::vector<T>& data) {
 // std::invalid_argument("<function>: the light must be finite, w in {0, 1}, not (0,0,0,0)")
 // for a light DESIGN.md §1 does not define (nothing is set then).
 inline void set_light_uniform(GLuint program, GLint location, const Light& light, const char* function) {
-  const std::array<double, 4>& l = light.position;
-  if (!(std::isfinite(l[0]) && std::isfinite(l[1]) && std::isfinite(l[2])) || (l[3] != 0.0 && l[3] != 1.0) ||
-      (l[3] == 0.0 && l[0] == 0.0 && l[1] == 0.0 && l[2] == 0.0))
+  if (!light.defined())
     throw std::invalid_argument(std::string(function) + ": the light must be finite, w in {0, 1}, not (0,0,0,0)");
+  const std::array<double, 4>& l = light.position;
   glProgramUniform4f(program, location, static_cast<float>(l[0]), static_cast<float>(l[1]), static_cast<float>(l[2]),
                      static_cast<float>(l[3]));
 }

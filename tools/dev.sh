@@ -63,7 +63,7 @@ demo() {
 
 SAN_BUILD_DIR=${SHADOWCERT_SAN_BUILD_DIR:-build-san}
 # The bounded run is reproducible: libFuzzer's mutations follow FUZZ_SEED, and each harness
-# stops after FUZZ_RUNS inputs (10 to 40 s each under the sanitizers here), or at FUZZ_SECONDS
+# stops after FUZZ_RUNS inputs (10 to 45 s each under the sanitizers here), or at FUZZ_SECONDS
 # on a slower machine, whose run is then a prefix of this one's. So a failure in CI replays
 # here with the same command, and an unseeded run cannot turn CI red on a new finding: long,
 # exploratory campaigns use other seeds (docs/fuzzing-parsers.md) and land their inputs as
@@ -113,9 +113,9 @@ mesa_driver() {
 RSS_GROWTH_TESTS='Hundred.*Leak'
 
 # Each harness for FUZZ_RUNS inputs (at most FUZZ_SECONDS) from seed FUZZ_SEED over a scratch
-# corpus (new inputs go there, never into fuzz/corpus/) and its seeds, JOBS at a time. Fails on any crash, leak, sanitizer report,
-# timeout (an input over 10 s) or input over 1 GiB of RSS; the input is kept under
-# $SAN_BUILD_DIR/fuzz-runs/ (crash-*, leak-*, timeout-*, oom-*).
+# corpus (new inputs go there, never into fuzz/corpus/) and its seeds, JOBS at a time. Fails
+# on any crash, leak, sanitizer report, timeout (an input over 10 s) or input over 1 GiB of
+# RSS; the input is kept under $SAN_BUILD_DIR/fuzz-runs/ (crash-*, leak-*, timeout-*, oom-*).
 fuzz_harnesses() {
   local runs="$SAN_BUILD_DIR/fuzz-runs"
   rm -rf "$runs"
