@@ -1,4 +1,4 @@
-// Speed of the caster diagnostics (DESIGN.md §4.3): the whole diagnose_caster call on a
+// Speed of the caster diagnostics (docs/definitions.md#caster-diagnostics): the whole diagnose_caster call on a
 // 1M-triangle sphere grid (target: under 3 s on 2 cores), its stages one by one, a
 // moderately self-intersecting random soup, and the largest shared mesh when present.
 #include <benchmark/benchmark.h>
@@ -8,7 +8,7 @@
 
 #include "exact/caster_diagnostics.h"
 #include "exact/degenerate_triangles.h"
-#include "exact/soup_file.h"
+#include "io/soup_file.h"
 #include "exact/triangle_soup_self_intersections.h"
 #include "exact/triangle_soup_topology.h"
 #include "scene/procedural_mesh.h"

@@ -1,4 +1,4 @@
-// Speed of the certificates (DESIGN.md §4.1, §4.2) on a 1M-triangle sphere grid and on the
+// Speed of the certificates (docs/definitions.md#closure, docs/definitions.md#count-certificate) on a 1M-triangle sphere grid and on the
 // largest shared mesh:
 //   closure alone (target well under 150 ms), the exact pipeline canonical soup + edge table +
 //   exact multiplicities + chain + closure (target under 1 s on one core), and occluder-count
@@ -15,7 +15,7 @@
 #include "exact/edge_multiplicity.h"
 #include "scene/edge_table.h"
 #include "exact/shadow_volume_chain.h"
-#include "exact/soup_file.h"
+#include "io/soup_file.h"
 #include "scene/canonical_soup.h"
 #include "scene/procedural_mesh.h"
 

@@ -1,4 +1,4 @@
-// Speed of the exact multiplicities and of the float methods on the same table (DESIGN.md §3,
+// Speed of the exact multiplicities and of the float methods on the same table (docs/definitions.md#counts,
 // docs/multiplicities.md). Targets, one core: canonical_soup + edge table + exact on
 // sphere_grid(1M) well under 1 s, and exact within 1.5x of refedge in double.
 //
@@ -16,7 +16,7 @@
 
 #include "exact/edge_multiplicity.h"
 #include "scene/edge_table.h"
-#include "exact/soup_file.h"
+#include "io/soup_file.h"
 #include "scene/canonical_soup.h"
 #include "scene/procedural_mesh.h"
 
@@ -52,7 +52,7 @@ Input make_input(Soup raw) {
   return in;
 }
 
-// The worst case of the exact predicate (DESIGN.md §6, a floor lit at grazing angle): a
+// The worst case of the exact predicate (docs/definitions.md#hard-cases, a floor lit at grazing angle): a
 // 1000 x 500-cell grid (1M triangles) on the tilted plane z = x + 2y, light in that plane.
 // With step 1 every determinant is exactly zero (the semi-static stage cannot tell, the
 // intervals can); with step 0.1 the vertices are rounded off the plane, every determinant is

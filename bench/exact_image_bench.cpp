@@ -1,4 +1,4 @@
-// Speed of the exact image (exact/exact_image.h, DESIGN.md §5): target under 20 s at 1024x768
+// Speed of the exact image (reference/exact_image.h, docs/definitions.md#pixel-protocol): target under 20 s at 1024x768
 // for a 100K-triangle scene on 2 cores. Two scenes, each over a floor with one point light:
 //   - sphere_grid(100'000) (Milet 2014's 10 x 10 spheres), camera and light of
 //     data/scenes/sphere_grid_1m.json;
@@ -12,8 +12,8 @@
 #include <filesystem>
 #include <vector>
 
-#include "exact/exact_image.h"
-#include "exact/soup_file.h"
+#include "reference/exact_image.h"
+#include "io/soup_file.h"
 #include "scene/merged_soup.h"
 #include "scene/procedural_mesh.h"
 

@@ -38,15 +38,13 @@
 #include "core/camera.h"
 #include "core/light.h"
 #include "core/soup.h"
-#include "exact/cpu_volume.h"
 #include "gpu/camera_transform.h"
 #include "gpu/egl_context.h"
 #include "gpu/frame_timing.h"
 #include "gpu/gl_environment_error.h"
 #include "gpu/offscreen_target.h"
 #include "gpu/shadow_method_renderer.h"
-#include "scene/canonical_soup.h"
-#include "scene/edge_table.h"
+#include "pipeline/method_inputs.h"
 #include "scene/merged_soup.h"
 #include "scene/procedural_mesh.h"
 
@@ -81,9 +79,9 @@ struct GridScene {
   Soup soup;  // the grid with the floor appended: the one caster and receiver soup
   std::vector<Light> lights{kLight};
   Camera camera;
-  CanonicalSoup canonical;
-  EdgeTable table;
-  std::vector<HomogeneousMesh> cpu_volumes;  // built on first use by cpu
+  // pipeline/method_inputs.h: canonical soup and edge table, and cpu's volumes (prepared
+  // again, with them, on cpu's first use).
+  MethodInputs inputs;
 };
 
 // The grid with floor_quad(kFloorHalfSize) appended; both have vertex normals (the floor's +y),
@@ -131,26 +129,23 @@ GridScene& grid_scene(std::uint64_t triangles, const Settings& settings) {
   Soup grid = sphere_grid(triangles);
   check_grid_in_view(grid, s->camera);
   s->soup = over_floor(std::move(grid));
-  s->canonical = canonical_soup(s->soup);
-  s->table = build_edge_table(s->canonical.soup);
+  const std::array gpu_built{gpu::ShadowMethod::cs};
+  s->inputs = prepare_method_inputs(s->soup, s->lights, gpu_built);
   current = std::move(s);
   return *current;
 }
 
-const std::vector<HomogeneousMesh>& cpu_volumes(GridScene& s) {
-  if (s.cpu_volumes.empty()) {
-    for (const Light& light : s.lights) s.cpu_volumes.push_back(cpu_volume_mesh(s.canonical.soup, s.table, light));
-  }
-  return s.cpu_volumes;
+void prepare_cpu_volumes(GridScene& s) {
+  const std::array cpu{gpu::ShadowMethod::cpu};
+  if (s.inputs.cpu_volumes.empty()) s.inputs = prepare_method_inputs(s.soup, s.lights, cpu);
 }
 
 void run_method(benchmark::State& state, gpu::ShadowMethod method, std::uint64_t triangles, const Settings& settings,
                 gpu::StageSync sync) {
   GridScene& s = grid_scene(triangles, settings);
   const std::array<gpu::ShadedSoupPart, 1> receivers{gpu::ShadedSoupPart{&s.soup}};
-  gpu::ShadowMethodScene inputs{receivers, s.lights, &s.canonical.soup, &s.table, {}};
-  if (method == gpu::ShadowMethod::cpu) inputs.cpu_volumes = cpu_volumes(s);
-  gpu::ShadowMethodRenderer renderer(method, inputs);
+  if (method == gpu::ShadowMethod::cpu) prepare_cpu_volumes(s);
+  gpu::ShadowMethodRenderer renderer(method, method_scene(s.inputs, receivers, s.lights));
   const gpu::OffscreenTarget target(s.camera.width, s.camera.height);
   (void)renderer.render_frames(target, s.camera, 1);  // warm-up: shader variants
   renderer.check_capacity();

@@ -1,26 +1,26 @@
-#include "exact/fuzz_run.h"
+#include "campaign/campaign_run.h"
 
 #include <stdexcept>
 
 namespace shadowcert {
 
-std::string fuzz_run_name(const FuzzRun& run) {
+std::string campaign_run_name(const CampaignRun& run) {
   if (!run.label.empty()) return run.label;
   if (run.method == MultiplicityMethod::exact) return "exact";
   return std::string(method_name(run.method)) + "-" + std::string(precision_name(run.precision));
 }
 
-bool must_not_fail(const FuzzRun& run) { return run.method != MultiplicityMethod::kim; }
+bool must_not_fail(const CampaignRun& run) { return run.method != MultiplicityMethod::kim; }
 
-std::vector<FuzzRun> all_fuzz_runs() {
-  std::vector<FuzzRun> runs{{MultiplicityMethod::exact, Precision::float64, {}, {}}};
+std::vector<CampaignRun> all_campaign_runs() {
+  std::vector<CampaignRun> runs{{MultiplicityMethod::exact, Precision::float64, {}, {}}};
   for (MultiplicityMethod m : {MultiplicityMethod::kim, MultiplicityMethod::peciva, MultiplicityMethod::refedge})
     for (Precision p : {Precision::float32, Precision::float64}) runs.push_back({m, p, {}, {}});
   return runs;
 }
 
-std::vector<FuzzRun> parse_fuzz_runs(std::string_view list) {
-  const std::vector<FuzzRun> every = all_fuzz_runs();
+std::vector<CampaignRun> parse_campaign_runs(std::string_view list) {
+  const std::vector<CampaignRun> every = all_campaign_runs();
   std::vector<bool> chosen(every.size(), false);
   std::size_t start = 0;
   bool any = false;
@@ -31,18 +31,18 @@ std::vector<FuzzRun> parse_fuzz_runs(std::string_view list) {
     if (entry.empty()) continue;
     bool matched = false;
     for (std::size_t i = 0; i < every.size(); ++i) {
-      if (entry == "all" || entry == fuzz_run_name(every[i]) || entry == method_name(every[i].method)) {
+      if (entry == "all" || entry == campaign_run_name(every[i]) || entry == method_name(every[i].method)) {
         chosen[i] = true;
         matched = true;
       }
     }
     if (!matched)
-      throw std::invalid_argument("parse_fuzz_runs: unknown run '" + std::string(entry) +
+      throw std::invalid_argument("parse_campaign_runs: unknown run '" + std::string(entry) +
                                   "' (exact, kim, peciva, refedge, all, or a run such as refedge-float)");
     any = true;
   }
-  if (!any) throw std::invalid_argument("parse_fuzz_runs: no run given");
-  std::vector<FuzzRun> runs;
+  if (!any) throw std::invalid_argument("parse_campaign_runs: no run given");
+  std::vector<CampaignRun> runs;
   for (std::size_t i = 0; i < every.size(); ++i)
     if (chosen[i]) runs.push_back(every[i]);
   return runs;

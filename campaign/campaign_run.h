@@ -1,5 +1,5 @@
 #pragma once
-// A method run of the fuzz campaign (docs/fuzzing.md): one multiplicity method of
+// A method run of the random-soup campaign (docs/campaign.md): one multiplicity method of
 // exact/edge_multiplicity.h in one precision, named "exact", "kim-float", "refedge-double"...
 #include <functional>
 #include <string>
@@ -13,7 +13,7 @@
 
 namespace shadowcert {
 
-struct FuzzRun {
+struct CampaignRun {
   MultiplicityMethod method = MultiplicityMethod::exact;
   Precision precision = Precision::float64;  // ignored by exact
   // When set, replaces edge_multiplicities(method, ..., precision): tests plant faults through
@@ -24,19 +24,19 @@ struct FuzzRun {
 };
 
 // "exact", or "<method>-float" / "<method>-double"; the label when set.
-[[nodiscard]] std::string fuzz_run_name(const FuzzRun& run);
+[[nodiscard]] std::string campaign_run_name(const CampaignRun& run);
 
-// exact, peciva and refedge are consistent per triangle (DESIGN.md §3): closed chains and right
+// exact, peciva and refedge are consistent per triangle (docs/definitions.md#counts): closed chains and right
 // counts always. kim is not: its failures are findings, counted and reported.
-[[nodiscard]] bool must_not_fail(const FuzzRun& run);
+[[nodiscard]] bool must_not_fail(const CampaignRun& run);
 
 // The seven runs: exact, then kim, peciva, refedge, each in float and double.
-[[nodiscard]] std::vector<FuzzRun> all_fuzz_runs();
+[[nodiscard]] std::vector<CampaignRun> all_campaign_runs();
 
 // A comma-separated list of "exact", "all", a method name (both precisions) or a run name
-// ("refedge-float"); duplicates are dropped, the order is that of all_fuzz_runs(). Throws
-// std::invalid_argument("parse_fuzz_runs: ...") naming an unknown entry, or on an empty list.
-[[nodiscard]] std::vector<FuzzRun> parse_fuzz_runs(std::string_view list);
+// ("refedge-float"); duplicates are dropped, the order is that of all_campaign_runs(). Throws
+// std::invalid_argument("parse_campaign_runs: ...") naming an unknown entry, or on an empty list.
+[[nodiscard]] std::vector<CampaignRun> parse_campaign_runs(std::string_view list);
 
 [[nodiscard]] std::string_view precision_name(Precision precision);  // "float" or "double"
 

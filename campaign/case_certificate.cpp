@@ -1,6 +1,6 @@
-// certify_fuzz_case (exact/fuzz_case_certificate.h): the exact pipeline once per case, one chain
+// certify_campaign_case (campaign/case_certificate.h): the exact pipeline once per case, one chain
 // per distinct multiplicity answer, one set of samples and one occluder counter for all runs.
-#include "exact/fuzz_case_certificate.h"
+#include "campaign/case_certificate.h"
 
 #include <algorithm>
 #include <cmath>
@@ -26,7 +26,6 @@
 namespace shadowcert {
 namespace {
 
-using detail::Box3;
 
 // Where straddle points land: this many ulps of the triangle's largest coordinate off its
 // plane, to either side. Not a tolerance (no verdict depends on it; every count and crossing
@@ -41,12 +40,7 @@ constexpr std::uint64_t kTargetStream = 21;
 constexpr std::uint64_t kStraddleStream = 22;
 constexpr std::uint64_t kBoxStream = 23;
 
-void require_valid_light(const Light& light) {
-  if (!light.well_formed())
-    throw std::invalid_argument("certify_fuzz_case: the light needs finite coordinates and w = 0 or w = 1");
-  if (!light.defined())
-    throw std::invalid_argument("certify_fuzz_case: a directional light needs a nonzero direction");
-}
+void require_valid_light(const Light& light) { require_defined(light, "certify_campaign_case"); }
 
 // One ulp of x (> 0), or the smallest normal for 0.
 double grain(double x) {
@@ -67,7 +61,7 @@ struct SamplePair {
 // Draws samples with defined counts, re-drawing while a sample's budget lasts.
 class SampleDrawer {
  public:
-  SampleDrawer(const Soup& canonical, const OccluderCounter& counter, const FuzzSampling& sampling,
+  SampleDrawer(const Soup& canonical, const OccluderCounter& counter, const CampaignSampling& sampling,
                CaseVerdict& verdict)
       : soup_(canonical),
         counter_(counter),
@@ -75,7 +69,7 @@ class SampleDrawer {
         verdict_(verdict),
         box_(detail::sampling_box(canonical)) {}
 
-  [[nodiscard]] const Box3& box() const { return box_; }
+  [[nodiscard]] const Box& box() const { return box_; }
 
   // Points on either side of triangle t's plane (t with three distinct indices).
   std::optional<SamplePair> straddle(std::uint32_t t, SplitMixRandom& rng) {
@@ -140,9 +134,9 @@ class SampleDrawer {
 
   const Soup& soup_;
   const OccluderCounter& counter_;
-  const FuzzSampling& sampling_;
+  const CampaignSampling& sampling_;
   CaseVerdict& verdict_;
-  Box3 box_;
+  Box box_;
 };
 
 bool distinct_indices(const Triangle& t) { return t[0] != t[1] && t[1] != t[2] && t[2] != t[0]; }
@@ -216,7 +210,7 @@ struct Samples {
 };
 
 Samples draw_samples(const Soup& canonical, const std::vector<std::uint32_t>& targets, SampleDrawer& drawer,
-                     const FuzzSampling& sampling) {
+                     const CampaignSampling& sampling) {
   Samples samples;
   SplitMixRandom target_rng{sampling.seed, kTargetStream};
   if (targets.size() <= sampling.targeted_pairs) {  // every target, once
@@ -251,7 +245,7 @@ Samples draw_samples(const Soup& canonical, const std::vector<std::uint32_t>& ta
   return samples;
 }
 
-// orient(a, b, c, x) for finite a, b, c and x finite or a direction (DESIGN.md §2): the inline
+// orient(a, b, c, x) for finite a, b, c and x finite or a direction (docs/definitions.md#orientation): the inline
 // semi-static stage of exact/light_orientation_filter.h (CGAL's certified Orientation_3
 // filter, D(a, b, c, L) with x in the light's place), then the full predicate where it cannot
 // certify. Same signs as orient, at a fraction of the cost for these many small queries.
@@ -311,7 +305,7 @@ class PlaneSides {
   std::vector<Sign> side_;
 };
 
-// The claimed count minus n(P) at point i (fuzz_case_certificate.h): - Σ (1 - c(t)) [P in V(t)]
+// The claimed count minus n(P) at point i (campaign/case_certificate.h): - Σ (1 - c(t)) [P in V(t)]
 // over the triangles whose sign differs; nullopt when P -> light touches one of them. P on the
 // light's side of t's plane (a sign already known) is never in V(t).
 std::optional<std::int64_t> claimed_offset(const DistinctChain& d, const Soup& canonical, const HomogeneousPoint& light,
@@ -399,15 +393,11 @@ void check_pairs(const DistinctChain& d, const Soup& canonical, const Light& lig
 
 }  // namespace
 
-CaseVerdict certify_fuzz_case(const Soup& soup, const Light& light, const std::vector<FuzzRun>& runs,
-                              const FuzzSampling& sampling) {
+CaseVerdict certify_campaign_case(const Soup& soup, const Light& light, const std::vector<CampaignRun>& runs,
+                              const CampaignSampling& sampling) {
   require_valid_light(light);
-  for (const Vec3& p : soup.vertices)
-    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
-      throw std::invalid_argument("certify_fuzz_case: a vertex has a non-finite coordinate");
-  for (const Triangle& t : soup.triangles)
-    for (std::uint32_t i : t)
-      if (i >= soup.vertices.size()) throw std::invalid_argument("certify_fuzz_case: triangle index out of range");
+  require_finite_vertices(soup, "certify_campaign_case");
+  require_indices_in_range(soup, "certify_campaign_case");
   const Soup canonical = canonical_soup(soup).soup;
   const EdgeTable table = build_edge_table(canonical);
   const EdgeMultiplicities exact = exact_multiplicities(canonical, table, light);
@@ -420,7 +410,7 @@ CaseVerdict certify_fuzz_case(const Soup& soup, const Light& light, const std::v
   std::vector<std::size_t> chain_of_run(runs.size());
   std::vector<EdgeMultiplicities> answers;
   for (std::size_t r = 0; r < runs.size(); ++r) {
-    const FuzzRun& run = runs[r];
+    const CampaignRun& run = runs[r];
     EdgeMultiplicities m = run.multiplicities ? run.multiplicities(canonical, table, light)
                            : run.method == MultiplicityMethod::exact
                                ? exact

@@ -1,6 +1,6 @@
 #pragma once
-// The certificate of one fuzz case (docs/fuzzing.md): a soup and a light, certified for a list
-// of method runs (exact/fuzz_run.h) with the exact module's own pieces (DESIGN.md §4):
+// The certificate of one campaign case (docs/campaign.md): a soup and a light, certified for a list
+// of method runs (campaign/campaign_run.h) with the exact module's own pieces (docs/definitions.md#certificates):
 // canonical soup, edge table, multiplicities, chain, closure certificate, and occluder counts
 // at a few sample points chosen where a wrong chain shows.
 //
@@ -20,7 +20,7 @@
 //       cancel its cap near the light (a half-space's boundary, or side faces degenerate at
 //       the light), so its crossings are no count at all. Such triangles are reported
 //       (light_on_triangle), pairs meeting their planes are not held to the claim
-//       (inconclusive), every other pair still is. docs/fuzzing.md, "a light exactly on a
+//       (inconclusive), every other pair still is. docs/campaign.md, "a light exactly on a
 //       triangle", has the investigation.
 //
 // Samples. A flipped or missing triangle t changes the winding number inside V(t), whose
@@ -29,7 +29,7 @@
 // across every triangle whose sign a run got different from the exact one (the informative
 // ones), then across random triangles. A few points in the sampling box, checked
 // consecutively in lexicographic order, add longer segments that cross side faces. Any sample whose count is undefined
-// (on a boundary) is re-drawn (DESIGN.md §4.2); a pair whose segment touches a face of one chain is skipped for that
+// (on a boundary) is re-drawn (docs/definitions.md#count-certificate); a pair whose segment touches a face of one chain is skipped for that
 // chain. Every draw comes from streams of `seed`: a case's certificate is a pure function of (soup, light, runs,
 // sampling).
 #include <array>
@@ -39,11 +39,11 @@
 
 #include "core/light.h"
 #include "core/soup.h"
-#include "exact/fuzz_run.h"
+#include "campaign/campaign_run.h"
 
 namespace shadowcert {
 
-struct FuzzSampling {
+struct CampaignSampling {
   std::uint32_t targeted_pairs = 4;  // straddle pairs across triangles whose sign some run changed
   std::uint32_t straddle_pairs = 4;  // straddle pairs across random triangles
   std::uint32_t in_box = 3;          // points in the sampling box (in_box - 1 pairs)
@@ -90,9 +90,9 @@ struct CaseVerdict {
   std::uint64_t lost = 0;        // samples given up after max_redraws
 };
 
-// Throws std::invalid_argument("certify_fuzz_case: ...") on an invalid light (non-finite, w not
+// Throws std::invalid_argument("certify_campaign_case: ...") on an invalid light (non-finite, w not
 // 0 or 1, zero direction) or an index out of range; a soup may be empty.
-[[nodiscard]] CaseVerdict certify_fuzz_case(const Soup& soup, const Light& light, const std::vector<FuzzRun>& runs,
-                                            const FuzzSampling& sampling);
+[[nodiscard]] CaseVerdict certify_campaign_case(const Soup& soup, const Light& light, const std::vector<CampaignRun>& runs,
+                                            const CampaignSampling& sampling);
 
 }  // namespace shadowcert

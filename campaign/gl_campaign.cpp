@@ -1,4 +1,4 @@
-#include "cli/fuzz_gl.h"
+#include "campaign/gl_campaign.h"
 
 #include <fmt/core.h>
 
@@ -8,12 +8,12 @@
 #include <optional>
 #include <stdexcept>
 
-#include "cli/output_file.h"
-#include "cli/scene_input.h"
-#include "exact/soup_file.h"
-#include "scene/soup_shrinker.h"
+#include "io/output_file.h"
+#include "io/scene_input.h"
+#include "io/soup_file.h"
+#include "campaign/soup_shrinker.h"
 
-namespace shadowcert::cli {
+namespace shadowcert {
 namespace {
 
 namespace fs = std::filesystem;
@@ -37,7 +37,7 @@ std::string_view failure_name(GlFailureKind kind) { return kind == GlFailureKind
 // The GL comparison of the campaign: z-fail (the robust default), no timed frames.
 SceneComparisonOptions comparison_options() { return {}; }
 
-void tally(FuzzGlTally& t, const MethodRun& run, const FuzzCase& c) {
+void tally(GlCampaignTally& t, const MethodRun& run, const CampaignCase& c) {
   const bool open = run.closed() == false;
   const std::uint64_t hard = run.sum(&PixelComparison::hard_errors);
   t.closure_failures += open ? 1 : 0;
@@ -58,18 +58,18 @@ void tally(FuzzGlTally& t, const MethodRun& run, const FuzzCase& c) {
   }
 }
 
-ShrunkGlFailure shrink_gl_failure(const FuzzGlOptions& options, const FuzzGlFailure& failure) {
+ShrunkGlFailure shrink_gl_failure(const GlCampaignOptions& options, const GlCampaignFailure& failure) {
   ShrunkGlFailure out;
   out.failure = failure;
-  out.original = fuzz_case(options.seed, failure.index, options.triangles);
-  out.view = fuzz_view(out.original, options.width, options.height);
+  out.original = campaign_case(options.seed, failure.index, options.triangles);
+  out.view = campaign_view(out.original, options.width, options.height);
   out.original_triangles = out.view.soup.triangles.size();
   const std::vector<gpu::ShadowMethod> method{options.methods[failure.method]};
-  FuzzView candidate = out.view;
+  CampaignView candidate = out.view;
   // The floor and camera stay the case's: the failure is a property of that picture.
   const auto still_fails = [&](const Soup& soup) {
     candidate.soup = soup;
-    const SceneComparison c = compare_scene(fuzz_view_scene(candidate), method, comparison_options());
+    const SceneComparison c = compare_scene(campaign_view_scene(candidate), method, comparison_options());
     return failure_of(c.runs.front()) == failure.kind;
   };
   const ShrinkResult shrunk = shrink_soup(out.view.soup, still_fails, kMaxShrinkTests);
@@ -92,7 +92,7 @@ bool same_camera(const Camera& a, const Camera& b) {
 
 std::string gl_run_name(gpu::ShadowMethod method) { return "gl-" + std::string(gpu::shadow_method_name(method)); }
 
-Scene fuzz_view_scene(const FuzzView& view) {
+Scene campaign_view_scene(const CampaignView& view) {
   Scene scene;
   scene.meshes = {{"soup", view.soup}, {"floor", view.floor}};
   scene.lights = {view.light};
@@ -100,16 +100,16 @@ Scene fuzz_view_scene(const FuzzView& view) {
   return scene;
 }
 
-FuzzGlResult run_fuzz_gl(const FuzzGlOptions& options) {
-  if (options.methods.empty()) throw std::invalid_argument("run_fuzz_gl: no method");
-  if (options.width == 0 || options.height == 0) throw std::invalid_argument("run_fuzz_gl: empty image");
-  FuzzGlResult result;
+GlCampaignResult run_gl_campaign(const GlCampaignOptions& options) {
+  if (options.methods.empty()) throw std::invalid_argument("run_gl_campaign: no method");
+  if (options.width == 0 || options.height == 0) throw std::invalid_argument("run_gl_campaign: empty image");
+  GlCampaignResult result;
   result.methods.resize(options.methods.size());
   const auto start = Clock::now();
   for (std::uint64_t i = 0; i < options.cases; ++i) {
-    const FuzzCase c = fuzz_case(options.seed, i, options.triangles);
+    const CampaignCase c = campaign_case(options.seed, i, options.triangles);
     const SceneComparison comparison = compare_scene(
-        fuzz_view_scene(fuzz_view(c, options.width, options.height)), options.methods, comparison_options());
+        campaign_view_scene(campaign_view(c, options.width, options.height)), options.methods, comparison_options());
     result.exact_seconds += comparison.exact.stats.seconds + comparison.rounded_seconds;
     for (std::size_t m = 0; m < options.methods.size(); ++m) {
       tally(result.methods[m], comparison.runs[m], c);
@@ -123,7 +123,7 @@ FuzzGlResult run_fuzz_gl(const FuzzGlOptions& options) {
 
   const auto shrink_start = Clock::now();
   std::vector<std::size_t> shrunk_per_method(options.methods.size(), 0);
-  for (const FuzzGlFailure& f : result.failures) {
+  for (const GlCampaignFailure& f : result.failures) {
     if (shrunk_per_method[f.method] >= options.max_shrunk_per_method) continue;
     ++shrunk_per_method[f.method];
     result.shrunk.push_back(shrink_gl_failure(options, f));
@@ -132,7 +132,7 @@ FuzzGlResult run_fuzz_gl(const FuzzGlOptions& options) {
   return result;
 }
 
-GlReproducer write_gl_reproducer(const fs::path& dir, const FuzzGlOptions& options, const ShrunkGlFailure& shrunk) {
+GlReproducer write_gl_reproducer(const fs::path& dir, const GlCampaignOptions& options, const ShrunkGlFailure& shrunk) {
   const gpu::ShadowMethod method = options.methods[shrunk.failure.method];
   const std::string name = fmt::format("{}-s{}-c{}", gl_run_name(method), options.seed, shrunk.failure.index);
   GlReproducer r;
@@ -143,7 +143,7 @@ GlReproducer write_gl_reproducer(const fs::path& dir, const FuzzGlOptions& optio
   r.triangles = shrunk.view.soup.triangles.size();
   r.json = dir / (name + ".json");
   create_parent_directories(r.json);
-  // OFF with 17 significant digits (exact/soup_file.h): read back bit for bit.
+  // OFF with 17 significant digits (io/soup_file.h): read back bit for bit.
   write_soup(dir / (name + ".soup.off"), shrunk.view.soup);
   write_soup(dir / (name + ".floor.off"), shrunk.view.floor);
   const Camera& camera = shrunk.view.camera;
@@ -151,8 +151,8 @@ GlReproducer write_gl_reproducer(const fs::path& dir, const FuzzGlOptions& optio
   const nlohmann::json scene{
       {"description",
        fmt::format("shadowcert fuzz --gl reproducer: {} fails ({}) on case {} of seed {} ({} soup, {} light, {} "
-                   "triangles shrunk to {}), in the case's unit frame with the fuzz view's floor and camera "
-                   "(docs/fuzzing.md)",
+                   "triangles shrunk to {}), in the case's unit frame with the campaign view's floor and camera "
+                   "(docs/campaign.md)",
                    r.method, r.failure, r.case_index, options.seed, family_name(shrunk.original.kind.family),
                    placement_name(shrunk.original.kind.light), r.original_triangles, r.triangles)},
       {"meshes",
@@ -179,4 +179,4 @@ GlReproducer write_gl_reproducer(const fs::path& dir, const FuzzGlOptions& optio
   return r;
 }
 
-}  // namespace shadowcert::cli
+}  // namespace shadowcert

@@ -1,9 +1,9 @@
 #pragma once
-// The GL part of `shadowcert fuzz --gl` (docs/fuzzing.md, "The GL methods"): every case of the
-// campaign rendered by the GL shadow methods in the view of scene/fuzz_view.h and compared
-// with the exact image (cli/scene_comparison.h, the very function `shadowcert diff` runs).
+// The GL part of `shadowcert fuzz --gl` (docs/campaign.md, "The GL methods"): every case of the
+// campaign rendered by the GL shadow methods in the view of campaign/campaign_view.h and compared
+// with the exact image (pipeline/scene_comparison.h, the very function `shadowcert diff` runs).
 // A robust method (cpu, cs, gs, ts, pertri) fails a case when its captured volume is open or
-// it has a hard error; such failures are shrunk (scene/soup_shrinker.h, the floor and camera
+// it has a hard error; such failures are shrunk (campaign/soup_shrinker.h, the floor and camera
 // held fixed) and written as a scene that `shadowcert diff` replays.
 //
 // GL contexts are per thread: everything here runs on the calling thread, whose context must
@@ -14,14 +14,14 @@
 #include <string>
 #include <vector>
 
-#include "cli/scene_comparison.h"
+#include "pipeline/scene_comparison.h"
 #include "core/scene.h"
-#include "scene/fuzz_soup.h"
-#include "scene/fuzz_view.h"
+#include "campaign/random_soup.h"
+#include "campaign/campaign_view.h"
 
-namespace shadowcert::cli {
+namespace shadowcert {
 
-struct FuzzGlOptions {
+struct GlCampaignOptions {
   std::uint64_t seed = 1;
   std::uint64_t cases = 1;
   std::uint32_t triangles = 100;
@@ -35,7 +35,7 @@ struct FuzzGlOptions {
 enum class GlFailureKind : std::uint8_t { closure, hard_errors };
 
 // Per GL method; the case columns count cases, the pixel columns sum over them.
-struct FuzzGlTally {
+struct GlCampaignTally {
   std::uint64_t failures = 0;          // cases with an open volume or a hard error (robust methods)
   std::uint64_t closure_failures = 0;  // cases whose captured volume is open
   std::uint64_t hard_errors = 0;       // cases with at least one hard error
@@ -46,7 +46,7 @@ struct FuzzGlTally {
   std::vector<std::uint64_t> failures_by_placement = std::vector<std::uint64_t>(kLightPlacements, 0);
 };
 
-struct FuzzGlFailure {
+struct GlCampaignFailure {
   std::uint64_t index = 0;  // the case
   std::size_t method = 0;   // index into the options' methods
   GlFailureKind kind = GlFailureKind::closure;
@@ -55,32 +55,32 @@ struct FuzzGlFailure {
 // A failure shrunk: the soup is a subset of the case's (unit frame) soup; light, floor and
 // camera are the case's view's.
 struct ShrunkGlFailure {
-  FuzzGlFailure failure;
-  FuzzCase original;
-  FuzzView view;  // its soup replaced by the shrunk one
+  GlCampaignFailure failure;
+  CampaignCase original;
+  CampaignView view;  // its soup replaced by the shrunk one
   std::size_t original_triangles = 0;
   std::size_t tests = 0;
   bool minimal = false;
 };
 
-struct FuzzGlResult {
-  std::vector<FuzzGlTally> methods;  // one per method of the options
+struct GlCampaignResult {
+  std::vector<GlCampaignTally> methods;  // one per method of the options
   std::uint64_t cases = 0;
   double seconds = 0.0;  // the cases alone, shrinking excluded
   double exact_seconds = 0.0;  // of which, the exact images (both roundings)
   double shrink_seconds = 0.0;
-  std::vector<FuzzGlFailure> failures;  // sorted by (index, method)
+  std::vector<GlCampaignFailure> failures;  // sorted by (index, method)
   std::vector<ShrunkGlFailure> shrunk;  // at most max_shrunk_per_method per method
 };
 
 // The scene a case's view is rendered as: meshes "soup" then "floor", the one light, the
 // camera.
-[[nodiscard]] Scene fuzz_view_scene(const FuzzView& view);
+[[nodiscard]] Scene campaign_view_scene(const CampaignView& view);
 
 // Runs the GL part of the campaign and shrinks the first failures of each method. Needs a
-// current GL context. Throws std::invalid_argument("run_fuzz_gl: ...") on no method or an
+// current GL context. Throws std::invalid_argument("run_gl_campaign: ...") on no method or an
 // empty image.
-[[nodiscard]] FuzzGlResult run_fuzz_gl(const FuzzGlOptions& options);
+[[nodiscard]] GlCampaignResult run_gl_campaign(const GlCampaignOptions& options);
 
 // A written reproducer: DIR/NAME.json (the scene), DIR/NAME.soup.off and DIR/NAME.floor.off.
 struct GlReproducer {
@@ -96,9 +96,9 @@ struct GlReproducer {
 };
 
 // Writes the shrunk failure (names: gl-METHOD-sSEED-cINDEX) and replays it.
-[[nodiscard]] GlReproducer write_gl_reproducer(const std::filesystem::path& dir, const FuzzGlOptions& options,
+[[nodiscard]] GlReproducer write_gl_reproducer(const std::filesystem::path& dir, const GlCampaignOptions& options,
                                                const ShrunkGlFailure& shrunk);
 
 [[nodiscard]] std::string gl_run_name(gpu::ShadowMethod method);  // "gl-cs"
 
-}  // namespace shadowcert::cli
+}  // namespace shadowcert

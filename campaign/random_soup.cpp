@@ -1,4 +1,4 @@
-#include "scene/fuzz_soup.h"
+#include "campaign/random_soup.h"
 
 #include <algorithm>
 #include <array>
@@ -171,7 +171,7 @@ Soup snapped_soup(CaseRandom& rng, std::uint32_t triangles) {
 
 // ---- frame ----------------------------------------------------------------------------------
 
-Vec3 framed(const Vec3& p, const FuzzFrame& frame) {
+Vec3 framed(const Vec3& p, const SoupFrame& frame) {
   return {std::ldexp(p[0], frame.scale_exponent) + frame.offset, std::ldexp(p[1], frame.scale_exponent) + frame.offset,
           std::ldexp(p[2], frame.scale_exponent) + frame.offset};
 }
@@ -265,7 +265,7 @@ Light random_point(CaseRandom& rng, const Soup& s) {
 }
 
 // The adversarial placements on the (snapped) target triangle.
-std::optional<Light> place_on_target(CaseRandom& rng, FuzzCase& c) {
+std::optional<Light> place_on_target(CaseRandom& rng, CampaignCase& c) {
   const Triangle& t = c.soup.triangles[c.target];
   const Vec3& a = c.soup.vertices[t[c.corner]];
   const Vec3& b = c.soup.vertices[t[(c.corner + 1) % 3]];
@@ -313,7 +313,7 @@ bool directional_placement(LightPlacement p) {
          p == LightPlacement::directional_parallel_off;
 }
 
-void place_light(CaseRandom& rng, FuzzCase& c) {
+void place_light(CaseRandom& rng, CampaignCase& c) {
   const LightPlacement wanted = c.kind.light;
   if (wanted != LightPlacement::point && wanted != LightPlacement::directional) {
     c.target = pick_target(rng, c.soup, wanted);
@@ -335,9 +335,9 @@ void place_light(CaseRandom& rng, FuzzCase& c) {
 
 }  // namespace
 
-FuzzKind draw_fuzz_kind(std::uint64_t seed, std::uint64_t index) {
+CampaignCaseKind draw_case_kind(std::uint64_t seed, std::uint64_t index) {
   CaseRandom rng(seed, index, Stream::kind);
-  FuzzKind kind;
+  CampaignCaseKind kind;
   kind.family = static_cast<SoupFamily>(rng.weighted(std::array<unsigned, kSoupFamilies>{30, 30, 20, 20}));
   kind.light = static_cast<LightPlacement>(
       rng.weighted(std::array<unsigned, kLightPlacements>{25, 10, 10, 10, 8, 10, 8, 7, 6, 6}));
@@ -352,13 +352,13 @@ FuzzKind draw_fuzz_kind(std::uint64_t seed, std::uint64_t index) {
   return kind;
 }
 
-FuzzCase make_fuzz_case(std::uint64_t seed, std::uint64_t index, std::uint32_t triangles, const FuzzKind& kind) {
-  if (triangles == 0) throw std::invalid_argument("make_fuzz_case: a case needs at least one triangle");
+CampaignCase make_campaign_case(std::uint64_t seed, std::uint64_t index, std::uint32_t triangles, const CampaignCaseKind& kind) {
+  if (triangles == 0) throw std::invalid_argument("make_campaign_case: a case needs at least one triangle");
   if (kind.frame.scale_exponent < -20 || kind.frame.scale_exponent > 20 ||
       (kind.frame.offset != 0.0 && kind.frame.offset != 1e6))
-    throw std::invalid_argument("make_fuzz_case: the frame's scale exponent must be in [-20, 20], its offset 0 or 1e6");
+    throw std::invalid_argument("make_campaign_case: the frame's scale exponent must be in [-20, 20], its offset 0 or 1e6");
   CaseRandom soup_rng(seed, index, Stream::soup);
-  FuzzCase c;
+  CampaignCase c;
   c.kind = kind;
   switch (kind.family) {
     case SoupFamily::uniform:
@@ -394,8 +394,8 @@ FuzzCase make_fuzz_case(std::uint64_t seed, std::uint64_t index, std::uint32_t t
   return c;
 }
 
-FuzzCase fuzz_case(std::uint64_t seed, std::uint64_t index, std::uint32_t triangles) {
-  return make_fuzz_case(seed, index, triangles, draw_fuzz_kind(seed, index));
+CampaignCase campaign_case(std::uint64_t seed, std::uint64_t index, std::uint32_t triangles) {
+  return make_campaign_case(seed, index, triangles, draw_case_kind(seed, index));
 }
 
 std::string_view family_name(SoupFamily family) {

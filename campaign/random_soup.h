@@ -1,8 +1,8 @@
 #pragma once
-// The random soups of the fuzz campaign (docs/fuzzing.md, DESIGN.md §6): every case is a soup
+// The random soups of the random-soup campaign (docs/campaign.md, docs/definitions.md#hard-cases): every case is a soup
 // and a light, drawn deterministically from (campaign seed, case index) alone, so a case is
 // replayed on any thread, in any order, by its two numbers. Plain code (no CGAL): the
-// adversarial lights are exact *by construction* (below); tests/fuzz_soup_test.cpp checks
+// adversarial lights are exact *by construction* (below); tests/campaign/random_soup_test.cpp checks
 // them with the exact predicate.
 //
 // A case is built in three steps:
@@ -54,25 +54,25 @@ inline constexpr std::size_t kLightPlacements = 10;
 
 // p -> 2^scale_exponent * p + (offset, offset, offset): scale_exponent in [-20, 20]
 // (1e-6 to 1e6), offset 0 or 1e6.
-struct FuzzFrame {
+struct SoupFrame {
   int scale_exponent = 0;
   double offset = 0.0;
 };
 
-struct FuzzKind {
+struct CampaignCaseKind {
   SoupFamily family = SoupFamily::uniform;
   LightPlacement light = LightPlacement::point;
-  FuzzFrame frame;
+  SoupFrame frame;
 };
 
 inline constexpr std::uint32_t kNoTarget = std::numeric_limits<std::uint32_t>::max();
 
-struct FuzzCase {
+struct CampaignCase {
   Soup soup;  // no normals
   Light light;
   // The placement actually used: an adversarial placement with no usable target triangle (all
   // degenerate, or a zero direction) falls back to `point` or `directional`.
-  FuzzKind kind;
+  CampaignCaseKind kind;
   // Adversarial placements: the soup triangle the light was placed against (kNoTarget
   // otherwise) and its corner k: at/off a vertex, corner k; on/off an edge line, the edge
   // from corner k to corner (k + 1) % 3.
@@ -83,15 +83,15 @@ struct FuzzCase {
 };
 
 // The kind of case `index` of a campaign seeded `seed`: its family, light placement and frame.
-[[nodiscard]] FuzzKind draw_fuzz_kind(std::uint64_t seed, std::uint64_t index);
+[[nodiscard]] CampaignCaseKind draw_case_kind(std::uint64_t seed, std::uint64_t index);
 
 // Case `index` of kind `kind`, with exactly `triangles` triangles (>= 1; throws
-// std::invalid_argument("make_fuzz_case: ...") otherwise). Deterministic in all arguments.
-[[nodiscard]] FuzzCase make_fuzz_case(std::uint64_t seed, std::uint64_t index, std::uint32_t triangles,
-                                      const FuzzKind& kind);
+// std::invalid_argument("make_campaign_case: ...") otherwise). Deterministic in all arguments.
+[[nodiscard]] CampaignCase make_campaign_case(std::uint64_t seed, std::uint64_t index, std::uint32_t triangles,
+                                      const CampaignCaseKind& kind);
 
-// make_fuzz_case(seed, index, triangles, draw_fuzz_kind(seed, index)).
-[[nodiscard]] FuzzCase fuzz_case(std::uint64_t seed, std::uint64_t index, std::uint32_t triangles);
+// make_campaign_case(seed, index, triangles, draw_case_kind(seed, index)).
+[[nodiscard]] CampaignCase campaign_case(std::uint64_t seed, std::uint64_t index, std::uint32_t triangles);
 
 [[nodiscard]] std::string_view family_name(SoupFamily family);
 [[nodiscard]] std::string_view placement_name(LightPlacement placement);

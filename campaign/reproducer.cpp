@@ -1,4 +1,4 @@
-#include "exact/fuzz_reproducer.h"
+#include "campaign/reproducer.h"
 
 #include <cstdio>
 #include <fstream>
@@ -9,14 +9,14 @@
 #include "core/input_error.h"
 #include "exact/closure_certificate.h"
 #include "exact/count_certificate.h"
-#include "exact/fuzz_run.h"
+#include "campaign/campaign_run.h"
 #include "exact/shadow_volume_chain.h"
-#include "exact/soup_file.h"
+#include "io/soup_file.h"
 #include "scene/canonical_soup.h"
 #include "scene/edge_table.h"
 #include "scene/json_field.h"
 #include "scene/json_text.h"
-#include "scene/point_file.h"
+#include "io/point_file.h"
 
 namespace shadowcert {
 namespace {
@@ -32,10 +32,10 @@ std::string exact_number(double x) {
 
 void write_text(const fs::path& file, const std::string& text) {
   std::ofstream out(file);
-  if (!out) throw std::runtime_error("write_fuzz_reproducer: cannot open '" + file.string() + "' for writing");
+  if (!out) throw std::runtime_error("write_reproducer: cannot open '" + file.string() + "' for writing");
   out << text;
   out.close();
-  if (!out) throw std::runtime_error("write_fuzz_reproducer: writing '" + file.string() + "' failed");
+  if (!out) throw std::runtime_error("write_reproducer: writing '" + file.string() + "' failed");
 }
 
 std::string read_text(const fs::path& file) {
@@ -53,11 +53,11 @@ Precision parse_precision(const JsonField& field) {
   field.fail("expected \"float\" or \"double\", got \"" + name + "\"");
 }
 
-bool counts_failure(const FuzzReproducer& r) { return r.failure == "counts"; }
+bool counts_failure(const CampaignReproducer& r) { return r.failure == "counts"; }
 
 }  // namespace
 
-std::string certify_command(const FuzzReproducer& r, const fs::path& mesh, const fs::path& points) {
+std::string certify_command(const CampaignReproducer& r, const fs::path& mesh, const fs::path& points) {
   const auto& l = r.light.position;
   std::string command = "shadowcert certify " + mesh.string() + " --light=" + exact_number(l[0]) + "," +
                         exact_number(l[1]) + "," + exact_number(l[2]) + "," + exact_number(l[3]) + " --method " +
@@ -66,11 +66,11 @@ std::string certify_command(const FuzzReproducer& r, const fs::path& mesh, const
   return command;
 }
 
-fs::path write_fuzz_reproducer(const fs::path& dir, const std::string& name, const FuzzReproducer& r) {
+fs::path write_reproducer(const fs::path& dir, const std::string& name, const CampaignReproducer& r) {
   std::error_code error;
   fs::create_directories(dir, error);
   if (error)
-    throw std::runtime_error("write_fuzz_reproducer: cannot create '" + dir.string() + "': " + error.message());
+    throw std::runtime_error("write_reproducer: cannot create '" + dir.string() + "': " + error.message());
   const fs::path mesh = dir / (name + ".off"), points = dir / (name + ".points"), json = dir / (name + ".json");
   write_soup(mesh, r.soup);
   if (counts_failure(r)) {
@@ -99,7 +99,7 @@ fs::path write_fuzz_reproducer(const fs::path& dir, const std::string& name, con
   return json;
 }
 
-FuzzReproducer read_fuzz_reproducer(const fs::path& json) {
+CampaignReproducer read_reproducer(const fs::path& json) {
   const std::string name = json.string();
   const nlohmann::json document = parse_json_text(read_text(json), name);
   const JsonField root(document, name);
@@ -110,7 +110,7 @@ FuzzReproducer read_fuzz_reproducer(const fs::path& json) {
     if (!field) root.fail("missing key \"" + std::string(key) + "\"");
     return *field;
   };
-  FuzzReproducer r;
+  CampaignReproducer r;
   const JsonField light = required("light");
   if (light.array_size() != 4) light.fail("expected four numbers x, y, z, w");
   for (std::size_t k = 0; k < 4; ++k) r.light.position[k] = light.element(k).number();
@@ -143,14 +143,14 @@ FuzzReproducer read_fuzz_reproducer(const fs::path& json) {
   return r;
 }
 
-FuzzReplay replay_fuzz_reproducer(const FuzzReproducer& r) {
+ReproducerReplay replay_reproducer(const CampaignReproducer& r) {
   // cli/certify_command.cpp, step for step: canonical soup, edge table, the method, the chain,
   // closure; counts with no random sample, only the recorded pair.
   const Soup canonical = canonical_soup(r.soup).soup;
   const EdgeTable table = build_edge_table(canonical);
   const EdgeMultiplicities m = edge_multiplicities(r.method, canonical, table, r.light, r.precision);
   const ShadowVolumeChain chain = assemble_chain(canonical, table, m, r.light);
-  FuzzReplay replay;
+  ReproducerReplay replay;
   replay.closed = certify_closure(chain).closed;
   if (!r.points.empty()) {
     CountSampling sampling;

@@ -1,7 +1,7 @@
 #pragma once
-// A fuzz reproducer (docs/fuzzing.md, tests/regressions/README.md): a failing soup, its light
+// A campaign reproducer (docs/campaign.md, tests/regressions/README.md): a failing soup, its light
 // and the method run, in files that `shadowcert certify` replays bit for bit:
-//   NAME.off     the soup (exact/soup_file.h: 17 significant digits, read back bitwise equal)
+//   NAME.off     the soup (io/soup_file.h: 17 significant digits, read back bitwise equal)
 //   NAME.points  for a count failure, the two points of a failing pair, "x y z" per line
 //   NAME.json    the light, method, precision, failure, status, provenance and the command
 // The command is `shadowcert certify NAME.off --light=X,Y,Z,W --method M --precision P`, plus
@@ -18,7 +18,7 @@
 
 namespace shadowcert {
 
-struct FuzzReproducer {
+struct CampaignReproducer {
   Soup soup;
   Light light;
   MultiplicityMethod method = MultiplicityMethod::exact;
@@ -39,18 +39,18 @@ struct FuzzReproducer {
 
 // Writes DIR/NAME.off, .json and (counts) .points, creating DIR; returns the .json path.
 // Throws std::runtime_error naming the file when a write fails.
-std::filesystem::path write_fuzz_reproducer(const std::filesystem::path& dir, const std::string& name,
-                                            const FuzzReproducer& reproducer);
+std::filesystem::path write_reproducer(const std::filesystem::path& dir, const std::string& name,
+                                            const CampaignReproducer& reproducer);
 
 // Reads NAME.json and the files it names (relative to its folder). Bad content is an
 // InputError naming the file (and the line for the JSON and points files).
-[[nodiscard]] FuzzReproducer read_fuzz_reproducer(const std::filesystem::path& json);
+[[nodiscard]] CampaignReproducer read_reproducer(const std::filesystem::path& json);
 
 // The command line that replays it, with the mesh (and points) at these paths.
-[[nodiscard]] std::string certify_command(const FuzzReproducer& reproducer, const std::filesystem::path& mesh,
+[[nodiscard]] std::string certify_command(const CampaignReproducer& reproducer, const std::filesystem::path& mesh,
                                           const std::filesystem::path& points);
 
-struct FuzzReplay {
+struct ReproducerReplay {
   bool closed = false;
   std::uint64_t count_checks = 0;
   std::uint64_t count_failures = 0;
@@ -60,6 +60,6 @@ struct FuzzReplay {
 
 // What `certify` computes for the reproducer (the same functions: canonical soup, edge table,
 // multiplicities, chain, certify_closure, and certify_counts on the points alone).
-[[nodiscard]] FuzzReplay replay_fuzz_reproducer(const FuzzReproducer& reproducer);
+[[nodiscard]] ReproducerReplay replay_reproducer(const CampaignReproducer& reproducer);
 
 }  // namespace shadowcert

@@ -1,4 +1,4 @@
-#include "exact/fuzz_campaign.h"
+#include "campaign/soup_campaign.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/combinable.h>
@@ -8,7 +8,7 @@
 #include <chrono>
 #include <stdexcept>
 
-#include "scene/soup_shrinker.h"
+#include "campaign/soup_shrinker.h"
 #include "scene/split_mix_random.h"
 
 namespace shadowcert {
@@ -19,18 +19,18 @@ namespace {
 constexpr std::size_t kCasesPerTask = 16;
 
 struct Partial {
-  std::vector<FuzzRunTally> runs;
+  std::vector<CampaignRunTally> runs;
   std::vector<std::uint64_t> cases_by_family = std::vector<std::uint64_t>(kSoupFamilies, 0);
   std::vector<std::uint64_t> cases_by_placement = std::vector<std::uint64_t>(kLightPlacements, 0);
   std::uint64_t cases = 0, samples = 0, redrawn = 0, lost = 0;
-  std::vector<FuzzFailure> failures;
+  std::vector<CampaignFailure> failures;
 };
 
 void add(std::vector<std::uint64_t>& to, const std::vector<std::uint64_t>& from) {
   for (std::size_t i = 0; i < to.size(); ++i) to[i] += from[i];
 }
 
-void tally(FuzzRunTally& t, const RunVerdict& v, const FuzzKind& kind) {
+void tally(CampaignRunTally& t, const RunVerdict& v, const CampaignCaseKind& kind) {
   t.failures += v.failed();
   t.closure_failures += v.closure_failed();
   t.count_failures += v.count_failed();
@@ -47,7 +47,7 @@ void tally(FuzzRunTally& t, const RunVerdict& v, const FuzzKind& kind) {
   }
 }
 
-void merge(FuzzRunTally& to, const FuzzRunTally& from) {
+void merge(CampaignRunTally& to, const CampaignRunTally& from) {
   to.failures += from.failures;
   to.closure_failures += from.closure_failures;
   to.count_failures += from.count_failures;
@@ -62,10 +62,10 @@ void merge(FuzzRunTally& to, const FuzzRunTally& from) {
   add(to.failures_by_placement, from.failures_by_placement);
 }
 
-void run_case(const FuzzCampaignOptions& options, std::uint64_t index, Partial& p) {
-  const FuzzCase c = fuzz_case(options.seed, index, options.triangles);
+void run_case(const CampaignOptions& options, std::uint64_t index, Partial& p) {
+  const CampaignCase c = campaign_case(options.seed, index, options.triangles);
   const CaseVerdict v =
-      certify_fuzz_case(c.soup, c.light, options.runs, fuzz_sampling_for_case(options.sampling, options.seed, index));
+      certify_campaign_case(c.soup, c.light, options.runs, campaign_sampling_for_case(options.sampling, options.seed, index));
   ++p.cases;
   ++p.cases_by_family[static_cast<std::size_t>(c.kind.family)];
   ++p.cases_by_placement[static_cast<std::size_t>(c.kind.light)];
@@ -80,25 +80,25 @@ void run_case(const FuzzCampaignOptions& options, std::uint64_t index, Partial& 
   }
 }
 
-bool before(const FuzzFailure& a, const FuzzFailure& b) {
+bool before(const CampaignFailure& a, const CampaignFailure& b) {
   return a.index != b.index ? a.index < b.index : a.run < b.run;
 }
 
 }  // namespace
 
-FuzzSampling fuzz_sampling_for_case(const FuzzSampling& sampling, std::uint64_t seed, std::uint64_t index) {
-  FuzzSampling s = sampling;
+CampaignSampling campaign_sampling_for_case(const CampaignSampling& sampling, std::uint64_t seed, std::uint64_t index) {
+  CampaignSampling s = sampling;
   s.seed = split_mix(split_mix(seed) ^ index);
   return s;
 }
 
-FuzzFailureKind failure_kind(const RunVerdict& verdict) {
-  return verdict.closure_failed() ? FuzzFailureKind::closure : FuzzFailureKind::counts;
+CampaignFailureKind failure_kind(const RunVerdict& verdict) {
+  return verdict.closure_failed() ? CampaignFailureKind::closure : CampaignFailureKind::counts;
 }
 
-FuzzCampaignResult run_fuzz_campaign(const FuzzCampaignOptions& options) {
-  if (options.runs.empty()) throw std::invalid_argument("run_fuzz_campaign: no method run");
-  if (options.triangles == 0) throw std::invalid_argument("run_fuzz_campaign: a case needs at least one triangle");
+CampaignResult run_campaign(const CampaignOptions& options) {
+  if (options.runs.empty()) throw std::invalid_argument("run_campaign: no method run");
+  if (options.triangles == 0) throw std::invalid_argument("run_campaign: a case needs at least one triangle");
   const auto start = std::chrono::steady_clock::now();
   tbb::combinable<Partial> partials([&options] {
     Partial p;
@@ -113,7 +113,7 @@ FuzzCampaignResult run_fuzz_campaign(const FuzzCampaignOptions& options) {
                         if (options.progress != nullptr) options.progress->fetch_add(1, std::memory_order_relaxed);
                       }
                     });
-  FuzzCampaignResult result;
+  CampaignResult result;
   result.runs.resize(options.runs.size());
   partials.combine_each([&result](const Partial& p) {
     result.cases += p.cases;
@@ -130,9 +130,9 @@ FuzzCampaignResult run_fuzz_campaign(const FuzzCampaignOptions& options) {
 
   // The first failures of each run, shrunk in parallel.
   const auto shrink_start = std::chrono::steady_clock::now();
-  std::vector<FuzzFailure> chosen;
+  std::vector<CampaignFailure> chosen;
   std::vector<std::size_t> per_run(options.runs.size(), 0);
-  for (const FuzzFailure& f : result.failures)
+  for (const CampaignFailure& f : result.failures)
     if (per_run[f.run]++ < options.max_shrunk_per_run) chosen.push_back(f);
   result.shrunk.resize(chosen.size());
   tbb::parallel_for(std::size_t{0}, chosen.size(),
@@ -141,21 +141,21 @@ FuzzCampaignResult run_fuzz_campaign(const FuzzCampaignOptions& options) {
   return result;
 }
 
-ShrunkFailure shrink_failure(const FuzzCampaignOptions& options, const FuzzFailure& failure) {
+ShrunkFailure shrink_failure(const CampaignOptions& options, const CampaignFailure& failure) {
   if (failure.run >= options.runs.size()) throw std::invalid_argument("shrink_failure: run out of range");
   ShrunkFailure out;
   out.failure = failure;
-  out.original = fuzz_case(options.seed, failure.index, options.triangles);
-  const FuzzSampling sampling = fuzz_sampling_for_case(options.sampling, options.seed, failure.index);
+  out.original = campaign_case(options.seed, failure.index, options.triangles);
+  const CampaignSampling sampling = campaign_sampling_for_case(options.sampling, options.seed, failure.index);
   const Light light = out.original.light;
   // The same runs and sampling as the campaign (targeted samples depend on every run's signs).
   auto verdict_of = [&](const Soup& soup) {
-    return certify_fuzz_case(soup, light, options.runs, sampling).runs[failure.run];
+    return certify_campaign_case(soup, light, options.runs, sampling).runs[failure.run];
   };
   // A count failure that `certify` can show (an exact mismatch at a pair, replayed with
   // --points) must stay one.
   const bool keep_mismatch =
-      failure.kind == FuzzFailureKind::counts && verdict_of(out.original.soup).exact_mismatches > 0;
+      failure.kind == CampaignFailureKind::counts && verdict_of(out.original.soup).exact_mismatches > 0;
   const ShrinkResult shrunk = shrink_soup(out.original.soup, [&](const Soup& soup) {
     const RunVerdict v = verdict_of(soup);
     return v.failed() && failure_kind(v) == failure.kind && (!keep_mismatch || v.exact_mismatches > 0);

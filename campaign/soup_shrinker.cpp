@@ -1,4 +1,4 @@
-#include "scene/soup_shrinker.h"
+#include "campaign/soup_shrinker.h"
 
 #include <algorithm>
 #include <cstdint>
@@ -54,9 +54,7 @@ Subset without(const Subset& subset, const Subset& removed) {
 
 ShrinkResult shrink_soup(const Soup& soup, const std::function<bool(const Soup&)>& still_fails, std::size_t max_tests) {
   if (max_tests == 0) throw std::invalid_argument("shrink_soup: max_tests must be at least 1");
-  for (const Triangle& t : soup.triangles)
-    for (std::uint32_t i : t)
-      if (i >= soup.vertices.size()) throw std::invalid_argument("shrink_soup: triangle index out of range");
+  require_indices_in_range(soup, "shrink_soup");
   ShrinkResult result;
   Soup plain = soup;
   plain.normals.clear();

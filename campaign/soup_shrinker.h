@@ -1,7 +1,7 @@
 #pragma once
 // Shrinking a failing soup to a small one that still fails: delta debugging over its triangles
 // (Zeller and Hildebrandt 2002, "Simplifying and isolating failure-inducing input", ddmin),
-// then dropping the vertices no triangle uses. The fuzz campaign (docs/fuzzing.md) shrinks
+// then dropping the vertices no triangle uses. The random-soup campaign (docs/campaign.md) shrinks
 // every reproducer it writes this way; the test is any predicate, so tests plant faults too.
 #include <cstddef>
 #include <functional>

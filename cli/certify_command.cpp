@@ -12,10 +12,12 @@
 #include <vector>
 
 #include "cli/exit_code.h"
-#include "cli/output_file.h"
-#include "cli/scene_input.h"
+#include "exact/volume_closure.h"
+#include "io/output_file.h"
+#include "io/scene_input.h"
+#include "io/soup_file.h"
 #include "core/input_error.h"
-#include "exact/captured_volume.h"
+#include "io/volume_file.h"
 #include "exact/closure_certificate.h"
 #include "exact/count_certificate.h"
 #include "exact/edge_multiplicity.h"
@@ -23,7 +25,7 @@
 #include "scene/merged_soup.h"
 #include "exact/shadow_volume_chain.h"
 #include "scene/canonical_soup.h"
-#include "scene/point_file.h"
+#include "io/point_file.h"
 
 namespace shadowcert::cli {
 namespace {
@@ -140,8 +142,8 @@ MethodReport certify_method(MultiplicityMethod method, Precision precision, cons
   if (!options.volume_out.empty()) {
     const std::filesystem::path file = volume_path(options.volume_out, method, several_methods);
     create_parent_directories(file);
-    write_chain(file, chain, soup, light,
-                kFarDistanceInDiagonals * std::max(scene_diagonal(soup), 1.0));
+    write_soup(file, chain_picture(chain, soup, light,
+                               kFarDistanceInDiagonals * std::max(scene_diagonal(soup), 1.0)));
   }
   return report;
 }
@@ -199,8 +201,8 @@ constexpr std::size_t kShownUnbalanced = 8;
 // robust method is the bug this exists to catch, hence exit 1.
 int run_certify_volume(const CertifyOptions& options) {
   const auto start = Clock::now();
-  const CapturedVolume volume = read_captured_volume(options.volume);
-  const CapturedClosure result = certify_captured_closure(volume);
+  const HomogeneousMesh volume = read_volume_file(options.volume);
+  const VolumeClosure result = certify_volume_closure(volume);
   const double seconds = seconds_since(start);
   const ClosureCertificate& c = result.certificate;
   fmt::print("{}: {} triangles, {} welded vertices\n", options.volume, result.welded.triangles.size(),
@@ -302,7 +304,7 @@ int run_certify(const CertifyOptions& options) {
 
 void add_certify_command(CLI::App& app, int& exit_code) {
   auto options = std::make_shared<CertifyOptions>();
-  CLI::App* cmd = app.add_subcommand("certify", "Exact multiplicities and shadow-volume certificates (DESIGN.md 4)");
+  CLI::App* cmd = app.add_subcommand("certify", "Exact multiplicities and shadow-volume certificates (docs/definitions.md#certificates)");
   cmd->add_option("input", options->input, "Mesh file (.obj .off .ply .stl) or scene (.json); not with --volume");
   cmd->add_option("--light", options->light, "Light X,Y,Z,W (W = 1 point, W = 0 directional); default: the scene's first")
       ->delimiter(',')

@@ -1,6 +1,6 @@
 #pragma once
 // `shadowcert certify MESH|SCENE`: exact multiplicities, closed shadow-volume chains and their
-// certificates (closure and occluder counts, DESIGN.md §4) for each requested method.
+// certificates (closure and occluder counts, docs/definitions.md#certificates) for each requested method.
 #include <CLI/CLI.hpp>
 
 namespace shadowcert::cli {

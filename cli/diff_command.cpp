@@ -14,13 +14,13 @@
 
 #include "cli/diff_report.h"
 #include "cli/exit_code.h"
-#include "cli/image_size.h"
-#include "cli/output_file.h"
-#include "cli/scene_comparison.h"
-#include "cli/scene_input.h"
+#include "cli/option_values.h"
+#include "io/output_file.h"
+#include "pipeline/scene_comparison.h"
+#include "io/scene_input.h"
 #include "core/input_error.h"
-#include "exact/exact_image.h"
-#include "exact/pixel_comparison.h"
+#include "reference/exact_image.h"
+#include "reference/pixel_comparison.h"
 #include "gpu/egl_context.h"
 #include "gpu/png_image.h"
 #include "gpu/shadow_method_renderer.h"
@@ -139,7 +139,7 @@ nlohmann::json method_json(const MethodRun& run, const DiffOptions& options) {
 }
 
 int run_diff(const DiffOptions& options) {
-  const std::vector<gpu::ShadowMethod> methods = parse_shadow_methods(options.methods, "--methods");
+  const std::vector<gpu::ShadowMethod> methods = shadow_methods_option(options.methods, "--methods");
   if (options.zpass && options.zfail) throw CLI::ValidationError("--zpass", "excludes --zfail");
   if (options.shadowmap_size < 1 || options.shadowmap_size > gpu::kMaxShadowMapSize)
     throw CLI::ValidationError("--shadowmap-size", fmt::format("must be in [1, {}], got {}", gpu::kMaxShadowMapSize,
@@ -151,7 +151,7 @@ int run_diff(const DiffOptions& options) {
   if (merged.triangles.empty()) throw InputError(options.input, "no triangle to render");
   const std::size_t light_count = scene.lights.size();
 
-  const gpu::EglContext context = open_gl_context("diff", options.device);
+  const gpu::EglContext context = gpu::open_gl_context("diff", options.device);
   SceneComparisonOptions comparison_options;
   comparison_options.method_options.stencil = options.zpass ? gpu::StencilMethod::zpass : gpu::StencilMethod::zfail;
   comparison_options.method_options.shadow_map_size = static_cast<std::uint32_t>(options.shadowmap_size);
@@ -281,7 +281,7 @@ void add_diff_command(CLI::App& app, int& exit_code) {
   auto options = std::make_shared<DiffOptions>();
   CLI::App* cmd = app.add_subcommand(
       "diff",
-      "Certify GL shadow methods against the exact image (DESIGN.md 5): per method and light, hard errors, "
+      "Certify GL shadow methods against the exact image (docs/definitions.md#pixel-protocol): per method and light, hard errors, "
       "ambiguous and agreeing pixels, and the exact closure of each volume method's captured volume. Exit 1 "
       "when a robust method (cpu, cs, gs, ts, pertri) has a hard error or an open volume");
   cmd->add_option("input", options->input, "Mesh file (.obj .off .ply .stl) or scene (.json)")->required();

@@ -1,10 +1,10 @@
 #pragma once
 // `shadowcert diff SCENE [--methods LIST] [--zpass|--zfail] [--size WxH] [--out DIR]
 //                        [--json FILE] [--report FILE.html]`
-// What users run to certify a renderer (DESIGN.md §5, docs/diff.md): the exact image
-// (exact/exact_image.h) against every chosen GL method (gpu/shadow_method_renderer.h), light
-// by light, pixel by pixel (exact/pixel_comparison.h), plus the exact closure of each volume
-// method's captured volume (exact/captured_volume.h). Exit 1 when a robust method (cpu, cs,
+// What users run to certify a renderer (docs/definitions.md#pixel-protocol, docs/diff.md): the exact image
+// (reference/exact_image.h) against every chosen GL method (gpu/shadow_method_renderer.h), light
+// by light, pixel by pixel (reference/pixel_comparison.h), plus the exact closure of each volume
+// method's captured volume (io/volume_file.h). Exit 1 when a robust method (cpu, cs,
 // gs, ts, pertri) has a hard error or an open volume; the shadow map is a baseline whose
 // errors are reported, never a failure.
 #include <CLI/CLI.hpp>

@@ -4,7 +4,7 @@
 
 #include <fstream>
 
-#include "cli/output_file.h"
+#include "io/output_file.h"
 #include "core/input_error.h"
 
 namespace shadowcert::cli {
@@ -93,7 +93,7 @@ std::string diff_report_html(const DiffReport& report) {
                         row.closed ? (*row.closed ? "yes" : "NO") : "-", row.gl_ms, html_escape(row.note));
   }
   html += "</table>\n<p class=\"legend\">Overlays: <span style=\"background:#f00\"></span> hard error, "
-          "<span style=\"background:#ff0\"></span> ambiguous pixel (DESIGN.md &sect;5), over the rendered frame.</p>\n";
+          "<span style=\"background:#ff0\"></span> ambiguous pixel (docs/definitions.md#pixel-protocol), over the rendered frame.</p>\n";
   html += "<h2>exact image</h2>\n" + figures(report.exact_images);
   for (const auto& [method, images] : report.method_images)
     html += fmt::format("<h2>{}</h2>\n", html_escape(method)) + figures(images);

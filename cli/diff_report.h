@@ -18,7 +18,7 @@ struct ReportImage {
   std::vector<std::uint8_t> png;  // the PNG file's bytes
 };
 
-// One row of the table: a method's figures (DESIGN.md §5, §7).
+// One row of the table: a method's figures (docs/definitions.md#pixel-protocol, docs/definitions.md#speed-against-error).
 struct ReportRow {
   std::string method;
   bool robust = true;            // its hard errors and open volumes fail the run

@@ -20,13 +20,13 @@
 #include <vector>
 
 #include "cli/exit_code.h"
-#include "cli/fuzz_gl.h"
-#include "cli/image_size.h"
-#include "cli/output_file.h"
-#include "cli/scene_comparison.h"
-#include "exact/fuzz_campaign.h"
-#include "exact/fuzz_reproducer.h"
-#include "exact/fuzz_run.h"
+#include "campaign/gl_campaign.h"
+#include "cli/option_values.h"
+#include "io/output_file.h"
+#include "pipeline/scene_comparison.h"
+#include "campaign/soup_campaign.h"
+#include "campaign/reproducer.h"
+#include "campaign/campaign_run.h"
 
 namespace shadowcert::cli {
 namespace {
@@ -37,7 +37,7 @@ namespace fs = std::filesystem;
 // log (stderr not a terminal) gets one line per second, so short runs print none.
 constexpr std::chrono::milliseconds kTerminalProgressPeriod{250};
 constexpr std::chrono::milliseconds kLogProgressPeriod{1000};
-// Triangles per case beyond which a campaign is no longer a fuzz campaign but a benchmark.
+// Triangles per case beyond which a campaign is no longer a random-soup campaign but a benchmark.
 constexpr std::uint32_t kMaxTriangles = 1'000'000;
 
 struct FuzzOptions {
@@ -103,11 +103,11 @@ class ProgressLine {
 };
 
 // Runs the campaign on this thread and shows its progress on stderr meanwhile.
-FuzzCampaignResult run_with_progress(FuzzCampaignOptions& campaign) {
+CampaignResult run_with_progress(CampaignOptions& campaign) {
   std::atomic<std::uint64_t> done{0};
   campaign.progress = &done;
   const ProgressLine progress("fuzz", campaign.cases, done);
-  return run_fuzz_campaign(campaign);
+  return run_campaign(campaign);
 }
 
 std::string family_list(const std::vector<std::uint64_t>& counts) {
@@ -124,7 +124,7 @@ std::string placement_list(const std::vector<std::uint64_t>& counts) {
   return s;
 }
 
-void print_summary(const FuzzOptions& options, const FuzzCampaignOptions& campaign, const FuzzCampaignResult& result,
+void print_summary(const FuzzOptions& options, const CampaignOptions& campaign, const CampaignResult& result,
                    unsigned threads) {
   fmt::print("shadowcert fuzz: seed {}, {} cases of {} triangles, {} runs, {} threads\n", campaign.seed, result.cases,
              campaign.triangles, campaign.runs.size(), threads);
@@ -133,8 +133,8 @@ void print_summary(const FuzzOptions& options, const FuzzCampaignOptions& campai
   fmt::print("  {:<16}{:>5}{:>10}{:>9}{:>8}{:>9}{:>11}{:>14}{:>16}\n", "run", "must", "failures", "closure", "counts",
              "decided", "sign-diff", "light-on-tri", "exact-mismatch");
   for (std::size_t r = 0; r < campaign.runs.size(); ++r) {
-    const FuzzRunTally& t = result.runs[r];
-    fmt::print("  {:<16}{:>5}{:>10}{:>9}{:>8}{:>9}{:>11}{:>14}{:>16}\n", fuzz_run_name(campaign.runs[r]),
+    const CampaignRunTally& t = result.runs[r];
+    fmt::print("  {:<16}{:>5}{:>10}{:>9}{:>8}{:>9}{:>11}{:>14}{:>16}\n", campaign_run_name(campaign.runs[r]),
                must_not_fail(campaign.runs[r]) ? "yes" : "no", t.failures, t.closure_failures, t.count_failures,
                t.decided_sign_error_cases, t.sign_disagreement_cases, t.light_on_triangle_cases,
                t.exact_mismatch_cases);
@@ -143,7 +143,7 @@ void print_summary(const FuzzOptions& options, const FuzzCampaignOptions& campai
   const std::uint64_t checks = result.runs.empty() ? 0 : result.runs.front().checks;
   fmt::print(
       "  (cases per column; counts = a pair whose crossings miss the run's claimed count, or a sign its\n"
-      "   precision decides wrong; exact-mismatch = crossings != n(B) - n(A), docs/fuzzing.md)\n");
+      "   precision decides wrong; exact-mismatch = crossings != n(B) - n(A), docs/campaign.md)\n");
   fmt::print(
       "{} cases in {:.2f} s: {:.0f} cases/s on {} threads; {:.1f} sample points and {:.1f} compared pairs "
       "per case\n",
@@ -164,16 +164,16 @@ struct WrittenReproducer {
   bool replayed = false;
 };
 
-WrittenReproducer write_reproducer(const FuzzOptions& options, const FuzzCampaignOptions& campaign,
+WrittenReproducer write_reproducer(const FuzzOptions& options, const CampaignOptions& campaign,
                                    const ShrunkFailure& shrunk) {
-  const FuzzRun& run = campaign.runs[shrunk.failure.run];
-  FuzzReproducer r;
+  const CampaignRun& run = campaign.runs[shrunk.failure.run];
+  CampaignReproducer r;
   r.soup = shrunk.soup;
   r.light = shrunk.original.light;
   r.method = run.method;
   r.precision = run.precision;
-  r.failure = shrunk.failure.kind == FuzzFailureKind::closure ? "closure" : "counts";
-  if (shrunk.failure.kind == FuzzFailureKind::counts) {
+  r.failure = shrunk.failure.kind == CampaignFailureKind::closure ? "closure" : "counts";
+  if (shrunk.failure.kind == CampaignFailureKind::counts) {
     const std::optional<CheckedPair>& pair =
         shrunk.verdict.first_exact_mismatch ? shrunk.verdict.first_exact_mismatch : shrunk.verdict.first_count_failure;
     if (pair) r.points = {pair->from, pair->to};
@@ -184,24 +184,24 @@ WrittenReproducer write_reproducer(const FuzzOptions& options, const FuzzCampaig
   r.family = std::string(family_name(shrunk.original.kind.family));
   r.placement = std::string(placement_name(shrunk.original.kind.light));
   r.original_triangles = shrunk.original.soup.triangles.size();
-  const std::string name = fmt::format("{}-s{}-c{}", fuzz_run_name(run), campaign.seed, shrunk.failure.index);
+  const std::string name = fmt::format("{}-s{}-c{}", campaign_run_name(run), campaign.seed, shrunk.failure.index);
   WrittenReproducer w;
-  w.run = fuzz_run_name(run);
+  w.run = campaign_run_name(run);
   w.case_index = shrunk.failure.index;
   w.failure = r.failure;
   w.original_triangles = r.original_triangles;
   w.triangles = r.soup.triangles.size();
-  w.json = write_fuzz_reproducer(options.out_dir, name, r);
+  w.json = write_reproducer(options.out_dir, name, r);
   w.command =
       certify_command(r, fs::path(options.out_dir) / (name + ".off"), fs::path(options.out_dir) / (name + ".points"));
   // Bit for bit: what was written reads back as the very soup and light, and fails the same way.
-  const FuzzReproducer back = read_fuzz_reproducer(w.json);
+  const CampaignReproducer back = read_reproducer(w.json);
   w.replayed = back.soup.vertices == r.soup.vertices && back.soup.triangles == r.soup.triangles &&
-               back.light.position == r.light.position && replay_fuzz_reproducer(back).reproduces;
+               back.light.position == r.light.position && replay_reproducer(back).reproduces;
   return w;
 }
 
-nlohmann::json tally_json(const FuzzRun& run, const FuzzRunTally& t) {
+nlohmann::json tally_json(const CampaignRun& run, const CampaignRunTally& t) {
   nlohmann::json by_family = nlohmann::json::object(), by_placement = nlohmann::json::object();
   for (std::size_t i = 0; i < t.failures_by_family.size(); ++i)
     by_family[std::string(family_name(static_cast<SoupFamily>(i)))] = t.failures_by_family[i];
@@ -222,13 +222,13 @@ nlohmann::json tally_json(const FuzzRun& run, const FuzzRunTally& t) {
           {"failures_by_placement", by_placement}};
 }
 
-void print_gl_summary(const FuzzGlOptions& gl, const FuzzGlResult& result, const gpu::EglContext& context) {
-  fmt::print("GL methods: {}x{} images of each case's fuzz view (docs/fuzzing.md), z-fail, on {}\n", gl.width,
+void print_gl_summary(const GlCampaignOptions& gl, const GlCampaignResult& result, const gpu::EglContext& context) {
+  fmt::print("GL methods: {}x{} images of each case's campaign view (docs/campaign.md), z-fail, on {}\n", gl.width,
              gl.height, context.renderer());
   fmt::print("  {:<16}{:>5}{:>10}{:>9}{:>12}{:>12}{:>12}{:>12}{:>10}\n", "run", "must", "failures", "closure",
              "hard-error", "hard px", "ambiguous", "agree", "capacity");
   for (std::size_t m = 0; m < gl.methods.size(); ++m) {
-    const FuzzGlTally& t = result.methods[m];
+    const GlCampaignTally& t = result.methods[m];
     fmt::print("  {:<16}{:>5}{:>10}{:>9}{:>12}{:>12}{:>12}{:>12}{:>10}\n", gl_run_name(gl.methods[m]),
                robust(gl.methods[m]) ? "yes" : "no", t.failures, t.closure_failures, t.hard_errors,
                t.hard_error_pixels, t.ambiguous_pixels, t.agree_pixels, t.capacity_errors);
@@ -240,7 +240,7 @@ void print_gl_summary(const FuzzGlOptions& gl, const FuzzGlResult& result, const
       result.cases, result.seconds, rate, result.exact_seconds);
 }
 
-nlohmann::json gl_tally_json(gpu::ShadowMethod method, const FuzzGlTally& t) {
+nlohmann::json gl_tally_json(gpu::ShadowMethod method, const GlCampaignTally& t) {
   nlohmann::json by_family = nlohmann::json::object(), by_placement = nlohmann::json::object();
   for (std::size_t i = 0; i < t.failures_by_family.size(); ++i)
     by_family[std::string(family_name(static_cast<SoupFamily>(i)))] = t.failures_by_family[i];
@@ -260,12 +260,12 @@ nlohmann::json gl_tally_json(gpu::ShadowMethod method, const FuzzGlTally& t) {
 }
 
 int run_fuzz(const FuzzOptions& options) {
-  FuzzCampaignOptions campaign;
+  CampaignOptions campaign;
   campaign.seed = options.seed;
   campaign.cases = options.cases;
   campaign.triangles = options.triangles;
   try {
-    campaign.runs = parse_fuzz_runs(options.methods);
+    campaign.runs = parse_campaign_runs(options.methods);
   } catch (const std::invalid_argument& e) {
     throw CLI::ValidationError("--methods", e.what());
   }
@@ -277,32 +277,32 @@ int run_fuzz(const FuzzOptions& options) {
 
   // The GL part's options are checked, and its context made current on this thread, before
   // the exact part runs: a machine without EGL fails at once (exit 2, the driver's message).
-  FuzzGlOptions gl;
+  GlCampaignOptions gl;
   std::optional<gpu::EglContext> context;
   if (options.gl) {
     gl.seed = options.seed;
     gl.cases = options.cases;
     gl.triangles = options.triangles;
-    gl.methods = parse_shadow_methods(options.gl_methods, "--gl-methods");
+    gl.methods = shadow_methods_option(options.gl_methods, "--gl-methods");
     Camera size;
     apply_image_size(options.gl_size, size, "--gl-size");
     gl.width = size.width;
     gl.height = size.height;
     gl.max_shrunk_per_method = options.max_reproducers;
-    context.emplace(open_gl_context("fuzz --gl", options.device));
+    context.emplace(gpu::open_gl_context("fuzz --gl", options.device));
   }
 
-  const FuzzCampaignResult result = run_with_progress(campaign);
+  const CampaignResult result = run_with_progress(campaign);
   print_summary(options, campaign, result, threads);
 
   // Then the GL methods, case after case on this one thread (its context).
-  std::optional<FuzzGlResult> gl_result;
+  std::optional<GlCampaignResult> gl_result;
   if (options.gl) {
     std::atomic<std::uint64_t> done{0};
     gl.progress = &done;
     {
       const ProgressLine progress("fuzz --gl", gl.cases, done);
-      gl_result = run_fuzz_gl(gl);
+      gl_result = run_gl_campaign(gl);
     }
     print_gl_summary(gl, *gl_result, *context);
   }
@@ -342,7 +342,7 @@ int run_fuzz(const FuzzOptions& options) {
   if (!options.json_file.empty()) {
     nlohmann::json methods = nlohmann::json::object();
     for (std::size_t r = 0; r < campaign.runs.size(); ++r)
-      methods[fuzz_run_name(campaign.runs[r])] = tally_json(campaign.runs[r], result.runs[r]);
+      methods[campaign_run_name(campaign.runs[r])] = tally_json(campaign.runs[r], result.runs[r]);
     nlohmann::json families = nlohmann::json::object(), placements = nlohmann::json::object();
     for (std::size_t i = 0; i < result.cases_by_family.size(); ++i)
       families[std::string(family_name(static_cast<SoupFamily>(i)))] = result.cases_by_family[i];
@@ -419,7 +419,7 @@ int run_fuzz(const FuzzOptions& options) {
 void add_fuzz_command(CLI::App& app, int& exit_code) {
   auto options = std::make_shared<FuzzOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "fuzz", "Random soups and adversarial lights: certify every method, shrink failures (docs/fuzzing.md)");
+      "fuzz", "Random soups and adversarial lights: certify every method, shrink failures (docs/campaign.md)");
   cmd->add_option("--seed", options->seed, "Campaign seed: case i is a function of (seed, i) alone")
       ->capture_default_str();
   cmd->add_option("--cases", options->cases, "Number of cases")->capture_default_str()->check(CLI::PositiveNumber);

@@ -1,5 +1,5 @@
 #pragma once
-// `shadowcert fuzz`: the random-soup campaign (docs/fuzzing.md). Seeded soups and adversarial
+// `shadowcert fuzz`: the random-soup campaign (docs/campaign.md). Seeded soups and adversarial
 // lights, every method run certified (closure and counts), failures shrunk to reproducers that
 // `shadowcert certify` replays, a summary and an optional JSON report.
 #include <CLI/CLI.hpp>

@@ -8,8 +8,8 @@
 #include <string>
 
 #include "cli/exit_code.h"
-#include "cli/output_file.h"
-#include "cli/scene_input.h"
+#include "io/output_file.h"
+#include "io/scene_input.h"
 #include "core/input_error.h"
 #include "exact/caster_diagnostics.h"
 #include "scene/merged_soup.h"
@@ -93,7 +93,7 @@ int run_inspect(const InspectOptions& options) {
 
 void add_inspect_command(CLI::App& app, int& exit_code) {
   auto options = std::make_shared<InspectOptions>();
-  CLI::App* cmd = app.add_subcommand("inspect", "Caster diagnostics of a mesh or scene (DESIGN.md 4.3)");
+  CLI::App* cmd = app.add_subcommand("inspect", "Caster diagnostics of a mesh or scene (docs/definitions.md#caster-diagnostics)");
   cmd->add_option("input", options->input, "Mesh file (.obj .off .ply .stl) or scene (.json)")->required();
   cmd->add_option("--json", options->json_file, "Write the diagnostics as a JSON object to FILE");
   cmd->callback([options, &exit_code] { exit_code = run_inspect(*options); });

@@ -1,5 +1,5 @@
 #pragma once
-// `shadowcert inspect MESH|SCENE [--json FILE]`: caster diagnostics (DESIGN.md §4.3).
+// `shadowcert inspect MESH|SCENE [--json FILE]`: caster diagnostics (docs/definitions.md#caster-diagnostics).
 #include <CLI/CLI.hpp>
 
 namespace shadowcert::cli {

@@ -1,7 +1,10 @@
 // shadowcert: certify, render and diff-compare shadow volumes on triangle soups.
 // This file only composes: each subcommand lives in its own cli/*_command.cpp, and this is
-// the one place that turns exceptions into exit codes (0 ok, 1 a check failed, 2 usage,
-// input or environment).
+// the one place that turns exceptions into exit codes (cli/exit_code.h, docs/cli.md "Exit
+// codes"). Bad input and a missing environment are the user's to fix (2) and say so; anything
+// else that escapes a subcommand is a bug of ours (3), reported as one, as pbrt keeps CHECK
+// failures apart from ErrorExit: a precondition's std::invalid_argument or std::logic_error
+// naming the function, a GL error, an invariant broken.
 #include <CLI/CLI.hpp>
 #include <exception>
 #include <iostream>
@@ -14,6 +17,8 @@
 #include "cli/inspect_command.h"
 #include "cli/render_command.h"
 #include "core/input_error.h"
+#include "gpu/gl_environment_error.h"
+#include "gpu/gl_error.h"
 
 int main(int argc, char** argv) {
   using namespace shadowcert::cli;
@@ -37,12 +42,20 @@ int main(int argc, char** argv) {
   } catch (const shadowcert::InputError& e) {
     std::cerr << "shadowcert: error: " << e.what() << '\n';
     return kExitUsage;
+  } catch (const shadowcert::gpu::GlEnvironmentError& e) {
+    std::cerr << "shadowcert: error: " << e.what() << '\n';
+    return kExitUsage;
   } catch (const std::bad_alloc&) {
     std::cerr << "shadowcert: error: out of memory\n";
     return kExitUsage;
+  } catch (const shadowcert::gpu::GlError& e) {
+    std::cerr << "shadowcert: internal error: " << e.what()
+              << "\n(an OpenGL call failed: a bug in shadowcert or in the driver; please report it with the command)\n";
+    return kExitInternal;
   } catch (const std::exception& e) {
-    std::cerr << "shadowcert: error: " << e.what() << '\n';
-    return kExitUsage;
+    std::cerr << "shadowcert: internal error: " << e.what()
+              << "\n(a bug in shadowcert, not in the input; please report it with the command)\n";
+    return kExitInternal;
   }
   return exit_code;
 }

@@ -1,7 +1,12 @@
-#include "cli/image_size.h"
+#include "cli/option_values.h"
 
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
 #include <cstddef>
+#include <optional>
 #include <stdexcept>
+#include <string>
 
 namespace shadowcert::cli {
 
@@ -18,11 +23,31 @@ void apply_image_size(const std::string& size, Camera& camera, const std::string
   } catch (const std::exception&) {
     throw CLI::ValidationError(option, "expects WxH, e.g. 1024x768");
   }
-  constexpr unsigned long kMaxSide = 16384;  // GL_MAX_RENDERBUFFER_SIZE of every driver we target
-  if (w == 0 || h == 0 || w > kMaxSide || h > kMaxSide)
-    throw CLI::ValidationError(option, "each side must be in [1, 16384]");
+  if (w == 0 || h == 0 || w > kMaxImageSide || h > kMaxImageSide)
+    throw CLI::ValidationError(option, "each side must be in [1, " + std::to_string(kMaxImageSide) + "]");
   camera.width = static_cast<std::uint32_t>(w);
   camera.height = static_cast<std::uint32_t>(h);
+}
+
+gpu::ShadowMethod shadow_method_option(const std::string& name, const std::string& option) {
+  const std::optional<gpu::ShadowMethod> method = gpu::parse_shadow_method(name);
+  if (method) return *method;
+  std::string names;
+  for (gpu::ShadowMethod m : gpu::kShadowMethods) names += (names.empty() ? "" : ", ") + std::string(gpu::shadow_method_name(m));
+  throw CLI::ValidationError(option, "unknown method '" + name + "': use " + names);
+}
+
+std::vector<gpu::ShadowMethod> shadow_methods_option(const std::string& list, const std::string& option) {
+  if (list.empty()) return {gpu::kShadowMethods.begin(), gpu::kShadowMethods.end()};
+  std::vector<gpu::ShadowMethod> methods;
+  std::size_t start = 0;
+  while (start <= list.size()) {
+    const std::size_t comma = std::min(list.find(',', start), list.size());
+    const gpu::ShadowMethod method = shadow_method_option(list.substr(start, comma - start), option);
+    if (std::find(methods.begin(), methods.end(), method) == methods.end()) methods.push_back(method);
+    start = comma + 1;
+  }
+  return methods;
 }
 
 }  // namespace shadowcert::cli

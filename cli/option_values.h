@@ -1,16 +1,26 @@
 #pragma once
-// The `--size WxH` option of the commands that render: the camera's image size, each side in
-// [1, 16384] (GL_MAX_RENDERBUFFER_SIZE of every driver we target).
-#include <CLI/CLI.hpp>
-
+// Values of the options several subcommands share, read in one place with one message each:
+// `--size WxH` (the camera's image size, each side in [1, kMaxImageSide], core/camera.h:
+// GL_MAX_RENDERBUFFER_SIZE of every driver we target) and GL method names (render --method,
+// diff --methods, fuzz --gl-methods), read by gpu::parse_shadow_method.
 #include <string>
+#include <vector>
 
 #include "core/camera.h"
+#include "gpu/shadow_method_renderer.h"
 
 namespace shadowcert::cli {
 
 // Sets camera.width and camera.height from "WxH" (e.g. "1024x768"); an empty string leaves
 // the scene camera's size. Throws CLI::ValidationError naming `option` otherwise.
 void apply_image_size(const std::string& size, Camera& camera, const std::string& option = "--size");
+
+// The method named `name`. Throws CLI::ValidationError naming `option` and the unknown name,
+// with the list of names.
+[[nodiscard]] gpu::ShadowMethod shadow_method_option(const std::string& name, const std::string& option);
+
+// A comma-separated list of method names, duplicates dropped, in the list's order; empty:
+// every method (gpu::kShadowMethods). Throws as shadow_method_option.
+[[nodiscard]] std::vector<gpu::ShadowMethod> shadow_methods_option(const std::string& list, const std::string& option);
 
 }  // namespace shadowcert::cli

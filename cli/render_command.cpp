@@ -2,6 +2,7 @@
 
 #include <fmt/core.h>
 
+#include <array>
 #include <chrono>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -11,21 +12,18 @@
 #include <vector>
 
 #include "cli/exit_code.h"
-#include "cli/image_size.h"
-#include "cli/mesh_palette.h"
-#include "cli/output_file.h"
-#include "cli/scene_input.h"
+#include "cli/option_values.h"
+#include "pipeline/mesh_palette.h"
+#include "io/output_file.h"
+#include "io/scene_input.h"
 #include "core/input_error.h"
-#include "exact/captured_volume.h"
-#include "exact/cpu_volume.h"
+#include "io/volume_file.h"
 #include "gpu/egl_context.h"
 #include "gpu/frame_timing.h"
-#include "gpu/gl_environment_error.h"
 #include "gpu/offscreen_target.h"
 #include "gpu/png_image.h"
 #include "gpu/shadow_method_renderer.h"
-#include "scene/canonical_soup.h"
-#include "scene/edge_table.h"
+#include "pipeline/method_inputs.h"
 #include "scene/merged_soup.h"
 
 namespace shadowcert::cli {
@@ -49,7 +47,7 @@ struct RenderOptions {
   std::string counts;
   std::string mask;
   std::string json_file;
-  std::string capture;  // the first light's volume as drawn (.vol, exact/captured_volume.h)
+  std::string capture;  // the first light's volume as drawn (.vol, io/volume_file.h)
   std::optional<int> device;
   // --method shadowmap only (gpu/shadow_map_renderer.h). The size is wide so that a value
   // over the limit gets validate()'s message rather than a parse error.
@@ -65,9 +63,8 @@ double seconds_since(Clock::time_point start) { return std::chrono::duration<dou
 
 // The method, after the checks that need no input file.
 gpu::ShadowMethod validate(const RenderOptions& options) {
-  const std::optional<gpu::ShadowMethod> method = gpu::parse_shadow_method(options.method);
-  if (!method) throw CLI::ValidationError("--method", "only 'cpu', 'cs', 'pertri', 'gs', 'ts' and 'shadowmap' exist");
-  if (*method == gpu::ShadowMethod::shadowmap) {
+  const gpu::ShadowMethod method = shadow_method_option(options.method, "--method");
+  if (method == gpu::ShadowMethod::shadowmap) {
     if (options.shadowmap_size < 1 || options.shadowmap_size > gpu::kMaxShadowMapSize)
       throw CLI::ValidationError("--shadowmap-size", fmt::format("must be in [1, {}] (a {}^2 depth texture), got {}",
                                                                  gpu::kMaxShadowMapSize, gpu::kMaxShadowMapSize,
@@ -77,7 +74,7 @@ gpu::ShadowMethod validate(const RenderOptions& options) {
   } else if (options.zpass && options.zfail) {
     throw CLI::ValidationError("--zpass", "excludes --zfail");
   }
-  return *method;
+  return method;
 }
 
 std::uint64_t count_pixels(const gpu::RgbaImage& colour, const gpu::GrayImage& stencil, bool lit) {
@@ -140,46 +137,25 @@ int run_render(const RenderOptions& options) {
   const Soup merged = merged_soup(scene);
   if (merged.triangles.empty()) throw InputError(options.input, "no triangle to render");
 
-  // The volumes' inputs: the canonical soup and edge table (the GPU-built methods read them),
-  // and for cpu one exact chain per light (DESIGN.md §3) of the float-rounded input, as
-  // homogeneous floats (exact/cpu_volume.h).
+  // The methods' inputs (pipeline/method_inputs.h): the canonical soup and edge table (the
+  // GPU-built methods read them), and for cpu one exact chain per light
+  // (docs/definitions.md#counts) of the float-rounded input, as homogeneous floats.
   auto stage = Clock::now();
-  std::optional<CanonicalSoup> canonical;
-  EdgeTable table;
-  std::vector<HomogeneousMesh> cpu_volumes;
-  if (!shadowmap) {
-    canonical = canonical_soup(merged);
-    table = build_edge_table(canonical->soup);
-  }
-  if (method == gpu::ShadowMethod::cpu) {
-    for (const Light& light : scene.lights) cpu_volumes.push_back(cpu_volume_mesh(canonical->soup, table, light));
-  }
+  const std::array methods{method};
+  const MethodInputs inputs = prepare_method_inputs(merged, scene.lights, methods);
   const double chain_seconds = seconds_since(stage);
 
-  std::optional<gpu::EglContext> context;
-  try {
-    context.emplace(gpu::EglContextOptions{options.device, gpu::kGlDebugByDefault});
-  } catch (const gpu::GlEnvironmentError& e) {
-    // Rethrown with what the user needs to know; main maps it to exit code 2.
-    throw gpu::GlEnvironmentError(
-        "render needs OpenGL 4.5 core through headless EGL (a GPU driver or Mesa's llvmpipe: packages "
-        "libegl-mesa0 libgl1-mesa-dri); " + std::string(e.what()));
-  }
+  const gpu::EglContext context = gpu::open_gl_context("render", options.device);
 
   stage = Clock::now();
   const std::vector<gpu::ShadedSoupPart> parts = shaded_parts(scene);
-  gpu::ShadowMethodScene method_scene;
-  method_scene.receivers = parts;
-  method_scene.lights = scene.lights;
-  if (canonical) method_scene.canonical = &canonical->soup;
-  method_scene.table = &table;
-  method_scene.cpu_volumes = cpu_volumes;
+  const gpu::ShadowMethodScene method_scene_ = method_scene(inputs, parts, scene.lights);
   gpu::ShadowMethodOptions method_options;
   method_options.stencil = options.zpass ? gpu::StencilMethod::zpass : gpu::StencilMethod::zfail;
   if (shadowmap) method_options.shadow_map_size = static_cast<std::uint32_t>(options.shadowmap_size);
   method_options.shadow_map_bias = options.shadowmap_bias;
   method_options.shadow_map_slope = options.shadowmap_slope;
-  gpu::ShadowMethodRenderer renderer(method, method_scene, method_options);
+  gpu::ShadowMethodRenderer renderer(method, method_scene_, method_options);
   const gpu::OffscreenTarget target(scene.camera.width, scene.camera.height);
   const double upload_seconds = seconds_since(stage);
 
@@ -187,10 +163,13 @@ int run_render(const RenderOptions& options) {
   const gpu::StencilShadowFrame frame = renderer.render(target, scene.camera);
   try {
     // GPU-built volumes are sized for the worst case but clamped to what storage blocks
-    // address: say so rather than report the image of a partial (open) volume.
+    // address: say so rather than report the image of a partial (open) volume. As in diff,
+    // where the same overflow is recorded and fails the method, it is the method failing on
+    // this input (exit 1), not an error in the input (docs/cli.md, "Exit codes").
     renderer.check_capacity();
   } catch (const gpu::VolumeCapacityError& e) {
-    throw InputError(options.input, e.what());
+    fmt::print(stderr, "shadowcert render: {}: {}; nothing written\n", options.input, e.what());
+    return kExitCheckFailed;
   }
   const std::uint64_t volume_triangles = renderer.volume_triangles();
   const double first_frame_seconds = seconds_since(stage);
@@ -201,7 +180,7 @@ int run_render(const RenderOptions& options) {
   if (options.timing) {
     // A software renderer's timer queries do not time its stages (gpu/gpu_stage_timer.h):
     // there each stage is bounded by glFinish and timed on the wall clock as well.
-    const gpu::StageSync sync = context->software() ? gpu::StageSync::finish : gpu::StageSync::none;
+    const gpu::StageSync sync = context.software() ? gpu::StageSync::finish : gpu::StageSync::none;
     timing = renderer.time_frames(target, scene.camera, kTimingWarmUpFrames, options.frames, sync);
     frame_ms = timing->mean_cpu_ms;
     mean_frames = timing->frames;
@@ -216,7 +195,7 @@ int run_render(const RenderOptions& options) {
   if (!options.mask.empty()) gpu::write_png(options.mask, frame.first_lit_mask);
   if (!options.capture.empty()) {  // what was drawn, so that certify --volume checks the GPU's own output
     create_parent_directories(options.capture);
-    write_captured_volume(options.capture, renderer.first_volume(),
+    write_volume_file(options.capture, renderer.first_volume(),
                           options.input + ", method " + options.method + ", first light");
   }
   const std::uint64_t lit = count_pixels(frame.colour, frame.first_stencil, true);
@@ -227,11 +206,11 @@ int run_render(const RenderOptions& options) {
   if (shadowmap) {
     fmt::print("{}: {} triangles, {} lights, {}x{}, shadowmap {}^2 (bias {}, slope {}) on {}\n", options.input,
                merged.triangles.size(), scene.lights.size(), scene.camera.width, scene.camera.height,
-               options.shadowmap_size, options.shadowmap_bias, options.shadowmap_slope, context->renderer());
+               options.shadowmap_size, options.shadowmap_bias, options.shadowmap_slope, context.renderer());
   } else {
     fmt::print("{}: {} triangles, {} lights, {}x{}, {}/{} on {}\n", options.input, merged.triangles.size(),
                scene.lights.size(), scene.camera.width, scene.camera.height, options.method, stencil,
-               context->renderer());
+               context.renderer());
     fmt::print("  volume triangles (first light) {}\n", volume_triangles);
   }
   fmt::print("  first light: {} lit, {} shadowed receiver pixels\n", lit, shadowed);
@@ -244,8 +223,8 @@ int run_render(const RenderOptions& options) {
     nlohmann::json report{{"input", options.input},
                           {"method", options.method},
                           {"size", {scene.camera.width, scene.camera.height}},
-                          {"renderer", context->renderer()},
-                          {"device", context->device()},
+                          {"renderer", context.renderer()},
+                          {"device", context.device()},
                           {"lights", scene.lights.size()},
                           {"lit_pixels", lit},
                           {"shadowed_pixels", shadowed},
@@ -272,7 +251,7 @@ void add_render_command(CLI::App& app, int& exit_code) {
   auto options = std::make_shared<RenderOptions>();
   CLI::App* cmd = app.add_subcommand(
       "render",
-      "Stencil shadow volumes with OpenGL 4.5 core (headless EGL; DESIGN.md 3, 5). Lights are drawn one after "
+      "Stencil shadow volumes with OpenGL 4.5 core (headless EGL; docs/definitions.md#counts, 5). Lights are drawn one after "
       "another; --counts, --mask and the pixel counts are for the FIRST light");
   cmd->add_option("input", options->input, "Mesh file (.obj .off .ply .stl) or scene (.json)")->required();
   cmd->add_option("--method", options->method,

@@ -1,5 +1,5 @@
 #pragma once
-// A pinhole camera: what the GL path renders and the exact image samples (DESIGN.md §5).
+// A pinhole camera: what the GL path renders and the exact image samples (docs/definitions.md#pixel-protocol).
 #include <array>
 #include <cstdint>
 
@@ -12,8 +12,12 @@ struct Camera {
   Vec3 target{0.0, 0.0, 0.0};
   Vec3 up{0.0, 1.0, 0.0};
   double fov_y_degrees = 45.0;  // vertical field of view, in (0, 180)
-  std::uint32_t width = 1024;   // image size in pixels, >= 1
+  std::uint32_t width = 1024;   // image size in pixels, in [1, kMaxImageSide]
   std::uint32_t height = 768;
 };
+
+// The largest image side anything accepts (scene files, --size): GL_MAX_RENDERBUFFER_SIZE of
+// llvmpipe and of every NVIDIA driver we target, so that a scene that reads can be rendered.
+inline constexpr std::uint32_t kMaxImageSide = 16384;
 
 }  // namespace shadowcert

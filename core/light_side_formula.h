@@ -5,7 +5,7 @@
 //   X = C - A;  Y = l - A * w;  N = X x Y;  value = N . (B - A)
 //
 // which is det[C - A, l - w A, B - A] = det[B - A, C - A, l - w A], the determinant whose
-// exact sign is D(A, B, C, L) of DESIGN.md §2. In floating point the value depends on the
+// exact sign is D(A, B, C, L) of docs/definitions.md#orientation. In floating point the value depends on the
 // order of A, B, C; only the methods that fix that order (refedge) stay consistent.
 // Build with -ffp-contract=off (the project does) so no FMA changes the rounding.
 #include <array>

@@ -1,8 +1,8 @@
 #pragma once
 // The camera's frame and its pixel rays, in double: the one definition of "which ray a pixel
 // samples" that the GL path (gpu/camera_transform.cpp builds its view and projection matrices
-// from camera_frame) and the exact image (exact/exact_image.h) share, so both agree by
-// construction (DESIGN.md §5).
+// from camera_frame) and the exact image (reference/exact_image.h) share, so both agree by
+// construction (docs/definitions.md#pixel-protocol).
 //
 // Pixel convention (docs/gpu.md): image pixel (i, r), row r = 0 at the TOP, covers
 // [i, i+1) x [r, r+1) in image coordinates (x right, y down); its centre is (i + 0.5, r + 0.5)
@@ -20,6 +20,7 @@
 
 #include "core/camera.h"
 #include "core/soup.h"
+#include "core/vector3.h"
 
 namespace shadowcert {
 
@@ -41,21 +42,6 @@ struct PixelRay {
   Vec3 direction{};
 };
 
-namespace detail {
-
-[[nodiscard]] inline Vec3 cross(const Vec3& a, const Vec3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-
-[[nodiscard]] inline double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-
-// Precondition: v != 0 (checked by camera_frame).
-[[nodiscard]] inline Vec3 normalized(const Vec3& v) {
-  const double inverse_length = 1.0 / std::sqrt(dot(v, v));
-  return {v[0] * inverse_length, v[1] * inverse_length, v[2] * inverse_length};
-}
-
-}  // namespace detail
 
 // Throws std::invalid_argument naming `function` (default "camera_frame") for a degenerate
 // camera: a non-finite vector, eye == target, up parallel to the view direction, fov_y outside
@@ -66,17 +52,17 @@ namespace detail {
     for (double x : *v)
       if (!std::isfinite(x)) fail("camera eye, target and up must be finite");
   const Vec3 view{camera.target[0] - camera.eye[0], camera.target[1] - camera.eye[1], camera.target[2] - camera.eye[2]};
-  if (detail::dot(view, view) == 0.0) fail("eye == target");
-  const Vec3 side = detail::cross(view, camera.up);
-  if (detail::dot(side, side) == 0.0) fail("up is parallel to the view direction");
+  if (dot(view, view) == 0.0) fail("eye == target");
+  const Vec3 side = cross(view, camera.up);
+  if (dot(side, side) == 0.0) fail("up is parallel to the view direction");
   if (!(camera.fov_y_degrees > 0.0 && camera.fov_y_degrees < 180.0)) fail("fov_y_degrees outside (0, 180)");
   if (camera.width == 0 || camera.height == 0) fail("empty image");
 
   CameraFrame frame;
   frame.eye = camera.eye;
-  frame.forward = detail::normalized(view);
-  frame.right = detail::normalized(detail::cross(frame.forward, camera.up));
-  frame.up = detail::cross(frame.right, frame.forward);
+  frame.forward = normalized(view);
+  frame.right = normalized(cross(frame.forward, camera.up));
+  frame.up = cross(frame.right, frame.forward);
   constexpr double kPi = 3.14159265358979323846;
   frame.half_height = std::tan(camera.fov_y_degrees * (kPi / 180.0) / 2.0);
   // The aspect first, as GLM's perspective does: a square image gets half_width == half_height.

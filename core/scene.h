@@ -1,5 +1,5 @@
 #pragma once
-// A scene models only what a shadow needs (DESIGN.md §1): soups already placed in
+// A scene models only what a shadow needs (docs/definitions.md#inputs): soups already placed in
 // world space, one or more lights, and a camera.
 #include <string>
 #include <vector>

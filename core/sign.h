@@ -1,6 +1,6 @@
 #pragma once
 // The result of every predicate: a sign. Callers switch on it and handle zero explicitly
-// (DESIGN.md §2: a zero is a degenerate configuration with its own meaning, never rounded away).
+// (docs/definitions.md#orientation: a zero is a degenerate configuration with its own meaning, never rounded away).
 #include <cstdint>
 
 namespace shadowcert {

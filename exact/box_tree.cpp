@@ -240,13 +240,13 @@ struct BoxTree::Impl {
   LeafTest leaf_test;
   Tree tree;
 
-  Impl(const std::vector<ClosedBox>& closed, LeafTest test) : leaf_test(test), tree(Traits(BoxMap{&boxes})) {
+  Impl(const std::vector<Box>& closed, LeafTest test) : leaf_test(test), tree(Traits(BoxMap{&boxes})) {
     if (closed.size() >= std::numeric_limits<std::uint32_t>::max())
       throw std::invalid_argument("BoxTree: more than 2^32 boxes");
     boxes.reserve(closed.size());
     std::vector<Vec3> centres;
     centres.reserve(closed.size());
-    for (const ClosedBox& b : closed) {
+    for (const Box& b : closed) {
       boxes.emplace_back(b.lo[0], b.lo[1], b.lo[2], b.hi[0], b.hi[1], b.hi[2]);
       centres.push_back({(b.lo[0] + b.hi[0]) / 2, (b.lo[1] + b.hi[1]) / 2, (b.lo[2] + b.hi[2]) / 2});
     }
@@ -257,7 +257,7 @@ struct BoxTree::Impl {
   }
 };
 
-BoxTree::BoxTree(const std::vector<ClosedBox>& boxes, LeafTest leaf_test)
+BoxTree::BoxTree(const std::vector<Box>& boxes, LeafTest leaf_test)
     : impl_(std::make_unique<Impl>(boxes, leaf_test)) {}
 BoxTree::~BoxTree() = default;
 

@@ -8,7 +8,7 @@
 //
 // The occluder count (casting triangles, exact/occluder_counter.cpp) and the chain crossings
 // (caps and side pieces, exact/chain_crossings.cpp) both search with it; the exact image
-// (exact/exact_image.cpp) finds first hits with its nearest-first ray query and counts from
+// (reference/exact_image.cpp) finds first hits with its nearest-first ray query and counts from
 // hit points known only as exact rationals with its dilated queries.
 #include <array>
 #include <cstdint>
@@ -16,14 +16,10 @@
 #include <type_traits>
 #include <vector>
 
+#include "core/box.h"
 #include "core/soup.h"
 
 namespace shadowcert::detail {
-
-struct ClosedBox {
-  Vec3 lo{};
-  Vec3 hi{};
-};
 
 enum class LeafTest : bool { skip, exact };
 
@@ -31,7 +27,7 @@ class BoxTree {
  public:
   // Box i gets id i. Built now (a Morton pre-order keeps the build cache-friendly); queries
   // are const and run concurrently.
-  BoxTree(const std::vector<ClosedBox>& boxes, LeafTest leaf_test);
+  BoxTree(const std::vector<Box>& boxes, LeafTest leaf_test);
   ~BoxTree();
   BoxTree(const BoxTree&) = delete;
   BoxTree& operator=(const BoxTree&) = delete;
@@ -54,7 +50,7 @@ class BoxTree {
   // meets is reported. Those segments lie in the segment from -> to dilated by [-slack, slack]
   // per axis, so each box is dilated by slack and tested against the given segment (see
   // below: a superset, never a missed box). Equally, every box that any point within slack of
-  // the segment lies in (the footprint pyramids of exact/pixel_footprint.h).
+  // the segment lies in (the footprint pyramids of reference/detail/pixel_footprint.h).
   template <typename Visit>
   void dilated_segment_query(const Vec3& from, const Vec3& to, const Vec3& slack, Visit&& visit) const {
     dilated_segment_query(from, to, slack, erase(visit), &call<std::remove_reference_t<Visit>>);

@@ -30,7 +30,7 @@ void copy_topology(const SoupTopology& topology, CasterDiagnostics& d) {
   // Balance of the directed uses on every edge with two or more triangles: on a two-triangle
   // edge that is "once each way"; on a non-manifold edge it is what keeps the winding number
   // piecewise constant across it (the README's PWN), and what makes the shadow-volume side
-  // multiplicities of DESIGN.md §3 cancel for a light far away.
+  // multiplicities of docs/definitions.md#counts cancel for a light far away.
   d.consistently_oriented = topology.unbalanced_interior_edges == 0;
 }
 
@@ -41,7 +41,7 @@ CasterDiagnostics diagnose_caster(const Soup& soup) {
   CasterDiagnostics d;
   d.vertices = soup.vertices.size();
   d.triangles = soup.triangles.size();
-  // DESIGN.md §1: vertex identity is the index after exact welding, so every count below is
+  // docs/definitions.md#inputs: vertex identity is the index after exact welding, so every count below is
   // taken on the welded soup. The canonical form welds by one sort (faster than hashing) and
   // only renumbers vertices, which no figure here depends on.
   const CanonicalSoup welded = canonical_soup(soup);

@@ -1,14 +1,14 @@
 #pragma once
-// Caster diagnostics (DESIGN.md §4.3): what classic, non-soup shadow methods assume of a
+// Caster diagnostics (docs/definitions.md#caster-diagnostics): what classic, non-soup shadow methods assume of a
 // caster, measured on the exactly welded soup. Geometric decisions (collinearity,
 // self-intersection) use CGAL's exact predicates; no tolerance anywhere.
 //
 // Definitions (docs/caster-diagnostics.md has them at length, with examples):
-//  - Everything is counted on the exactly welded soup (canonical_soup; DESIGN.md §1: two vertices are one iff their
+//  - Everything is counted on the exactly welded soup (canonical_soup; docs/definitions.md#inputs: two vertices are one iff their
 //    doubles are bitwise equal, -0 == +0), so "index" below means welded index.
 //  - A triangle is *index-proper* when its three indices are distinct. Only index-proper
 //    triangles have edges, fans, duplicates and components; a triangle with a repeated index
-//    is counted as degenerate and nowhere else (it casts nothing, DESIGN.md §2).
+//    is counted as degenerate and nowhere else (it casts nothing, docs/definitions.md#orientation).
 //  - An *edge* is an unordered index pair {u, v} used by at least one index-proper triangle
 //    (exactly collinear triangles included: their edges exist). A triangle *traverses* it
 //    u -> v or v -> u according to its vertex order.

@@ -246,7 +246,7 @@ std::optional<std::int64_t> chain_crossings_of_segment_unchecked(const Crossable
   return sum;
 }
 
-IndexedBox box_of(const Box3& b) {
+IndexedBox box_of(const Box& b) {
   IndexedBox box;
   box.lo = b.lo;
   box.hi = b.hi;
@@ -267,19 +267,19 @@ struct ChainCrossingIndex::Impl {
   std::vector<std::uint32_t> face_of_box;
   BoxTree tree;
 
-  Impl(const CrossingQuery& query, const Box3& clip_box, double piece_length)
+  Impl(const CrossingQuery& query, const Box& clip_box, double piece_length)
       : faces(query),
         clip(box_of(clip_box)),
         tree(face_boxes(faces, clip, piece_length, face_of_box), LeafTest::exact) {}
 
   // Every face box, and the face each belongs to (a side face has several).
-  static std::vector<ClosedBox> face_boxes(const CrossableFaces& faces, const IndexedBox& clip, double piece_length,
+  static std::vector<Box> face_boxes(const CrossableFaces& faces, const IndexedBox& clip, double piece_length,
                                            std::vector<std::uint32_t>& face_of_box) {
     if (faces.size() >= std::numeric_limits<std::uint32_t>::max())
       throw std::invalid_argument("chain crossings: more than 2^32 faces");
     std::vector<IndexedBox> indexed;
     for (std::size_t f = 0; f < faces.size(); ++f) faces.append_boxes(f, clip, piece_length, indexed);
-    std::vector<ClosedBox> boxes(indexed.size());
+    std::vector<Box> boxes(indexed.size());
     face_of_box.resize(indexed.size());
     for (std::size_t i = 0; i < indexed.size(); ++i) {
       boxes[i] = {indexed[i].lo, indexed[i].hi};
@@ -313,7 +313,7 @@ struct ChainCrossingIndex::Impl {
   }
 };
 
-ChainCrossingIndex::ChainCrossingIndex(const CrossingQuery& query, const Box3& clip, double piece_length)
+ChainCrossingIndex::ChainCrossingIndex(const CrossingQuery& query, const Box& clip, double piece_length)
     : impl_(std::make_unique<Impl>(query, clip, piece_length)) {}
 
 ChainCrossingIndex::~ChainCrossingIndex() = default;

@@ -1,6 +1,6 @@
 #pragma once
 // Internal to exact/: signed crossings of finite segments with a shadow-volume chain
-// (DESIGN.md §4.2), for the occluder-count certificate.
+// (docs/definitions.md#count-certificate), for the occluder-count certificate.
 //
 // Crossing the chain's face F from A to B adds +1 when A lies on the side F's outward
 // orientation points to (entering) and -1 otherwise (leaving), so that along AB the crossings
@@ -36,7 +36,7 @@ struct CrossingQuery {
 // of the query must outlive it.
 class ChainCrossingIndex {
  public:
-  ChainCrossingIndex(const CrossingQuery& query, const Box3& clip, double piece_length);
+  ChainCrossingIndex(const CrossingQuery& query, const Box& clip, double piece_length);
   ~ChainCrossingIndex();
   ChainCrossingIndex(const ChainCrossingIndex&) = delete;
   ChainCrossingIndex& operator=(const ChainCrossingIndex&) = delete;

@@ -38,7 +38,7 @@ void for_each_directed_edge(const ShadowVolumeChain& chain, F&& f) {
 // kBlockIds consecutive lower ids (a few hundred sequential output streams), then, block
 // by block, by lower id (a counting sort in L1) and by the rest (tiny sorts per vertex).
 // Every run of one (lower, upper) is an undirected edge whose uses in each direction must
-// balance (DESIGN.md §4.1). A self-loop (a == b, from a face with a repeated vertex) is no
+// balance (docs/definitions.md#closure). A self-loop (a == b, from a face with a repeated vertex) is no
 // edge: it bounds nothing.
 constexpr unsigned kBlockBits = 12;
 constexpr std::uint64_t kBlockIds = std::uint64_t{1} << kBlockBits;

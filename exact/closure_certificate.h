@@ -1,5 +1,5 @@
 #pragma once
-// Certificate 1 of DESIGN.md §4: the chain is closed (watertight) iff every directed edge's
+// Certificate 1 of docs/definitions.md#certificates: the chain is closed (watertight) iff every directed edge's
 // signed count cancels: for each vertex pair {a, b}, uses a->b equal uses b->a over all faces.
 #include <cstdint>
 #include <vector>

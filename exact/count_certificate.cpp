@@ -1,4 +1,4 @@
-// certify_counts (exact/count_certificate.h, DESIGN.md §4.2): sample points with exact direct
+// certify_counts (exact/count_certificate.h, docs/definitions.md#count-certificate): sample points with exact direct
 // counts, checked in Morton order, each against its predecessor: the signed crossings of the
 // short segment between them must equal the difference of their direct counts.
 #include "exact/count_certificate.h"
@@ -19,7 +19,6 @@
 namespace shadowcert {
 namespace {
 
-using detail::Box3;
 
 enum class SampleKind : std::uint8_t { in_box, near_triangle, user };
 
@@ -31,7 +30,7 @@ constexpr std::uint64_t kReferenceStream = 4;
 constexpr std::size_t kBlock = 1024;  // samples per stream in the drawing phase
 constexpr std::size_t kReportedFailures = 16;
 
-// A point with its direct count n (DESIGN.md §3), defined: the point is on no boundary.
+// A point with its direct count n (docs/definitions.md#counts), defined: the point is on no boundary.
 struct Sample {
   Vec3 point{};
   std::uint32_t count = 0;
@@ -39,14 +38,14 @@ struct Sample {
   std::uint32_t redraws = 0;  // re-draws this sample has used so far
 };
 
-// Draws random samples with a defined count, re-drawing (DESIGN.md §4.2: never guessing)
+// Draws random samples with a defined count, re-drawing (docs/definitions.md#count-certificate: never guessing)
 // while the per-sample budget lasts.
 class Sampler {
  public:
-  Sampler(const Soup& soup, const OccluderCounter& counter, const Box3& box, const CountSampling& sampling)
+  Sampler(const Soup& soup, const OccluderCounter& counter, const Box& box, const CountSampling& sampling)
       : soup_(soup), counter_(counter), box_(box), max_redraws_(sampling.max_redraws) {}
 
-  [[nodiscard]] const Box3& box() const { return box_; }
+  [[nodiscard]] const Box& box() const { return box_; }
 
   // nullopt when the budget ran out; `redraws` counts the re-draws used, across calls.
   [[nodiscard]] std::optional<Sample> draw(SampleKind kind, std::mt19937_64& rng, std::uint32_t& redraws) const {
@@ -68,7 +67,7 @@ class Sampler {
  private:
   const Soup& soup_;
   const OccluderCounter& counter_;
-  Box3 box_;
+  Box box_;
   std::uint32_t max_redraws_;
 };
 
@@ -124,7 +123,7 @@ std::vector<Sample> draw_samples(const Soup& soup, const OccluderCounter& counte
   return samples;
 }
 
-// One comparison of DESIGN.md §4.2: the segment reference -> sample.
+// One comparison of docs/definitions.md#count-certificate: the segment reference -> sample.
 struct Check {
   Sample reference;
   Sample sample;
@@ -243,16 +242,16 @@ void require_matching(const Soup& canonical, const Light& light, const ShadowVol
 }
 
 // Every point a check can use lies in here: random ones by construction, the user's added.
-Box3 clip_box(const Box3& sampling_box, const std::vector<Vec3>& user_points) {
+Box clip_box(const Box& sampling_box, const std::vector<Vec3>& user_points) {
   std::vector<Vec3> corners = user_points;
   corners.push_back(sampling_box.lo);
   corners.push_back(sampling_box.hi);
-  return detail::bounding_box(corners);
+  return bounding_box(corners);
 }
 
 // Side faces are cut in pieces about as long as the typical segment between two consecutive
 // samples: the side of the box's volume shared by the samples.
-double piece_length(const Box3& box, std::uint64_t samples) {
+double piece_length(const Box& box, std::uint64_t samples) {
   const double volume = (box.hi[0] - box.lo[0]) * (box.hi[1] - box.lo[1]) * (box.hi[2] - box.lo[2]);
   const double length = std::cbrt(volume / static_cast<double>(std::max<std::uint64_t>(samples, 1)));
   if (length > 0.0 && std::isfinite(length)) return length;
@@ -279,7 +278,7 @@ CountCertificate certify_counts(const Soup& canonical, const Light& light, const
   const auto start = std::chrono::steady_clock::now();
   require_matching(canonical, light, chain);
   require_finite(sampling.user_points);
-  const Box3 box = detail::sampling_box(canonical);
+  const Box box = detail::sampling_box(canonical);
   const detail::CrossingQuery query{canonical, light, chain};
   // The two trees are independent: build them side by side.
   std::unique_ptr<OccluderCounter> counter;

@@ -1,10 +1,11 @@
 #pragma once
-// Certificate 2 of DESIGN.md §4: occluder counts. For sample points B and a reference A with
+// Certificate 2 of docs/definitions.md#certificates: occluder counts. For sample points B and a reference A with
 // n(A) known, the signed crossings of segment AB with the chain must equal n(B) - n(A), where
 // n(P) is computed directly: the number of triangles with s != 0 crossed by the open segment
 // P -> light (the ray towards l for w = 0), by an AABB tree and exact segment/triangle tests.
 // Every test is an orientation sign on the input doubles, so no far point is built; a zero
-// sign anywhere is a degenerate configuration and the sample is re-drawn, never guessed.
+// sign that decides whether a segment meets a face is a degenerate configuration and the
+// sample is re-drawn, never guessed (docs/definitions.md#count-certificate).
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -39,7 +40,7 @@ struct CountCertificate {
   double seconds = 0.0;
 };
 
-// The direct occluder count n(P) of DESIGN.md §3 over the triangles with s != 0 of `soup`
+// The direct occluder count n(P) of docs/definitions.md#counts over the triangles with s != 0 of `soup`
 // (signs exact); nullopt when P -> light touches a triangle's edge, vertex or plane, or P lies
 // on a triangle: a boundary point whose count is undefined.
 class OccluderCounter {
@@ -56,7 +57,7 @@ class OccluderCounter {
   std::unique_ptr<Impl> impl_;
 };
 
-// Signed crossings of the segment from -> to with the chain's faces (DESIGN.md §4.2): +1 entering
+// Signed crossings of the segment from -> to with the chain's faces (docs/definitions.md#count-certificate): +1 entering
 // a face against its outward orientation, -1 leaving, so they sum to the change of the chain's
 // winding number, n(to) - n(from) for a correct chain. nullopt when the segment touches a face's
 // boundary or plane (a zero sign that matters). Tests every face: for single queries and tests.

@@ -32,7 +32,7 @@ std::uint64_t grid_cell(double x, double lo, double hi) {
   return t >= kCells - 1.0 ? (1u << 21) - 1 : static_cast<std::uint64_t>(t);
 }
 
-std::uint64_t morton_code(const Vec3& p, const Box3& box) {
+std::uint64_t morton_code(const Vec3& p, const Box& box) {
   return spread_bits(grid_cell(p[0], box.lo[0], box.hi[0])) |
          spread_bits(grid_cell(p[1], box.lo[1], box.hi[1])) << 1 |
          spread_bits(grid_cell(p[2], box.lo[2], box.hi[2])) << 2;
@@ -47,24 +47,8 @@ double coordinate_grain(const Vec3& p) {
 
 }  // namespace
 
-Box3 bounding_box(const std::vector<Vec3>& points) {
-  if (points.empty()) throw std::invalid_argument("bounding_box: no points");
-  Box3 box{points.front(), points.front()};
-  for (const Vec3& p : points)
-    for (int i = 0; i < 3; ++i) {
-      box.lo[i] = std::min(box.lo[i], p[i]);
-      box.hi[i] = std::max(box.hi[i], p[i]);
-    }
-  return box;
-}
-
-Box3 sampling_box(const Soup& soup) {
-  std::vector<Vec3> used;
-  used.reserve(soup.triangles.size() * 3);
-  for (const Triangle& t : soup.triangles)
-    for (std::uint32_t i : t) used.push_back(soup.vertices.at(i));
-  if (used.empty()) used.push_back({0.0, 0.0, 0.0});
-  Box3 box = bounding_box(used);
+Box sampling_box(const Soup& soup) {
+  Box box = used_vertex_box(soup);
   double extent = 0.0;
   for (int i = 0; i < 3; ++i) extent = std::max(extent, box.hi[i] - box.lo[i]);
   const double margin = extent > 0.0 ? kEnlargement * extent : 1.0;
@@ -75,7 +59,7 @@ Box3 sampling_box(const Soup& soup) {
   return box;
 }
 
-Vec3 draw_in_box(const Box3& box, std::mt19937_64& rng) {
+Vec3 draw_in_box(const Box& box, std::mt19937_64& rng) {
   Vec3 p{};
   for (int i = 0; i < 3; ++i) {
     std::uniform_real_distribution<double> coordinate(box.lo[i], box.hi[i]);
@@ -109,7 +93,7 @@ std::mt19937_64 sample_stream(std::uint64_t seed, std::uint64_t kind, std::uint6
   return std::mt19937_64(sequence);
 }
 
-std::vector<std::uint32_t> morton_order(const std::vector<Vec3>& points, const Box3& box) {
+std::vector<std::uint32_t> morton_order(const std::vector<Vec3>& points, const Box& box) {
   if (points.size() > std::numeric_limits<std::uint32_t>::max())
     throw std::invalid_argument("morton_order: more than 2^32 points");
   std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(points.size());

@@ -1,6 +1,6 @@
 #pragma once
 // Internal to exact/: where the occluder-count certificate (exact/count_certificate.h,
-// DESIGN.md §4.2) draws its sample points, and the order it checks them in. Sample positions
+// docs/definitions.md#count-certificate) draws its sample points, and the order it checks them in. Sample positions
 // are plain doubles computed in floating point: they are inputs of the exact tests, so their
 // rounding never affects a verdict (only where the points land).
 #include <array>
@@ -8,22 +8,18 @@
 #include <random>
 #include <vector>
 
+#include "core/box.h"
 #include "core/soup.h"
 
 namespace shadowcert::detail {
 
-struct Box3 {
-  Vec3 lo{};
-  Vec3 hi{};
-};
-
 // The box random samples are drawn in: the bounding box of the vertices the triangles use,
 // enlarged on every side by 10% of its largest extent (a flat scene, a floor, still gets
 // volume above and below), by 1 when it is a single point; never empty.
-[[nodiscard]] Box3 sampling_box(const Soup& soup);
+[[nodiscard]] Box sampling_box(const Soup& soup);
 
 // Uniform in the closed box.
-[[nodiscard]] Vec3 draw_in_box(const Box3& box, std::mt19937_64& rng);
+[[nodiscard]] Vec3 draw_in_box(const Box& box, std::mt19937_64& rng);
 
 // A triangle of the soup chosen uniformly by index, a uniform barycentric point on it, then
 // every coordinate moved by one ulp of the point's largest coordinate, up or down at random:
@@ -39,9 +35,7 @@ struct Box3 {
 // Indices of `points` sorted along a Morton (Z-order) curve over `box` (points outside it are
 // clamped to it): consecutive points are near each other, so the segments between them are
 // short. Ties keep index order, so the order is deterministic.
-[[nodiscard]] std::vector<std::uint32_t> morton_order(const std::vector<Vec3>& points, const Box3& box);
+[[nodiscard]] std::vector<std::uint32_t> morton_order(const std::vector<Vec3>& points, const Box& box);
 
-// The closed bounding box of `points` (precondition: not empty).
-[[nodiscard]] Box3 bounding_box(const std::vector<Vec3>& points);
 
 }  // namespace shadowcert::detail

@@ -2,7 +2,7 @@
 
 #include "exact/chain_mesh.h"
 #include "exact/edge_multiplicity.h"
-#include "exact/input_rounding.h"
+#include "core/float_rounding.h"
 #include "exact/shadow_volume_chain.h"
 
 namespace shadowcert {

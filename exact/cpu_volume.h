@@ -1,19 +1,19 @@
 #pragma once
 // The reference shadow volume `render --method cpu` draws (and `shadowcert diff`, the render
 // benchmark and the GL volume tests compare every GPU method with): the exact chain
-// (DESIGN.md §3) of the input AS THE GPU RECEIVES IT, i.e. of the canonical soup with every
-// vertex coordinate and the light rounded to float (exact/input_rounding.h), as float
+// (docs/definitions.md#counts) of the input AS THE GPU RECEIVES IT, i.e. of the canonical soup with every
+// vertex coordinate and the light rounded to float (core/float_rounding.h), as float
 // homogeneous triangles (exact/chain_mesh.h).
 //
-// Why the float-rounded input: a GL renderer gets vertices and light in float (DESIGN.md §5),
+// Why the float-rounded input: a GL renderer gets vertices and light in float (docs/definitions.md#pixel-protocol),
 // so the volume it rasterizes is a volume of the rounded geometry. The exact chain of the
 // DOUBLE input, once its vertices are rounded for upload, need not be a volume of anything the
-// GPU sees: with the light one double ulp above a floor (DESIGN.md §6,
+// GPU sees: with the light one double ulp above a floor (docs/definitions.md#hard-cases,
 // data/scenes/hard/light_one_ulp_off_floor_plane.json) the floor faces the light exactly and
 // casts a half-space, but in float the light lies IN the floor's plane, the back cap collapses
 // and every floor pixel counts wrong. The GPU-built methods take their signs from the rounded
 // input; so does this reference. Float values are exact doubles, so this is still the EXACT
-// chain (exact multiplicities, closed by DESIGN.md §4.1), of the geometry actually drawn.
+// chain (exact multiplicities, closed by docs/definitions.md#closure), of the geometry actually drawn.
 //
 // Indices and topology stay those of `canonical` (no re-welding after rounding: two vertices
 // that round to one float keep their ids, as they do in the GPU's buffers), so `table` serves

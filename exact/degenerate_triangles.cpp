@@ -14,7 +14,7 @@ Kernel::Point_3 point(const Vec3& v) { return {v[0], v[1], v[2]}; }
 TriangleShape shape_of(const Soup& soup, const Triangle& t) {
   if (!has_distinct_indices(t)) return TriangleShape::RepeatedIndex;
   // Epick's collinear is a filtered predicate: interval arithmetic, exact fallback, so the
-  // answer is exact for double inputs (DESIGN.md §2: no tolerance).
+  // answer is exact for double inputs (docs/definitions.md#orientation: no tolerance).
   const bool collinear = CGAL::collinear(point(soup.vertices[t[0]]), point(soup.vertices[t[1]]),
                                          point(soup.vertices[t[2]]));
   return collinear ? TriangleShape::Collinear : TriangleShape::Proper;

@@ -1,7 +1,7 @@
 #pragma once
-// Which triangles of a welded soup are degenerate (DESIGN.md §1, §2, §4.3).
+// Which triangles of a welded soup are degenerate (docs/definitions.md#inputs, docs/definitions.md#orientation, docs/definitions.md#caster-diagnostics).
 //
-// A degenerate triangle spans no plane, so it casts nothing (DESIGN.md §2: s = 0). Two
+// A degenerate triangle spans no plane, so it casts nothing (docs/definitions.md#orientation: s = 0). Two
 // kinds, told apart because the combinatorial diagnostics still see the edges of the
 // second kind:
 //   - RepeatedIndex: two of its three (welded) indices are equal: a point or a segment

@@ -12,7 +12,7 @@
 
 // Every method below is one "plan": a function giving the sign D(u, v, o, L) that the method
 // adds for one edge entry (edge (u, v), u < v, opposite o, triangle t), and the cap sign of
-// each triangle. multiplicity[e] = - sum of its entries (DESIGN.md §3; Milet 2014's Algorithm 3
+// each triangle. multiplicity[e] = - sum of its entries (docs/definitions.md#counts; Milet 2014's Algorithm 3
 // sums +D, the opposite convention). Multiplicities and edge_entry_signs both run a plan
 // through the same loop, so what a test sees entry by entry is what the sums use.
 //
@@ -38,10 +38,7 @@ Sign entry_parity(std::uint32_t u, std::uint32_t v, std::uint32_t o) {
 }
 
 void require_valid(const char* function, const Soup& canonical, const EdgeTable& table, const Light& light) {
-  if (!light.well_formed())
-    throw std::invalid_argument(std::string(function) + ": the light must have finite coordinates and w = 0 or 1");
-  if (!light.defined())
-    throw std::invalid_argument(std::string(function) + ": a directional light needs a nonzero direction");
+  require_defined(light, function);
   const std::size_t entries = table.opposite_vertex.size();
   if (table.first_opposite.size() != table.edges.size() + 1 || table.opposite_triangle.size() != entries ||
       table.first_opposite.back() != entries || entries > 3 * canonical.triangles.size())
@@ -81,7 +78,7 @@ class SortedSigns {
 };
 
 // Exact: each triangle's exact sign, evaluated once on its sorted triple; every entry and the
-// caps derive from it by parity, so the chain is closed by construction (DESIGN.md §3). The
+// caps derive from it by parity, so the chain is closed by construction (docs/definitions.md#counts). The
 // semi-static stage is inlined, so the FPU rounding mode is switched only for the rare
 // triangles it cannot certify.
 class ExactPlan {
@@ -218,7 +215,7 @@ std::vector<std::int32_t> sum_entries(const EdgeTable& table, Plan& plan) {
     std::int32_t sum = 0;
     for (std::uint32_t i = table.first_opposite[e]; i < table.first_opposite[e + 1]; ++i)
       sum += to_int(plan.entry(u, v, table.opposite_vertex[i], table.opposite_triangle[i]));
-    m[e] = -sum;  // DESIGN.md §3: m = - sum D(u, v, o)
+    m[e] = -sum;  // docs/definitions.md#counts: m = - sum D(u, v, o)
   }
   return m;
 }

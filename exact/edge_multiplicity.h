@@ -1,5 +1,5 @@
 #pragma once
-// Per-edge multiplicities (DESIGN.md §3) by four methods, each a pure function over the same
+// Per-edge multiplicities (docs/definitions.md#counts) by four methods, each a pure function over the same
 // canonical soup and edge table:
 //   m(u, v) = - sum over triangles {u, v, o} with s != 0 of sign D(u, v, o, L)
 // together with the sign each triangle's caps use (zero: the triangle casts nothing).

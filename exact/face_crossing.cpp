@@ -24,7 +24,7 @@ constexpr FaceMeeting kTouches{Meeting::touches, Sign::zero};
 // With s = start's side (or minus end's when start lies on the plane),
 // orient(start, end, p, q) = -s * sigma(p, q, X) (docs/certificates.md, "crossing test"), so
 // X is strictly inside iff every line gives -s * keeps. A zero on a line that keeps X on the
-// closed face, or an endpoint on the plane, is a touch: degenerate, never guessed (§4.2).
+// closed face, or an endpoint on the plane, is a touch: degenerate, never guessed (docs/definitions.md#count-certificate).
 FaceMeeting classify_through_plane(const HomogeneousPoint& start, const HomogeneousPoint& end, Sign start_side,
                                    Sign end_side, const std::array<BoundaryLine, 3>& lines) {
   const Sign s = start_side != Sign::zero ? start_side : -end_side;
@@ -106,7 +106,7 @@ FaceMeeting segment_meets_side(const Vec3& start, const Vec3& end, const Homogen
   const HomogeneousPoint hu = finite_point(u), hv = finite_point(v);
   const Sign start_side = orient_unchecked(light, hu, hv, hs);
   const Sign end_side = orient_unchecked(light, hu, hv, he);
-  // DESIGN.md §4.2: inside the wedge at L (left of Lu, left of vL) and beyond uv (right of uv).
+  // docs/definitions.md#count-certificate: inside the wedge at L (left of Lu, left of vL) and beyond uv (right of uv).
   const std::array<BoundaryLine, 3> lines{
       {{&hu, &hv, Sign::negative}, {&light, &hu, Sign::positive}, {&hv, &light, Sign::positive}}};
   return classify(hs, he, start_side, end_side, lines, [&] { return spans_no_plane(light, hu, hv); });

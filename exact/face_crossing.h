@@ -1,7 +1,7 @@
 #pragma once
 // Internal to exact/: where a segment (or a ray) meets one planar face of a shadow-volume
 // chain or one caster triangle, decided by orientation signs of the input doubles only
-// (DESIGN.md §4.2: no intersection point, no far point is ever constructed).
+// (docs/definitions.md#count-certificate: no intersection point, no far point is ever constructed).
 //
 // Every face here is a convex region of a plane, the intersection of three closed half-planes:
 //   caster or cap triangle abc   : left of ab, bc and ca (seen from (b - a) x (c - a));
@@ -23,7 +23,7 @@ namespace shadowcert::detail {
 enum class Meeting : std::uint8_t {
   apart,    // the closed segment misses the closed face (or the face has no area)
   crosses,  // the open segment passes through the open face, endpoints strictly off its plane
-  touches,  // anything else: a zero sign that matters; the caller re-draws (DESIGN.md §4.2)
+  touches,  // anything else: a zero sign that matters; the caller re-draws (docs/definitions.md#count-certificate)
 };
 
 struct FaceMeeting {
@@ -33,12 +33,12 @@ struct FaceMeeting {
 
 // Segment start -> end (end may be a direction, w = 0: then the ray from start towards it)
 // against triangle abc oriented by its vertex order. A triangle of zero area meets nothing:
-// it is no face of any volume (DESIGN.md §2).
+// it is no face of any volume (docs/definitions.md#orientation).
 [[nodiscard]] FaceMeeting segment_meets_triangle(const HomogeneousPoint& start, const HomogeneousPoint& end,
                                                  const Vec3& a, const Vec3& b, const Vec3& c);
 
 // The same when end's side of the plane, orient(a, b, c, end), is already known and nonzero:
-// a caster's light side s(t) (DESIGN.md §3) in the occluder count.
+// a caster's light side s(t) (docs/definitions.md#counts) in the occluder count.
 [[nodiscard]] FaceMeeting segment_meets_triangle(const HomogeneousPoint& start, const HomogeneousPoint& end,
                                                  Sign end_side, const Vec3& a, const Vec3& b, const Vec3& c);
 

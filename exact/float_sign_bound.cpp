@@ -64,11 +64,10 @@ Interval permanent(const Vec3& a, const Vec3& b, const Vec3& c, const std::array
 
 bool float_sign_is_decided(const Vec3& a, const Vec3& b, const Vec3& c, const Light& light, Precision precision) {
   const std::array<double, 4>& l = light.position;
-  if (!light.well_formed())
-    throw std::invalid_argument("float_sign_is_decided: the light needs finite coordinates and w = 0 or w = 1");
+  require_well_formed(light, "float_sign_is_decided");
   const PrecisionConstants k = constants(precision);
   CGAL::Protect_FPU_rounding<true> rounding_up;  // what Interval_nt<false> requires
-  // D = det[b - a, c - a, l - w a], enclosed exactly (DESIGN.md §2; no rounded difference).
+  // D = det[b - a, c - a, l - w a], enclosed exactly (docs/definitions.md#orientation; no rounded difference).
   std::array<Interval, 3> u, v, d;
   for (int i = 0; i < 3; ++i) {
     u[i] = Interval(b[i]) - Interval(a[i]);

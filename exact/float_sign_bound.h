@@ -1,5 +1,5 @@
 #pragma once
-// When may a float method's sign of D(a, b, c, L) differ from the exact one (DESIGN.md §2, §3)?
+// When may a float method's sign of D(a, b, c, L) differ from the exact one (docs/definitions.md#orientation, docs/definitions.md#counts)?
 // Only where its own precision cannot decide it. A float method (kim, peciva, refedge; CPU or
 // shader) rounds a, b, c and the light to its precision, then evaluates
 // core/light_side_formula.h, in some vertex order. Forward error analysis of that evaluation
@@ -23,7 +23,7 @@
 // So wherever |D| > 12 u M + A, every evaluation in that precision, in any order, has the exact
 // sign: the triangle is *decided* at that precision, and a method whose sign differs there has
 // a bug, not a rounding. Where |D| is within the bound the triangle is *undecided*: a float
-// method may legitimately give it any sign (docs/fuzzing.md, "right counts").
+// method may legitimately give it any sign (docs/campaign.md, "right counts").
 #include "core/light.h"
 #include "core/soup.h"
 #include "exact/edge_multiplicity.h"

@@ -1,5 +1,7 @@
 #include "exact/light_orientation.h"
 
+#include "core/vector3.h"
+
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Interval_nt.h>
 #include <CGAL/Mpzf.h>
@@ -28,18 +30,8 @@ Sign from_cgal(CGAL::Sign s) {
   throw std::logic_error("from_cgal: not a sign");
 }
 
-// The 3x3 determinant with rows x, y, z, in the expression order of CGAL::determinant; the
-// same template serves the interval and the exact stage.
-template <typename NT>
-NT determinant3(const std::array<NT, 3>& x, const std::array<NT, 3>& y, const std::array<NT, 3>& z) {
-  const NT m01 = x[0] * y[1] - y[0] * x[1];
-  const NT m02 = x[0] * z[1] - z[0] * x[1];
-  const NT m12 = y[0] * z[1] - z[0] * y[1];
-  return m01 * z[2] - m02 * y[2] + m12 * x[2];
-}
-
 // Rows b - a, c - a, d of det[b - a, c - a, d] built in NT from the raw doubles, so that no
-// difference is rounded in double before the sign is taken (DESIGN.md §2).
+// difference is rounded in double before the sign is taken (docs/definitions.md#orientation).
 template <typename NT>
 NT direction_determinant(const Vec3& a, const Vec3& b, const Vec3& c, const std::array<double, 4>& d) {
   std::array<NT, 3> x, y, z;
@@ -48,7 +40,7 @@ NT direction_determinant(const Vec3& a, const Vec3& b, const Vec3& c, const std:
     y[k] = NT(c[k]) - NT(a[k]);
     z[k] = NT(d[k]);
   }
-  return determinant3(x, y, z);
+  return det3(x, y, z);  // core/vector3.h: CGAL::determinant's order
 }
 
 // sign det[b - a, c - a, d] for a direction d = (d, 0): semi-static filter, then intervals
@@ -64,7 +56,7 @@ Sign directional_orientation(const Vec3& a, const Vec3& b, const Vec3& c, const 
 }
 
 // Four finite points: CGAL's filtered orientation (static filter, intervals, exact), which is
-// sign det[q - p, r - p, s - p], the convention of DESIGN.md §2.
+// sign det[q - p, r - p, s - p], the convention of docs/definitions.md#orientation.
 Sign finite_orientation(const Vec3& p, const Vec3& q, const Vec3& r, const Vec3& s) {
   const Kernel::Point_3 pp(p[0], p[1], p[2]), qq(q[0], q[1], q[2]), rr(r[0], r[1], r[2]), ss(s[0], s[1], s[2]);
   return from_cgal(CGAL::orientation(pp, qq, rr, ss));
@@ -106,7 +98,7 @@ Sign orient_unchecked(const HomogeneousPoint& p, const HomogeneousPoint& q, cons
     return finite_orientation(xyz(p), xyz(q), xyz(r), xyz(s));
   // orient is alternating (a determinant): move the point at infinity last by one
   // transposition, which flips the sign. With s = (d, 0), subtracting p from q and r gives
-  // orient = sign det[q - p, r - p, d] (DESIGN.md §2, the same reduction as for a light).
+  // orient = sign det[q - p, r - p, d] (docs/definitions.md#orientation, the same reduction as for a light).
   if (s[3] == 0.0) return directional_orientation(xyz(p), xyz(q), xyz(r), s);
   if (r[3] == 0.0) return -directional_orientation(xyz(p), xyz(q), xyz(s), r);
   if (q[3] == 0.0) return -directional_orientation(xyz(p), xyz(s), xyz(r), q);
@@ -117,13 +109,8 @@ Sign orient_unchecked(const HomogeneousPoint& p, const HomogeneousPoint& q, cons
 
 Sign light_orientation(const Vec3& a, const Vec3& b, const Vec3& c, const Light& light) {
   const std::array<double, 4>& l = light.position;
-  if (!light.well_formed())
-    throw std::invalid_argument("light_orientation: the light must have finite coordinates and w = 0 or w = 1");
-  if (l[3] == 0.0) {
-    if (!light.defined())
-      throw std::invalid_argument("light_orientation: a directional light needs a nonzero direction");
-    return directional_orientation(a, b, c, l);
-  }
+  require_defined(light, "light_orientation");
+  if (l[3] == 0.0) return directional_orientation(a, b, c, l);
   return finite_orientation(a, b, c, {l[0], l[1], l[2]});
 }
 

@@ -1,5 +1,5 @@
 #pragma once
-// The exact orientation predicate of DESIGN.md §2, for double inputs and both light kinds.
+// The exact orientation predicate of docs/definitions.md#orientation, for double inputs and both light kinds.
 // No construction (b - a, a + l, ...) is rounded before the sign is taken: the sign comes
 // from an interval filter (CGAL::Interval_nt) with an exact fallback, or from CGAL's filtered
 // `orientation` for four finite points.
@@ -26,7 +26,7 @@ using HomogeneousPoint = std::array<double, 4>;
 
 // D(a, b, c, L) = orient(a, b, c, L) = sign det[b - a, c - a, l - w a]: positive when the
 // light is on the side that (b - a) x (c - a) points to; zero when the light lies on the
-// triangle's plane or the triangle is degenerate (it then casts nothing, §2).
+// triangle's plane or the triangle is degenerate (it then casts nothing, docs/definitions.md#orientation).
 // Throws std::invalid_argument("light_orientation: ...") when the light has a non-finite
 // coordinate, a w other than 0 or 1, or is directional with direction (0, 0, 0).
 [[nodiscard]] Sign light_orientation(const Vec3& a, const Vec3& b, const Vec3& c, const Light& light);

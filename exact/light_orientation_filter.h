@@ -4,7 +4,7 @@
 // pay neither a call nor an FPU rounding-mode switch for the overwhelming majority of
 // triangles. Plain doubles only (no CGAL in headers, docs/development.md).
 //
-// It evaluates det[b - a, c - a, l - w a] (DESIGN.md §2) in doubles with round-to-nearest and
+// It evaluates det[b - a, c - a, l - w a] (docs/definitions.md#orientation) in doubles with round-to-nearest and
 // accepts the sign only when |det| exceeds a *certified* bound on the total rounding error of
 // that very evaluation, the differences b - a, c - a, l - a included. This is not a tolerance:
 // nothing is ever decided inside the bound; the caller then runs the interval and exact stages.

@@ -1,4 +1,4 @@
-// OccluderCounter of exact/count_certificate.h: the direct occluder count n(P) of DESIGN.md §3,
+// OccluderCounter of exact/count_certificate.h: the direct occluder count n(P) of docs/definitions.md#counts,
 // by a box tree over the casting triangles (exact s != 0) and the exact crossing test of
 // exact/face_crossing.h on every triangle in a tree leaf the segment (or ray) to the light
 // reaches. The leaf's own box is not tested: the triangle test, one orient for most
@@ -19,30 +19,24 @@ namespace {
 // What n(P) is counted over: the casting triangles and the light.
 struct CasterSet {
   std::vector<Vec3> vertices;
-  std::vector<Triangle> casters;  // the soup's triangles with s(t) != 0 (DESIGN.md §3)
+  std::vector<Triangle> casters;  // the soup's triangles with s(t) != 0 (docs/definitions.md#counts)
   std::vector<Sign> light_side;   // their s(t)
   HomogeneousPoint light{};
 };
 
-void require_valid_light(const Light& light) {
-  if (!light.well_formed())
-    throw std::invalid_argument("OccluderCounter: the light needs finite coordinates and w = 0 or w = 1");
-  if (!light.defined())
-    throw std::invalid_argument("OccluderCounter: a directional light needs a nonzero direction");
-}
+void require_valid_light(const Light& light) { require_defined(light, "OccluderCounter"); }
 
 // The casting triangles of `soup` for `l`, with their exact light sides.
 CasterSet casting_triangles(const Soup& soup, const Light& l) {
   require_valid_light(l);
   CasterSet set{soup.vertices, {}, {}, l.position};
   const std::vector<Vec3>& vertices = set.vertices;
+  require_indices_in_range(soup, "OccluderCounter");
   for (const Triangle& t : soup.triangles) {
-    for (std::uint32_t i : t)
-      if (i >= vertices.size()) throw std::invalid_argument("OccluderCounter: triangle index out of range");
     const Sign s = light_orientation(vertices[t[0]], vertices[t[1]], vertices[t[2]], l);
     switch (s) {
       case Sign::zero:
-        break;  // the light on its plane, or no area: casts nothing (DESIGN.md §2)
+        break;  // the light on its plane, or no area: casts nothing (docs/definitions.md#orientation)
       case Sign::positive:
       case Sign::negative:
         set.casters.push_back(t);
@@ -56,11 +50,11 @@ CasterSet casting_triangles(const Soup& soup, const Light& l) {
 }
 
 // Each caster's box: its vertices' coordinates, exact.
-std::vector<detail::ClosedBox> caster_boxes(const CasterSet& set) {
-  std::vector<detail::ClosedBox> boxes(set.casters.size());
+std::vector<Box> caster_boxes(const CasterSet& set) {
+  std::vector<Box> boxes(set.casters.size());
   for (std::size_t i = 0; i < boxes.size(); ++i) {
     const Triangle& t = set.casters[i];
-    detail::ClosedBox& b = boxes[i];
+    Box& b = boxes[i];
     b.lo = b.hi = set.vertices[t[0]];
     for (int k = 1; k < 3; ++k)
       for (int d = 0; d < 3; ++d) {
@@ -84,7 +78,7 @@ struct OccluderCounter::Impl {
 };
 
 // Classifies every caster whose box the query meets and stops at the first touch, where n(P)
-// is undefined (DESIGN.md §3: P on no boundary).
+// is undefined (docs/definitions.md#counts: P on no boundary).
 std::optional<std::uint32_t> OccluderCounter::Impl::count(const Vec3& p) const {
   const HomogeneousPoint& light = set.light;
   const HomogeneousPoint start = finite_point(p);

@@ -6,7 +6,6 @@
 #include <stdexcept>
 #include <string>
 
-#include "exact/soup_file.h"
 
 namespace shadowcert {
 namespace {
@@ -17,8 +16,7 @@ void require(bool ok, const std::string& what) {
 
 void require_consistent(const Soup& canonical, const EdgeTable& table, const EdgeMultiplicities& m,
                         const Light& light) {
-  require(light.well_formed(), "the light needs finite coordinates and w = 0 or w = 1");
-  require(light.defined(), "a directional light needs a nonzero direction");
+  require_defined(light, "assemble_chain");
   require(m.multiplicity.size() == table.size(), "one multiplicity per edge of the table is needed");
   require(m.triangle_sign.size() == canonical.triangles.size(), "one cap sign per soup triangle is needed");
   // Far ids n + i (point light) must fit 32 bits, and closure packs two ids and a bit in 64.
@@ -37,7 +35,7 @@ struct FarIds {
   [[nodiscard]] std::uint32_t operator()(std::uint32_t x) const { return directional ? n : n + x; }
 };
 
-// DESIGN.md §3: front cap t' (t if s = +1, reversed if s = -1: its normal towards the light)
+// docs/definitions.md#counts: front cap t' (t if s = +1, reversed if s = -1: its normal towards the light)
 // and, for a point light, the back cap t' at infinity, reversed. A directional light's back
 // cap collapses to its one far vertex: no face.
 void add_caps(const Soup& canonical, const std::vector<Sign>& cap_sign, const FarIds& far, ShadowVolumeChain& chain) {
@@ -46,7 +44,7 @@ void add_caps(const Soup& canonical, const std::vector<Sign>& cap_sign, const Fa
     std::array<std::uint32_t, 3> front{};
     switch (cap_sign[i]) {
       case Sign::zero:
-        continue;  // casts nothing (DESIGN.md §2)
+        continue;  // casts nothing (docs/definitions.md#orientation)
       case Sign::positive:
         front = {t[0], t[1], t[2]};
         break;
@@ -61,7 +59,7 @@ void add_caps(const Soup& canonical, const std::vector<Sign>& cap_sign, const Fa
   }
 }
 
-// DESIGN.md §3: m copies of the quad (u, v, v_inf, u_inf), i.e. |m| copies oriented by
+// docs/definitions.md#counts: m copies of the quad (u, v, v_inf, u_inf), i.e. |m| copies oriented by
 // sign(m); with one far vertex the quad is the triangle (u, v, inf).
 void add_sides(const EdgeTable& table, const std::vector<std::int32_t>& multiplicity, const FarIds& far,
                ShadowVolumeChain& chain) {
@@ -82,7 +80,7 @@ void add_sides(const EdgeTable& table, const std::vector<std::int32_t>& multipli
   }
 }
 
-// Where write_chain draws x_inf: pushed far_distance along the ray away from the light.
+// Where chain_picture draws x_inf: pushed far_distance along the ray away from the light.
 Vec3 pushed_far(const Vec3& x, const Light& light, double far_distance) {
   const auto& l = light.position;
   Vec3 d = light.directional() ? Vec3{-l[0], -l[1], -l[2]} : Vec3{x[0] - l[0], x[1] - l[1], x[2] - l[2]};
@@ -107,11 +105,11 @@ ShadowVolumeChain assemble_chain(const Soup& canonical, const EdgeTable& table,
   return chain;
 }
 
-void write_chain(const std::filesystem::path& file, const ShadowVolumeChain& chain, const Soup& canonical,
-                 const Light& light, double far_distance) {
+Soup chain_picture(const ShadowVolumeChain& chain, const Soup& canonical, const Light& light,
+                   double far_distance) {
   const std::uint32_t n = chain.finite_vertices;
   if (canonical.vertices.size() != n)
-    throw std::invalid_argument("write_chain: the chain was not assembled on this soup");
+    throw std::invalid_argument("chain_picture: the chain was not assembled on this soup");
   // Picture vertices: [0, n) the soup's, [n, 2n) each one's pushed far point. A directional
   // chain's one far vertex is drawn per finite neighbour, so its triangles (p, q, inf) become
   // the quads (p, q, q_far, p_far).
@@ -133,7 +131,7 @@ void write_chain(const std::filesystem::path& file, const ShadowVolumeChain& cha
     }
   }
   for (const auto& q : chain.quads) add_quad(q[0], q[1], q[2], q[3]);
-  write_soup(file, picture);
+  return picture;
 }
 
 }  // namespace shadowcert

@@ -1,5 +1,5 @@
 #pragma once
-// The shadow-volume chain (DESIGN.md §3, §4.1): side quads |m| times per edge oriented by
+// The shadow-volume chain (docs/definitions.md#counts, docs/definitions.md#closure): side quads |m| times per edge oriented by
 // sign(m), front caps t' and back caps (t' at infinity, reversed), with symbolic far vertices.
 //
 // Vertex ids of a chain: [0, n) are the soup's vertices; for a point light n + i is x_inf of
@@ -7,7 +7,6 @@
 // far vertex (-l, 0), side quads degenerate to triangles (u, v, inf) and back caps vanish.
 #include <array>
 #include <cstdint>
-#include <filesystem>
 #include <vector>
 
 #include "core/light.h"
@@ -36,10 +35,12 @@ struct ShadowVolumeChain {
 [[nodiscard]] ShadowVolumeChain assemble_chain(const Soup& canonical, const EdgeTable& table,
                                                const EdgeMultiplicities& multiplicities, const Light& light);
 
-// Writes the chain as a polygon file (.off .obj .ply) for viewing: far vertices are pushed to
+// The chain as a soup for viewing (io/soup_file.h writes it as .off .obj .ply): vertices
+// [0, n) are the canonical soup's, [n, 2n) their far points pushed to
 // x + far_distance * (x - l) / |x - l| (point light) or x - far_distance * l / |l| (directional)
-// in doubles; only the picture is approximate, never a certificate.
-void write_chain(const std::filesystem::path& file, const ShadowVolumeChain& chain, const Soup& canonical,
-                 const Light& light, double far_distance);
+// in doubles; each side quad is two triangles. Only the picture is approximate, never a
+// certificate. Throws std::invalid_argument when the chain was not assembled on `canonical`.
+[[nodiscard]] Soup chain_picture(const ShadowVolumeChain& chain, const Soup& canonical, const Light& light,
+                                 double far_distance);
 
 }  // namespace shadowcert

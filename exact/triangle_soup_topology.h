@@ -1,9 +1,9 @@
 #pragma once
-// Combinatorial structure of a welded triangle soup (DESIGN.md §1, §4.3): the edge, fan,
+// Combinatorial structure of a welded triangle soup (docs/definitions.md#inputs, docs/definitions.md#caster-diagnostics): the edge, fan,
 // duplicate and component counts of caster_diagnostics.h, on indices only (no geometry).
 //
 // Only triangles with three distinct (welded) indices take part; a triangle with a repeated
-// index has fewer than three edges and casts nothing (DESIGN.md §2). Exactly collinear
+// index has fewer than three edges and casts nothing (docs/definitions.md#orientation). Exactly collinear
 // triangles with distinct indices do take part: their edges are real edges of the soup.
 #include <cstdint>
 
@@ -29,7 +29,7 @@ struct SoupTopology {
   std::uint64_t components = 0;
 };
 
-// Pass weld_soup(...).soup for the counts of DESIGN.md §1's vertex identity, as
+// Pass weld_soup(...).soup for the counts of docs/definitions.md#inputs's vertex identity, as
 // diagnose_caster does. On an unwelded soup the same call counts the soup's own index
 // topology, which is how data/README.md measured its columns (the tests use it so).
 // O(triangles + vertices) plus a sort of each vertex's few edge uses; parallel over vertices.

@@ -1,5 +1,5 @@
-// libFuzzer harness: the .vol reader of captured shadow volumes (exact/captured_volume.h),
-// on arbitrary bytes, then the weld that certify --volume runs on what it read
+// libFuzzer harness: the .vol reader of captured shadow volumes (io/volume_file.h),
+// on arbitrary bytes, then the weld (scene/welded_volume.h) that certify --volume runs on what it read
 // (docs/fuzzing-parsers.md).
 #include <array>
 #include <cmath>
@@ -9,15 +9,16 @@
 #include <string_view>
 
 #include "core/input_error.h"
-#include "exact/captured_volume.h"
+#include "io/volume_file.h"
+#include "scene/welded_volume.h"
 #include "fuzz/fuzz_check.h"
 
 namespace {
 
 using shadowcert::fuzz::require;
 
-// read_captured_volume's promise: finite coordinates, w in {0, 1}, indices in range.
-void require_valid_volume(const shadowcert::CapturedVolume& volume) {
+// read_volume_file's promise: finite coordinates, w in {0, 1}, indices in range.
+void require_valid_volume(const shadowcert::HomogeneousMesh& volume) {
   for (const std::array<float, 4>& v : volume.vertices) {
     for (const float c : v) require(std::isfinite(c));
     require(v[3] == 0.0f || v[3] == 1.0f);
@@ -32,10 +33,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string file_name = "fuzz.vol";
   const std::string_view text(reinterpret_cast<const char*>(data), size);
   try {
-    const shadowcert::CapturedVolume volume = shadowcert::parse_captured_volume(text, file_name);
+    const shadowcert::HomogeneousMesh volume = shadowcert::parse_volume_file(text, file_name);
     require_valid_volume(volume);
     // Welding keeps every triangle and never adds a vertex.
-    const shadowcert::CapturedVolume welded = shadowcert::weld_captured_volume(volume);
+    const shadowcert::HomogeneousMesh welded = shadowcert::weld_volume(volume);
     require_valid_volume(welded);
     require(welded.triangles.size() == volume.triangles.size());
     require(welded.vertices.size() <= volume.vertices.size());

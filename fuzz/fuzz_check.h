@@ -17,7 +17,7 @@ inline void require(bool holds) {
 
 inline bool finite(const Vec3& p) { return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]); }
 
-// What DESIGN.md §1 makes every reader guarantee: finite coordinates, indices in range (a soup
+// What docs/definitions.md#inputs makes every reader guarantee: finite coordinates, indices in range (a soup
 // indexes with 32 bits), and normals either absent or one per vertex.
 inline void require_valid_soup(const Soup& soup) {
   require(soup.vertices.size() <= std::numeric_limits<std::uint32_t>::max());

@@ -1,4 +1,4 @@
-// libFuzzer harness: the reader of certify's --points files (scene/point_file.h), on
+// libFuzzer harness: the reader of certify's --points files (io/point_file.h), on
 // arbitrary bytes (docs/fuzzing-parsers.md).
 #include <cstddef>
 #include <cstdint>
@@ -8,7 +8,7 @@
 
 #include "core/input_error.h"
 #include "fuzz/fuzz_check.h"
-#include "scene/point_file.h"
+#include "io/point_file.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using shadowcert::fuzz::require;

@@ -26,8 +26,8 @@ using shadowcert::fuzz::require;
 // sphere is 992 triangles); a sphere_grid of a million triangles is over it.
 constexpr std::size_t kAllocationBudget = std::size_t{8} << 20;
 
-// docs/scene-format.md: image sides are in [1, 32768].
-constexpr std::uint32_t kMaxImageSide = 32768;
+// docs/scene-format.md: image sides are in [1, kMaxImageSide] (core/camera.h).
+using shadowcert::kMaxImageSide;
 
 // A named file "missing..." fails as read_soup fails on a bad file; any other name reads
 // as a closed tetrahedron, so that transforms and the default light get a mesh to work on.

@@ -7,7 +7,7 @@
 #include <string_view>
 
 #include "core/input_error.h"
-#include "exact/soup_file.h"
+#include "io/soup_file.h"
 #include "fuzz/fuzz_check.h"
 
 namespace shadowcert::fuzz {

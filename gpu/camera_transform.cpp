@@ -22,9 +22,9 @@ glm::dmat4 view_matrix(const Camera& camera) {
     m[k][1] = f.up[k];
     m[k][2] = -f.forward[k];
   }
-  m[3][0] = -shadowcert::detail::dot(f.right, f.eye);
-  m[3][1] = -shadowcert::detail::dot(f.up, f.eye);
-  m[3][2] = shadowcert::detail::dot(f.forward, f.eye);
+  m[3][0] = -shadowcert::dot(f.right, f.eye);
+  m[3][1] = -shadowcert::dot(f.up, f.eye);
+  m[3][2] = shadowcert::dot(f.forward, f.eye);
   return m;
 }
 

@@ -1,13 +1,13 @@
 #pragma once
 // core::Camera to GL matrices (GLM, computed in double) and the pixel convention shared with
-// the exact module (DESIGN.md §5, docs/gpu.md):
+// the exact module (docs/definitions.md#pixel-protocol, docs/gpu.md):
 //   image pixel (i, r), row r = 0 at the TOP, covers [i, i+1) x [r, r+1) in image
 //   coordinates; its centre is (i + 0.5, r + 0.5). In GL window coordinates (origin at the
 //   bottom left) that centre is (i + 0.5, height - r - 0.5): GL samples exactly there, and
 //   readback (gpu/offscreen_target.h) flips rows so that row 0 is the top one.
 // Both matrices are built from core/pixel_ray.h's camera_frame, the basis the exact image
-// (exact/exact_image.h) casts its pixel rays with: the two sides share one camera by
-// construction (tests/gl/camera_transform_test.cpp).
+// (reference/exact_image.h) casts its pixel rays with: the two sides share one camera by
+// construction (tests/gpu/camera_transform_test.cpp).
 #include <glm/glm.hpp>
 
 #include "core/camera.h"
@@ -15,8 +15,8 @@
 
 namespace shadowcert::gpu {
 
-// The near plane when a caller gives none. The far plane is at infinity, so that a later
-// slice's shadow-volume back caps (points at infinity, w = 0) are never clipped (z-fail).
+// The near plane when a caller gives none. The far plane is at infinity, so that the
+// shadow-volume back caps (points at infinity, w = 0) are never clipped (z-fail).
 // Depth precision only matters near the camera; scenes with tiny features pass their own.
 inline constexpr double kDefaultNearPlane = 0.01;
 

@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "gpu/compute_pass.h"
+#include "gpu/detail/compute_pass.h"
 #include "gpu/embedded_shaders.h"
 #include "gpu/gl_error.h"
 #include "gpu/shader_compiler.h"
@@ -52,10 +52,8 @@ ComputeVolumeSoup::ComputeVolumeSoup(const Soup& canonical, const EdgeTable& tab
   if (canonical.vertices.size() > kMax || canonical.triangles.size() > kMax || table.size() >= kMax ||
       table.first_opposite.size() != table.size() + 1 || table.first_opposite.back() != table.opposite_vertex.size())
     throw std::invalid_argument("ComputeVolumeSoup: the edge table does not fit the soup or 32-bit counts");
-  for (const Triangle& t : canonical.triangles)
-    for (std::uint32_t i : t)
-      if (i >= canonical.vertices.size()) throw std::invalid_argument("ComputeVolumeSoup: index out of range");
-  // Rounded once from double, exactly as ShadowVolumeGeometry's finite vertices (and
+  require_indices_in_range(canonical, "ComputeVolumeSoup");
+  // Rounded once from double, exactly as HomogeneousMesh's finite vertices (and
   // to_precision<float> in core/light_side_formula.h): the shader evaluates these floats.
   std::vector<std::array<float, 4>> vertices;
   vertices.reserve(canonical.vertices.size());

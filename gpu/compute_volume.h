@@ -1,5 +1,5 @@
 #pragma once
-// The `cs` method (docs/gpu.md): the shadow-volume chain of DESIGN.md §3 built on the GPU by
+// The `cs` method (docs/gpu.md): the shadow-volume chain of docs/definitions.md#counts built on the GPU by
 // a compute shader (gpu/shaders/compute_volume.comp.glsl) with Milet 2014's reference edge
 // (§2.2): multiplicities per edge, |m| side quads per edge oriented by sign(m), caps per
 // triangle, all derived from ONE float evaluation per triangle on its vertices sorted by
@@ -12,7 +12,7 @@
 //   renderer.render(..., {LightVolume{light, nullptr, volume.draw()}});
 //
 // gpu/ takes the canonical soup and its edge table as plain data (scene/); it never calls
-// exact/. Vertices are rounded once from double to float exactly as ShadowVolumeGeometry's
+// exact/. Vertices are rounded once from double to float exactly as HomogeneousMesh's
 // finite vertices; far vertices x_inf = (x - l, 0) are formed in float on the GPU from those
 // (cli/'s cpu conversion forms x - l in double): the two volumes' sides may differ by one
 // rounding, which moves only pixels on volume boundaries.

@@ -1,6 +1,7 @@
 #pragma once
-// How precisely the stencil pass orders a volume face against the visible surface (DESIGN.md
-// §5): the diff's model of GL's depth test, for exact/'s ExactImageOptions::depth_band.
+// How precisely the stencil pass orders a volume face against the visible surface
+// (docs/definitions.md#pixel-protocol): the diff's model of GL's depth test, for reference/'s
+// ExactImageOptions::depth_band.
 //
 // The depth buffer is 24-bit fixed point (gpu/offscreen_target.h, DEPTH24_STENCIL8) behind the
 // infinite projection of gpu/camera_transform.h, whose window depth is 1 - near / D for view

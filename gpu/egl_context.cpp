@@ -15,13 +15,13 @@
 #include <string_view>
 #include <utility>
 
-#include "gpu/gl_debug_output.h"
+#include "gpu/detail/gl_debug_output.h"
 #include "gpu/gl_environment_error.h"
 
 namespace shadowcert::gpu {
 namespace {
 
-// What the slices above need: DSA (4.5), KHR_debug (4.3), compute and tessellation shaders.
+// What the methods need: DSA (4.5), KHR_debug (4.3), compute and tessellation shaders.
 constexpr int kRequiredGlMajor = 4;
 constexpr int kRequiredGlMinor = 5;
 
@@ -369,6 +369,16 @@ void EglContext::release() noexcept {
   debug_log_.reset();  // after the context: no callback can reach it any more
   display_ = nullptr;
   context_ = nullptr;
+}
+
+EglContext open_gl_context(std::string_view command, std::optional<int> device) {
+  try {
+    return EglContext(EglContextOptions{device, kGlDebugByDefault});
+  } catch (const GlEnvironmentError& e) {
+    throw GlEnvironmentError(std::string(command) +
+                             " needs OpenGL 4.5 core through headless EGL (a GPU driver or Mesa's llvmpipe: "
+                             "packages libegl-mesa0 libgl1-mesa-dri); " + std::string(e.what()));
+  }
 }
 
 }  // namespace shadowcert::gpu

@@ -4,10 +4,11 @@
 // Device choice (docs/gpu.md): with EGL_EXT_device_enumeration + EGL_EXT_platform_device,
 // a hardware device is preferred (NVIDIA's, recognised by EGL_NV_device_cuda, first);
 // otherwise Mesa's surfaceless platform, which gives llvmpipe. An explicit device index
-// (`shadowcert --device N`, list_egl_devices()) bypasses the choice.
+// (`--device N` of render, diff and fuzz --gl; list_egl_devices()) bypasses the choice.
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace shadowcert::gpu {
@@ -23,7 +24,7 @@ struct EglDeviceInfo {
   bool software = false;       // EGL_MESA_device_software: llvmpipe/softpipe
   bool nvidia = false;         // EGL_NV_device_cuda
 
-  [[nodiscard]] std::string describe() const;  // one line for logs and --list-devices
+  [[nodiscard]] std::string describe() const;  // one line for logs (egl_context_test prints one per device)
 };
 
 // Every EGL device, in EGL's order; empty when the client extensions are missing.
@@ -79,5 +80,10 @@ class EglContext {
   std::string fallback_reason_;
   bool software_ = false;
 };
+
+// The context a command draws with (device: as EglContextOptions::device), current on the
+// calling thread. Throws GlEnvironmentError whose message says that `command` needs OpenGL 4.5
+// core through headless EGL, which packages give it, and the driver's own message.
+[[nodiscard]] EglContext open_gl_context(std::string_view command, std::optional<int> device);
 
 }  // namespace shadowcert::gpu

@@ -36,7 +36,7 @@ void FlatSoupRenderer::draw(const SoupMesh& mesh, const Camera& camera, const Fl
     glEnable(GL_STENCIL_TEST);
     glStencilMask(0xFF);
     glStencilFunc(GL_ALWAYS, 0, 0xFF);
-    // Wrap, not saturate: DESIGN.md §5 compares stencil counts modulo 256.
+    // Wrap, not saturate: docs/definitions.md#pixel-protocol compares stencil counts modulo 256.
     glStencilOpSeparate(GL_FRONT_AND_BACK, GL_KEEP, GL_KEEP, GL_INCR_WRAP);
   } else {
     glDisable(GL_STENCIL_TEST);

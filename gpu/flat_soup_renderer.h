@@ -1,5 +1,5 @@
 #pragma once
-// The first slice's proof that the pipeline draws: a soup's triangles in one colour, seen
+// The smallest proof that the pipeline draws: a soup's triangles in one colour, seen
 // by a Camera, into the bound OffscreenTarget; optionally counting, per pixel, the
 // triangles drawn there in the stencil buffer (the operation shadow volumes build on).
 #include <array>

@@ -5,7 +5,7 @@
 #include <limits>
 #include <stdexcept>
 
-#include "gpu/compute_pass.h"
+#include "gpu/detail/compute_pass.h"
 #include "gpu/embedded_shaders.h"
 #include "gpu/gl_error.h"
 #include "gpu/shader_compiler.h"
@@ -123,7 +123,7 @@ void GeometryShaderShadowVolume::build(const Light& light) {
   // Unbind the capture program before the finish program is made current: Mesa (llvmpipe,
   // Debian 12) keeps a compute program made current straight after a graphics program
   // referenced after glUseProgram(0), so the deleted finish program stayed alive (glIsProgram
-  // true) once this object was destroyed (tests/gl/gl_resource_test.cpp).
+  // true) once this object was destroyed (tests/gpu/gl_resource_test.cpp).
   glUseProgram(0);
   glDisable(GL_RASTERIZER_DISCARD);
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(previous_framebuffer));

@@ -1,5 +1,5 @@
 #pragma once
-// The `gs` method (docs/gpu.md): the shadow-volume chain of DESIGN.md §3 built by a geometry
+// The `gs` method (docs/gpu.md): the shadow-volume chain of docs/definitions.md#counts built by a geometry
 // shader (gpu/shaders/geometry_shader_volume.{vert,geom}.glsl), the classic silhouette
 // extrusion (Milet 2014 §2.2 evaluated per edge, as `cs` does in a compute shader). One point
 // per EDGE RECORD: an edge (u, v) with at most kOppositesPerRecord opposite vertices; an edge

@@ -4,7 +4,7 @@
 
 #include <cstdio>
 
-#include "gpu/gl_debug_output.h"
+#include "gpu/detail/gl_debug_output.h"
 
 namespace shadowcert::gpu {
 

@@ -13,7 +13,7 @@ class GlError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Drains glGetError() and the current context's debug log (gpu/gl_debug_output.h);
+// Drains glGetError() and the current context's debug log (gpu/detail/gl_debug_output.h);
 // throws GlError "WHERE: GL_INVALID_OPERATION; driver: <message>" when anything was pending.
 // Needs a current context.
 void check_gl_errors(const char* where);

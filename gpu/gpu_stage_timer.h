@@ -1,5 +1,5 @@
 #pragma once
-// GPU time per render stage (issue 4's `render --timing` and bench/render_bench.cpp), from
+// GPU time per render stage (`render --timing` and bench/render_bench.cpp), from
 // GL_TIME_ELAPSED queries (ARB_timer_query, core since GL 3.3), and GPU time per frame from
 // two GL_TIMESTAMP counters.
 //

@@ -1,6 +1,6 @@
 #pragma once
 // The framebuffer every method renders into: RGBA8 colour + DEPTH24_STENCIL8, of a given
-// size, with readbacks of colour, of the exact per-pixel stencil counts (DESIGN.md §5
+// size, with readbacks of colour, of the exact per-pixel stencil counts (docs/definitions.md#pixel-protocol
 // compares them modulo 256) and of the lit mask derived from them.
 #include <array>
 #include <cstdint>

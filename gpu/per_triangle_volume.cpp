@@ -5,7 +5,7 @@
 #include <limits>
 #include <stdexcept>
 
-#include "gpu/compute_pass.h"
+#include "gpu/detail/compute_pass.h"
 #include "gpu/embedded_shaders.h"
 #include "gpu/gl_error.h"
 #include "gpu/shader_compiler.h"

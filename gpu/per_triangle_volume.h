@@ -1,12 +1,12 @@
 #pragma once
 // The `pertri` method (docs/gpu.md): per-triangle shadow volumes without a silhouette
 // (Milet 2014 §2.1). Every triangle t with s(t) != 0 draws its whole volume V(t) of
-// DESIGN.md §3 (front cap, three side quads, back cap), built on the GPU by one compute
+// docs/definitions.md#counts (front cap, three side quads, back cap), built on the GPU by one compute
 // invocation per triangle (gpu/shaders/per_triangle_volume.comp.glsl). s(t) is the
 // reference-edge value of the `cs` triangle pass (sorted canonical indices, one `precise`
 // float evaluation, parity), equal to refedge_multiplicities(..., Precision::float32)'s
 // triangle_sign, and is used for caps and sides alike, so each V(t) is closed on its own.
-// It is the baseline the silhouette methods are measured against (issue 4): every interior
+// It is the baseline the silhouette methods are measured against: every interior
 // edge's two quads are rasterised only to cancel.
 //
 //   ComputeVolumeSoup soup(canonical.soup, table);   // once per scene (the cs uploads)

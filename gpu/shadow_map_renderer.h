@@ -1,5 +1,5 @@
 #pragma once
-// The `shadowmap` baseline (issue 4; DESIGN.md §7, speed against error): no volume, no
+// The `shadowmap` baseline (docs/definitions.md#speed-against-error): no volume, no
 // counting identity. Per light, the receivers' depth is rendered from the light into a
 // GL_DEPTH_COMPONENT32F texture; the scene pass compares each visible point's light-space
 // depth with it (GL_COMPARE_REF_TO_TEXTURE, hardware comparison, one nearest texel, no PCF)

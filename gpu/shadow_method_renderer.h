@@ -1,5 +1,5 @@
 #pragma once
-// One shadow method (issue 4) rendering one scene: the layer `shadowcert render`, the
+// One shadow method rendering one scene: the layer `shadowcert render`, the
 // benchmark (bench/render_bench.cpp) and the image comparison share, so that "scene S by
 // method M" means the same frames everywhere.
 //

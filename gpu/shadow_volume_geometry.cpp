@@ -8,7 +8,7 @@
 
 namespace shadowcert::gpu {
 
-ShadowVolumeMesh::ShadowVolumeMesh(const ShadowVolumeGeometry& geometry)
+ShadowVolumeMesh::ShadowVolumeMesh(const HomogeneousMesh& geometry)
     : positions_(Buffer::create()), indices_(Buffer::create()), vertex_array_(VertexArray::create()) {
   if (geometry.triangles.size() > static_cast<std::size_t>(std::numeric_limits<GLsizei>::max() / 3)) {
     throw std::invalid_argument("ShadowVolumeMesh: too many triangles for one draw call");

@@ -1,5 +1,5 @@
 #pragma once
-// A shadow-volume chain as the GPU draws it (DESIGN.md §3): homogeneous vertices and
+// A shadow-volume chain as the GPU draws it (docs/definitions.md#counts): homogeneous vertices and
 // outward-oriented triangles (core/homogeneous_mesh.h). gpu/ does not build exact chains:
 // exact/chain_mesh.h converts exact/'s symbolic chain into this form and the caller uploads it.
 //
@@ -13,13 +13,12 @@
 
 namespace shadowcert::gpu {
 
-using ShadowVolumeGeometry = HomogeneousMesh;
 
 // The geometry in a vertex array (attribute 0 = vec4 position), ready for glDrawElements.
 class ShadowVolumeMesh {
  public:
   // Throws std::invalid_argument on an index out of range or too many triangles.
-  explicit ShadowVolumeMesh(const ShadowVolumeGeometry& geometry);
+  explicit ShadowVolumeMesh(const HomogeneousMesh& geometry);
 
   [[nodiscard]] GLuint vertex_array() const { return vertex_array_.name(); }
   [[nodiscard]] GLsizei index_count() const { return index_count_; }

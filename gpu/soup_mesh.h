@@ -1,7 +1,7 @@
 #pragma once
 // A soup's vertices (rounded once to float) and triangle indices on the GPU, in a vertex
-// array ready for glDrawElements. Attribute 0 = position; later slices add their own
-// attributes or index buffers (adjacency) on top.
+// array ready for glDrawElements. Attribute 0 = position (flat_soup_renderer draws it; the
+// shaded receivers have their own mesh, gpu/stencil_shadow_renderer.h).
 #include <cstdint>
 
 #include "core/soup.h"

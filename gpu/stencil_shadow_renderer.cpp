@@ -9,6 +9,7 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include "core/vector3.h"
 #include "gpu/camera_transform.h"
 #include "gpu/embedded_shaders.h"
 #include "gpu/gl_error.h"
@@ -35,11 +36,9 @@ struct ShadedVertex {
 };
 
 std::array<float, 3> face_normal(const Vec3& a, const Vec3& b, const Vec3& c) {
-  // In double: only shading reads it (DESIGN.md §1: no decision depends on a normal).
-  const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-  const double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-  const double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
-  const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  // In double: only shading reads it (docs/definitions.md#inputs: no decision depends on a normal).
+  const Vec3 n = cross(difference(b, a), difference(c, a));
+  const double length = std::sqrt(dot(n, n));
   if (!(length > 0.0) || !std::isfinite(length)) return {0.0f, 0.0f, 0.0f};  // unlit in the shader
   return {static_cast<float>(n[0] / length), static_cast<float>(n[1] / length), static_cast<float>(n[2] / length)};
 }

@@ -1,10 +1,10 @@
 #pragma once
-// Stencil shadow volumes (DESIGN.md §3, §5): the counting identity n(P) = winding number of
+// Stencil shadow volumes (docs/definitions.md#counts, docs/definitions.md#pixel-protocol): the counting identity n(P) = winding number of
 // the chain at P, evaluated per pixel in the stencil buffer.
 //
 // Per frame: a depth pre-pass of the receivers in ambient colour; then per light: clear the
 // stencil, draw that light's volume with colour and depth writes off and two-sided
-// GL_INCR_WRAP / GL_DECR_WRAP (counts modulo 256, as §5 compares them), then add the light's
+// GL_INCR_WRAP / GL_DECR_WRAP (counts modulo 256, as docs/definitions.md#pixel-protocol compares them), then add the light's
 // Lambert term where the stencil is 0 (depth GL_EQUAL, additive blending).
 //   z-fail (default, Carmack's reverse): back faces +1 and front faces -1 where the depth
 //     test FAILS, i.e. the faces behind the visible point P; right wherever the eye is,
@@ -36,7 +36,7 @@ struct ShadedSoupPart {
 };
 
 // Receivers on the GPU: triangles expanded to three vertices each (vec4 position with
-// w = 1, rounded once to float exactly as ShadowVolumeGeometry's finite vertices are; the
+// w = 1, rounded once to float exactly as HomogeneousMesh's finite vertices are; the
 // soup's vertex normals when it has them, else the face normal; the part's albedo).
 class ShadedSoupMesh {
  public:

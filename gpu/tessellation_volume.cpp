@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "gpu/compute_pass.h"
+#include "gpu/detail/compute_pass.h"
 #include "gpu/embedded_shaders.h"
 #include "gpu/gl_environment_error.h"
 #include "gpu/gl_error.h"
@@ -141,7 +141,7 @@ void TessellationShadowVolume::build(const Light& light) {
   // Unbind the capture program before the finish program is made current: Mesa (llvmpipe,
   // Debian 12) keeps a compute program made current straight after a graphics program
   // referenced after glUseProgram(0), so the deleted finish program stayed alive (glIsProgram
-  // true) once this object was destroyed (tests/gl/gl_resource_test.cpp).
+  // true) once this object was destroyed (tests/gpu/gl_resource_test.cpp).
   glUseProgram(0);
   glDisable(GL_RASTERIZER_DISCARD);
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(previous_framebuffer));

@@ -1,5 +1,5 @@
 #pragma once
-// The `ts` method (docs/gpu.md): the shadow-volume chain of DESIGN.md §3 built by the
+// The `ts` method (docs/gpu.md): the shadow-volume chain of docs/definitions.md#counts built by the
 // tessellator, Milet 2014 §2.2 (gpu/shaders/tessellation_volume.{vert,tesc,tese,geom}.glsl),
 // a close sibling of `gs` (gpu/geometry_shader_volume.h). One GL_PATCHES patch per RECORD of
 // 4 + kTessellationOppositesPerRecord words, the patch vertices being the words (Milet's

@@ -1,11 +1,11 @@
-#include "cli/output_file.h"
+#include "io/output_file.h"
 
 #include <fstream>
 #include <system_error>
 
 #include "core/input_error.h"
 
-namespace shadowcert::cli {
+namespace shadowcert {
 
 void create_parent_directories(const std::filesystem::path& file) {
   if (!file.has_parent_path()) return;
@@ -22,4 +22,4 @@ void write_json_file(const std::filesystem::path& file, const nlohmann::json& va
   if (!out) throw InputError(file.string(), "write failed");
 }
 
-}  // namespace shadowcert::cli
+}  // namespace shadowcert

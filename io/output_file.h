@@ -3,7 +3,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
-namespace shadowcert::cli {
+namespace shadowcert {
 
 // Creates the folders above `file` (nothing for a bare name); throws InputError naming the
 // file when that fails. Every output option of the CLI calls it before writing.
@@ -13,4 +13,4 @@ void create_parent_directories(const std::filesystem::path& file);
 // naming the file when it cannot be written.
 void write_json_file(const std::filesystem::path& file, const nlohmann::json& value);
 
-}  // namespace shadowcert::cli
+}  // namespace shadowcert

@@ -1,4 +1,4 @@
-#include "scene/point_file.h"
+#include "io/point_file.h"
 
 #include <algorithm>
 #include <charconv>

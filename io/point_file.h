@@ -1,7 +1,7 @@
 #pragma once
 // User sample points (`shadowcert certify --points FILE`): one point "x y z" per line, blank
 // lines and lines starting with '#' ignored. Errors are InputErrors naming the file and line.
-// Plain text, no CGAL: it lives in scene/ so that the CLI and the fuzz harness (fuzz/) share it.
+// Plain text, no CGAL: it lives in io/ so that the CLI and the fuzz harness (fuzz/) share it.
 #include <filesystem>
 #include <string>
 #include <string_view>

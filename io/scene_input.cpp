@@ -1,13 +1,13 @@
-#include "cli/scene_input.h"
+#include "io/scene_input.h"
 
 #include <algorithm>
 #include <cctype>
 #include <string>
 
-#include "exact/soup_file.h"
+#include "io/soup_file.h"
 #include "scene/scene_file.h"
 
-namespace shadowcert::cli {
+namespace shadowcert {
 
 Scene load_scene_or_mesh(const std::filesystem::path& input) {
   std::string ext = input.extension().string();
@@ -20,4 +20,4 @@ Scene load_scene_or_mesh(const std::filesystem::path& input) {
   return scene;
 }
 
-}  // namespace shadowcert::cli
+}  // namespace shadowcert

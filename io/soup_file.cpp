@@ -1,4 +1,4 @@
-#include "exact/soup_file.h"
+#include "io/soup_file.h"
 
 #include <CGAL/IO/OBJ.h>
 #include <CGAL/IO/OFF.h>
@@ -26,10 +26,10 @@
 #include <system_error>
 #include <vector>
 
-#include "exact/soup_file_binary_check.h"
-#include "exact/soup_file_lines.h"
-#include "exact/soup_file_ply_header.h"
-#include "exact/soup_file_text_check.h"
+#include "io/detail/soup_file_binary_check.h"
+#include "io/detail/soup_file_lines.h"
+#include "io/detail/soup_file_ply_header.h"
+#include "io/detail/soup_file_text_check.h"
 
 namespace shadowcert {
 

@@ -1,36 +1,17 @@
-#include "exact/captured_volume.h"
+#include "io/volume_file.h"
 
-#include <bit>
 #include <charconv>
 #include <cmath>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
 #include <string>
-#include <unordered_map>
 
 #include "core/input_error.h"
-#include "exact/shadow_volume_chain.h"
+#include "scene/welded_volume.h"
 
 namespace shadowcert {
 namespace {
-
-using Key = std::array<std::uint32_t, 4>;
-
-// -0 and +0 are one point; everything else (NaN payloads included) is compared by bits.
-Key weld_key(const std::array<float, 4>& v) {
-  Key k{};
-  for (int i = 0; i < 4; ++i) k[i] = v[i] == 0.0f ? 0u : std::bit_cast<std::uint32_t>(v[i]);
-  return k;
-}
-
-struct KeyHash {
-  std::size_t operator()(const Key& k) const {
-    std::uint64_t h = 0x9e3779b97f4a7c15ull;
-    for (std::uint32_t x : k) h = (h ^ x) * 0xff51afd7ed558ccdull;
-    return static_cast<std::size_t>(h ^ (h >> 32));
-  }
-};
 
 std::string_view next_token(std::string_view& rest) {
   const auto begin = rest.find_first_not_of(" \t\r");
@@ -47,35 +28,9 @@ std::string_view next_token(std::string_view& rest) {
 
 }  // namespace
 
-CapturedVolume weld_captured_volume(const CapturedVolume& volume) {
-  CapturedVolume welded;
-  std::unordered_map<Key, std::uint32_t, KeyHash> ids;
-  ids.reserve(volume.vertices.size());
-  std::vector<std::uint32_t> remap(volume.vertices.size());
-  for (std::size_t i = 0; i < volume.vertices.size(); ++i) {
-    const auto [it, inserted] = ids.try_emplace(weld_key(volume.vertices[i]),
-                                                static_cast<std::uint32_t>(welded.vertices.size()));
-    // The first-seen bits represent the welded vertex, so a lone -0 is written as -0.
-    if (inserted) welded.vertices.push_back(volume.vertices[i]);
-    remap[i] = it->second;
-  }
-  welded.triangles.reserve(volume.triangles.size());
-  for (const auto& t : volume.triangles) {
-    std::array<std::uint32_t, 3> w{};
-    for (int k = 0; k < 3; ++k) {
-      if (t[k] >= remap.size())
-        throw std::invalid_argument("weld_captured_volume: vertex index " + std::to_string(t[k]) + " but " +
-                                    std::to_string(remap.size()) + " vertices");
-      w[k] = remap[t[k]];
-    }
-    welded.triangles.push_back(w);
-  }
-  return welded;
-}
-
-void write_captured_volume(const std::filesystem::path& file, const CapturedVolume& volume,
+void write_volume_file(const std::filesystem::path& file, const HomogeneousMesh& volume,
                            std::string_view comment) {
-  const CapturedVolume welded = weld_captured_volume(volume);
+  const HomogeneousMesh welded = weld_volume(volume);
   std::ofstream out(file, std::ios::binary);
   if (!out) throw InputError(file.string(), "cannot open for writing");
   std::string text = "# shadowcert captured shadow volume (docs/cli.md): v x y z w, f a b c (1-based)\n";
@@ -112,8 +67,8 @@ void write_captured_volume(const std::filesystem::path& file, const CapturedVolu
 namespace {
 
 // The records of a .vol text, from any stream; `name` is the file named in messages.
-CapturedVolume read_records(std::istream& in, const std::string& name) {
-  CapturedVolume volume;
+HomogeneousMesh read_records(std::istream& in, const std::string& name) {
+  HomogeneousMesh volume;
   struct Face {
     std::vector<std::uint64_t> indices;
     std::size_t line;
@@ -169,28 +124,16 @@ CapturedVolume read_records(std::istream& in, const std::string& name) {
 
 }  // namespace
 
-CapturedVolume read_captured_volume(const std::filesystem::path& file) {
+HomogeneousMesh read_volume_file(const std::filesystem::path& file) {
   const std::string name = file.string();
   std::ifstream in(file, std::ios::binary);
   if (!in) throw InputError(name, "cannot open");
   return read_records(in, name);
 }
 
-CapturedVolume parse_captured_volume(std::string_view text, const std::string& file_name) {
+HomogeneousMesh parse_volume_file(std::string_view text, const std::string& file_name) {
   std::istringstream in(std::string(text), std::ios::binary);
   return read_records(in, file_name);
-}
-
-CapturedClosure certify_captured_closure(const CapturedVolume& volume) {
-  CapturedClosure result{weld_captured_volume(volume), {}};
-  // certify_closure on a triangles-only chain: with `directional` its id range is n + 1,
-  // which covers the n welded vertices; the far-vertex convention plays no part here.
-  ShadowVolumeChain chain;
-  chain.finite_vertices = static_cast<std::uint32_t>(result.welded.vertices.size());
-  chain.directional = true;
-  chain.triangles = result.welded.triangles;
-  result.certificate = certify_closure(chain);
-  return result;
 }
 
 }  // namespace shadowcert

@@ -7,7 +7,7 @@
 #include "core/scene.h"
 #include "gpu/stencil_shadow_renderer.h"
 
-namespace shadowcert::cli {
+namespace shadowcert {
 
 inline constexpr std::array<std::array<float, 3>, 4> kMeshPalette{
     {{0.85f, 0.85f, 0.85f}, {0.95f, 0.55f, 0.35f}, {0.45f, 0.75f, 0.95f}, {0.6f, 0.9f, 0.5f}}};
@@ -20,4 +20,4 @@ inline constexpr std::array<std::array<float, 3>, 4> kMeshPalette{
   return parts;
 }
 
-}  // namespace shadowcert::cli
+}  // namespace shadowcert

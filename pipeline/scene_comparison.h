@@ -1,16 +1,16 @@
 #pragma once
-// One scene, every chosen GL shadow method against the exact image (DESIGN.md §5, docs/diff.md):
-// the part `shadowcert diff` and `shadowcert fuzz --gl` share, so that a fuzz reproducer's
+// One scene, every chosen GL shadow method against the exact image (docs/definitions.md#pixel-protocol, docs/diff.md):
+// the part `shadowcert diff` and `shadowcert fuzz --gl` share, so that a campaign reproducer's
 // `shadowcert diff` command computes exactly what the campaign computed.
 //
-//   gpu::EglContext context = open_gl_context("diff", device);   // current on this thread
+//   gpu::EglContext context = gpu::open_gl_context("diff", device);  // current on this thread
 //   SceneComparison c = compare_scene(scene, methods, {});         // exact image, then GL
 //   bool ok = c.passed();                                          // no robust method failed
 //
 // Per method and light (each light rendered alone, so that every light is compared): the
-// frame and its readback, the pixel comparison (exact/pixel_comparison.h) against the exact
-// image of the scene and of its float rounding (exact/input_rounding.h), and for the volume
-// methods the exact closure of the captured volume (exact/captured_volume.h).
+// frame and its readback, the pixel comparison (reference/pixel_comparison.h) against the exact
+// image of the scene and of its float rounding (reference/input_rounding.h), and for the volume
+// methods the exact closure of the volume as drawn (exact/volume_closure.h).
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -19,26 +19,17 @@
 
 #include "core/scene.h"
 #include "exact/closure_certificate.h"
-#include "exact/exact_image.h"
-#include "exact/pixel_comparison.h"
+#include "reference/exact_image.h"
+#include "reference/pixel_comparison.h"
 #include "gpu/egl_context.h"
+#include "gpu/offscreen_target.h"
 #include "gpu/shadow_method_renderer.h"
 
-namespace shadowcert::cli {
+namespace shadowcert {
 
-// Robust methods must show zero hard errors and closed volumes (DESIGN.md §5); the shadow map
-// is the baseline whose errors are its speed-against-error figures (§7).
+// Robust methods must show zero hard errors and closed volumes (docs/definitions.md#pixel-protocol); the shadow map
+// is the baseline whose errors are its speed-against-error figures (docs/definitions.md#speed-against-error).
 [[nodiscard]] constexpr bool robust(gpu::ShadowMethod method) { return method != gpu::ShadowMethod::shadowmap; }
-
-// A comma-separated list of method names (cpu, cs, gs, ts, pertri, shadowmap), duplicates
-// dropped, in the list's order; empty: every method. Throws CLI::ValidationError naming
-// `option` and the unknown name.
-[[nodiscard]] std::vector<gpu::ShadowMethod> parse_shadow_methods(const std::string& list, const std::string& option);
-
-// An OpenGL 4.5 core context through headless EGL, current on the calling thread. Throws
-// gpu::GlEnvironmentError whose message says that `command` needs it, which packages give it,
-// and the driver's own message (main maps it to exit 2).
-[[nodiscard]] gpu::EglContext open_gl_context(std::string_view command, std::optional<int> device);
 
 // One method against one light.
 struct LightRun {
@@ -78,6 +69,23 @@ struct SceneComparison {
   [[nodiscard]] bool passed() const;  // no run failed
 };
 
+// The exact image of `scene` (every mesh receives and casts) at its camera, with the GL depth
+// band (gpu/depth_precision.h), marked by the float-rounded scene's image
+// (reference/input_rounding.h): what every GL frame of the scene is compared with. With
+// `progress`, a bar on stderr; `rounded_seconds` receives the second image's time.
+[[nodiscard]] ExactImage reference_image(const Scene& scene, bool progress = false,
+                                         double* rounded_seconds = nullptr);
+
+// One frame of `renderer` (built for light `light` of the scene alone, pipeline/method_inputs.h's
+// light_scene) into `target`, compared with `exact` (reference_image of the scene, `camera`'s
+// size): the readback against light `light`'s exact answer; for a volume method the exact
+// closure of the volume as drawn; a capacity overflow recorded, not thrown (the open volume is
+// still compared and certified). Then `timed_frames` frames without readback for gl_ms.
+// Throws what the renderer and compare_pixels throw (a size mismatch among them).
+[[nodiscard]] LightRun compare_light(gpu::ShadowMethodRenderer& renderer, const ExactImage& exact, std::size_t light,
+                                     const gpu::OffscreenTarget& target, const Camera& camera,
+                                     std::size_t timed_frames = 0);
+
 // The reference and every method on `scene` (every mesh receives and casts, as in the GL
 // methods). Preconditions: a GL context is current on this thread; the scene has at least one
 // light and one triangle, and `methods` is not empty (std::invalid_argument("compare_scene:
@@ -85,4 +93,4 @@ struct SceneComparison {
 [[nodiscard]] SceneComparison compare_scene(const Scene& scene, const std::vector<gpu::ShadowMethod>& methods,
                                             const SceneComparisonOptions& options);
 
-}  // namespace shadowcert::cli
+}  // namespace shadowcert

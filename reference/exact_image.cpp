@@ -1,8 +1,8 @@
-// exact_image of exact/exact_image.h, in passes over the pixel grid (DESIGN.md §5):
+// exact_image of reference/exact_image.h, in passes over the pixel grid (docs/definitions.md#pixel-protocol):
 //   1. hits: every centre ray and every corner ray is followed to its first hit with the box
-//      tree's nearest-first query and exact ray/triangle tests (exact/ray_hit.h);
+//      tree's nearest-first query and exact ray/triangle tests (reference/detail/ray_hit.h);
 //   2. footprints: where a pixel's five rays agree on one triangle, nothing else may be seen
-//      over its footprint (exact/pixel_footprint.h, the eye pyramid), nor, with a depth band,
+//      over its footprint (reference/detail/pixel_footprint.h, the eye pyramid), nor, with a depth band,
 //      within the band of its centre (another surface);
 //   3. counts, per light: n(P) at every centre hit, and at the corner hits that can still
 //      decide a pixel (a pixel whose footprint already sees two triangles, or whose hit
@@ -12,7 +12,7 @@
 // Every decision is an exact sign; the only doubles that are not inputs are interval bounds
 // that enclose exact values (filters and box-tree queries), never a decision by themselves,
 // and the depth band's end points, which its caller's model defines.
-#include "exact/exact_image.h"
+#include "reference/exact_image.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -32,8 +32,8 @@
 #include "exact/edge_multiplicity.h"
 #include "exact/face_crossing.h"
 #include "exact/light_orientation.h"
-#include "exact/pixel_footprint.h"
-#include "exact/ray_hit.h"
+#include "reference/detail/pixel_footprint.h"
+#include "reference/detail/ray_hit.h"
 #include "scene/canonical_soup.h"
 #include "scene/edge_table.h"
 
@@ -54,7 +54,7 @@ struct RayHit {
 
 [[nodiscard]] bool countable(const RayHit& hit) { return hit.triangle != kNoHit && !hit.degenerate; }
 
-// A light's silhouette edges: the edges of nonzero multiplicity (DESIGN.md §3), whose side
+// A light's silhouette edges: the edges of nonzero multiplicity (docs/definitions.md#counts), whose side
 // faces are the shadow volume chain's only finite faces besides the casters themselves.
 struct Silhouette {
   std::vector<std::array<Vec3, 2>> edges;
@@ -66,7 +66,7 @@ struct Silhouette {
 struct ImageGeometry {
   const Soup& soup;
   std::vector<HomogeneousPoint> lights;
-  std::vector<std::vector<Sign>> light_sides;  // [light][triangle]: s(t) of DESIGN.md §2
+  std::vector<std::vector<Sign>> light_sides;  // [light][triangle]: s(t) of docs/definitions.md#orientation
   std::vector<std::unique_ptr<Silhouette>> silhouettes;
   std::vector<std::unique_ptr<Silhouette>> casting_edges;  // with a depth band: every edge of a caster
   detail::BoxTree tree;
@@ -77,26 +77,17 @@ struct ImageGeometry {
 };
 
 void validate(const Soup& soup, std::span<const Light> lights) {
-  for (const Triangle& t : soup.triangles)
-    for (std::uint32_t i : t) {
-      if (i >= soup.vertices.size()) throw std::invalid_argument("exact_image: triangle index out of range");
-      for (double x : soup.vertices[i])
-        if (!std::isfinite(x)) throw std::invalid_argument("exact_image: non-finite vertex coordinate");
-    }
+  require_indices_in_range(soup, "exact_image");
+  require_finite_vertices(soup, "exact_image");
   if (soup.triangles.size() >= kUndefinedCount) throw std::invalid_argument("exact_image: too many triangles");
-  for (const Light& light : lights) {
-    if (!light.well_formed())
-      throw std::invalid_argument("exact_image: a light needs finite coordinates and w = 0 or w = 1");
-    if (!light.defined())
-      throw std::invalid_argument("exact_image: a directional light needs a nonzero direction");
-  }
+  for (const Light& light : lights) require_defined(light, "exact_image");
 }
 
-std::vector<detail::ClosedBox> triangle_boxes(const Soup& soup) {
-  std::vector<detail::ClosedBox> boxes(soup.triangles.size());
+std::vector<Box> triangle_boxes(const Soup& soup) {
+  std::vector<Box> boxes(soup.triangles.size());
   for (std::size_t i = 0; i < boxes.size(); ++i) {
     const Triangle& t = soup.triangles[i];
-    detail::ClosedBox& b = boxes[i];
+    Box& b = boxes[i];
     b.lo = b.hi = soup.vertices[t[0]];
     for (int k = 1; k < 3; ++k)
       for (int d = 0; d < 3; ++d) {
@@ -122,13 +113,13 @@ std::vector<Sign> light_sides(const Soup& soup, const Light& light) {
 template <typename Keep>
 std::unique_ptr<Silhouette> edge_set(const Soup& canonical, const EdgeTable& table, Keep keep) {
   std::vector<std::array<Vec3, 2>> edges;
-  std::vector<detail::ClosedBox> boxes;
+  std::vector<Box> boxes;
   for (std::size_t e = 0; e < table.size(); ++e) {
     if (!keep(e)) continue;
     const Vec3& u = canonical.vertices[table.edges[e][0]];
     const Vec3& v = canonical.vertices[table.edges[e][1]];
     edges.push_back({u, v});
-    detail::ClosedBox b{u, u};
+    Box b{u, u};
     for (int k = 0; k < 3; ++k) {
       b.lo[k] = std::min(u[k], v[k]);
       b.hi[k] = std::max(u[k], v[k]);
@@ -179,7 +170,7 @@ RayHit first_hit(const ImageGeometry& g, const PixelRay& ray, std::vector<std::u
         hit = {id, touch, m.eye_side, m.direction_side};
         bound = t.upper();
         break;
-      case Sign::zero:  // a tie: P lies on two triangles (a zero sign, §5)
+      case Sign::zero:  // a tie: P lies on two triangles (a zero sign, docs/definitions.md#pixel-protocol)
         hit.degenerate = true;
         hit.triangle = std::min(hit.triangle, id);
         break;
@@ -197,7 +188,7 @@ RayHit first_hit(const ImageGeometry& g, const PixelRay& ray, std::vector<std::u
   return hit;
 }
 
-// n(P) for P = the hit point of a countable hit, light number `light` (DESIGN.md §3, §5): the
+// n(P) for P = the hit point of a countable hit, light number `light` (docs/definitions.md#counts, docs/definitions.md#pixel-protocol): the
 // casting triangles other than the hit one that the open segment P -> light crosses;
 // kUndefinedCount when it touches one (P on a volume boundary).
 std::uint32_t count_at(const ImageGeometry& g, std::size_t light, const PixelRay& ray, const RayHit& hit) {
@@ -208,9 +199,9 @@ std::uint32_t count_at(const ImageGeometry& g, std::size_t light, const PixelRay
   std::uint32_t n = 0;
   bool touched = false;
   const auto classify = [&](std::uint32_t id) {
-    if (id == h) return true;  // the triangle that contains P (§5)
+    if (id == h) return true;  // the triangle that contains P (docs/definitions.md#pixel-protocol)
     const Sign s = sides[id];
-    if (s == Sign::zero) return true;  // casts nothing (§2)
+    if (s == Sign::zero) return true;  // casts nothing (docs/definitions.md#orientation)
     const Vec3 &a = g.vertex(id, 0), &b = g.vertex(id, 1), &c = g.vertex(id, 2);
     // P and the light on one side: the open segment never reaches the plane. P on the plane:
     // the open segment leaves it at once towards the light (s != 0), so it misses the closed
@@ -348,7 +339,7 @@ std::array<detail::RayParameter, 4> corner_hits(const ImageGeometry& g, const Ra
 }
 
 // Whether something besides triangle h is seen inside the footprint: an edge of another
-// triangle crosses the eye pyramid over it (exact/pixel_footprint.h).
+// triangle crosses the eye pyramid over it (reference/detail/pixel_footprint.h).
 bool footprint_sees_more(const ImageGeometry& g, const Vec3& eye, const std::array<detail::RayParameter, 4>& corners,
                          std::uint32_t h) {
   const detail::FootprintPolytope pyramid(finite_point(eye), corners);
@@ -394,9 +385,9 @@ DepthBand depth_band(const ImageGeometry& g, const CameraFrame& frame, const Pix
   const detail::HitPoint p(detail::RayParameter(ray, g.vertex(h, 0), g.vertex(h, 1), g.vertex(h, 2), hit.direction_side));
   Vec3 point;
   for (int k = 0; k < 3; ++k) point[k] = p.lo()[k] / 2 + p.hi()[k] / 2;
-  const double per_t = detail::dot(ray.direction, frame.forward);  // view depth per unit of t (> 0)
-  const double t = detail::dot({point[0] - ray.origin[0], point[1] - ray.origin[1], point[2] - ray.origin[2]},
-                               ray.direction) / detail::dot(ray.direction, ray.direction);
+  const double per_t = dot(ray.direction, frame.forward);  // view depth per unit of t (> 0)
+  const double t = dot({point[0] - ray.origin[0], point[1] - ray.origin[1], point[2] - ray.origin[2]},
+                               ray.direction) / dot(ray.direction, ray.direction);
   const double dt = band(t * per_t) / per_t;
   DepthBand b;
   for (int k = 0; k < 3; ++k) {
@@ -505,7 +496,7 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
   image.stats.count_seconds = seconds_since(stage);
 
   // Where the corners and the centre agree on one triangle, the whole footprint must see only
-  // it (exact/pixel_footprint.h): a small triangle or an edge between the rays is ambiguous.
+  // it (reference/detail/pixel_footprint.h): a small triangle or an edge between the rays is ambiguous.
   stage = Clock::now();
   {
     Progress progress(options, "footprints", grid.height);

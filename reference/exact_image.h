@@ -1,5 +1,5 @@
 #pragma once
-// The exact image (DESIGN.md §5): what a shadow renderer must show at every pixel, decided with
+// The exact image (docs/definitions.md#pixel-protocol): what a shadow renderer must show at every pixel, decided with
 // exact predicates on the input doubles, against which `shadowcert diff` checks each GL method.
 //
 // For each pixel the ray through its centre (core/pixel_ray.h, the GL path's own rays) is
@@ -8,15 +8,15 @@
 // floats), never by a rounded distance. P is never rounded: it is the rational point
 // e + (N / D) d, kept as an interval enclosure for filters and as exact homogeneous
 // coordinates for the rare signs the enclosure cannot decide. For each light, n(P) is the
-// number of casting triangles (s != 0, §2) crossed by the open segment P -> light (the ray
-// towards l for w = 0), the hit triangle excluded (§5).
+// number of casting triangles (s != 0, docs/definitions.md#orientation) crossed by the open segment P -> light (the ray
+// towards l for w = 0), the hit triangle excluded (docs/definitions.md#pixel-protocol).
 //
-// A pixel is AMBIGUOUS (§5) when the exact answer at its centre does not pin down what a
+// A pixel is AMBIGUOUS (docs/definitions.md#pixel-protocol) when the exact answer at its centre does not pin down what a
 // correct renderer shows there:
 //   - its footprint does not see one triangle: the footprint rays (the four corner rays and the
 //     centre ray) see different triangles (or some none), or, where they agree on triangle h,
 //     an edge of another triangle crosses the eye pyramid over the footprint's region R on h
-//     (exact/pixel_footprint.h: a small triangle between the rays);
+//     (reference/detail/pixel_footprint.h: a small triangle between the rays);
 //   - n is not constant over the footprint: the footprint rays count differently, or a
 //     silhouette edge (the shadow-volume chain's side faces) crosses the light pyramid over R
 //     (a shadow sliver between the rays, which GL's finite depth precision may draw over the
@@ -53,7 +53,7 @@ enum AmbiguityReason : std::uint8_t {
                             // crosses the footprint's light pyramid
   kTerminator = 4,          // the light is not strictly on the eye's side of the hit plane
   kZeroSign = 8,            // a footprint ray meets an edge, a vertex, a tie or a touched boundary
-  kInputRounding = 16,      // the scene rounded to float answers otherwise (exact/input_rounding.h)
+  kInputRounding = 16,      // the scene rounded to float answers otherwise (reference/input_rounding.h)
   kDepthBand = 32,          // a surface or a volume face within ExactImageOptions::depth_band of P
 };
 
@@ -91,7 +91,7 @@ struct ExactImageOptions {
   std::function<void(std::string_view stage, std::uint64_t done, std::uint64_t total)> progress;
 
   // The depth band of a renderer whose depth test has finite precision (the diff's model of
-  // GL's depth buffer, cli/diff_command.cpp). When set, depth_band(D) > 0 is a half-width in
+  // GL's depth buffer, pipeline/scene_comparison.cpp). When set, depth_band(D) > 0 is a half-width in
   // view depth around P at view depth D; a pixel whose centre ray meets, within that band of
   // P, another triangle (two surfaces a depth buffer cannot order) or the side face of an
   // edge of a casting triangle (a shadow-volume face whose depth test against P a renderer

@@ -1,33 +1,9 @@
-#include "exact/input_rounding.h"
+#include "reference/input_rounding.h"
 
 #include <stdexcept>
 #include <vector>
 
 namespace shadowcert {
-namespace {
-
-// The nearest float. Through a volatile float: GCC 12 at -O3 has been seen to fold the
-// double -> float -> double round trip of a vectorised loop away.
-double to_float(double x) {
-  volatile float f = static_cast<float>(x);
-  return f;
-}
-
-}  // namespace
-
-Soup float_rounded(const Soup& soup) {
-  Soup out = soup;
-  for (Vec3& v : out.vertices)
-    for (double& x : v) x = to_float(x);
-  return out;
-}
-
-Light float_rounded(const Light& light) {
-  Light out = light;
-  for (int k = 0; k < 3; ++k) out.position[static_cast<std::size_t>(k)] = to_float(light.position[static_cast<std::size_t>(k)]);
-  return out;
-}
-
 void mark_input_rounding(ExactImage& exact, const ExactImage& rounded) {
   if (exact.width != rounded.width || exact.height != rounded.height || exact.lights.size() != rounded.lights.size())
     throw std::invalid_argument("mark_input_rounding: the images differ in size or in lights");

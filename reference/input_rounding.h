@@ -3,20 +3,17 @@
 // the input to float changes the exact answer, no float renderer can be held to the double
 // one. The diff (`shadowcert diff`, docs/diff.md) therefore computes the exact image twice,
 // of the scene as given and of the scene rounded to float, and calls a pixel ambiguous when the
-// two disagree (DESIGN.md §5 extended to the input's own precision; §6's hard cases one double
+// two disagree (docs/definitions.md#pixel-protocol extended to the input's own precision; docs/definitions.md#hard-cases' cases one double
 // ulp off a plane are exactly such scenes: in float the light lies on the plane).
 #include <span>
 
+#include "core/float_rounding.h"
 #include "core/light.h"
 #include "core/soup.h"
-#include "exact/exact_image.h"
+#include "reference/exact_image.h"
 
 namespace shadowcert {
 
-// Every vertex coordinate rounded to the nearest float (and back to double, exactly).
-[[nodiscard]] Soup float_rounded(const Soup& soup);
-// The light's coordinates rounded to the nearest float; w unchanged.
-[[nodiscard]] Light float_rounded(const Light& light);
 
 // Marks, in every light's ambiguity of `exact`, the pixels where `rounded` (the exact image of
 // the float-rounded scene, same camera and lights) sees another triangle at the centre, or a

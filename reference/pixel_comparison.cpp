@@ -1,4 +1,4 @@
-#include "exact/pixel_comparison.h"
+#include "reference/pixel_comparison.h"
 
 #include <stdexcept>
 
@@ -33,7 +33,7 @@ PixelComparison compare_pixels(const ExactImage& exact, std::size_t light, const
     } else if (hit && rendered.counts.empty() && (e.lit[p] != 0) != (rendered.lit[p] != 0)) {
       ++c.lit_errors;
     } else if (hit && !rendered.counts.empty() && rendered.counts[p] != static_cast<std::uint8_t>(e.counts[p] % 256)) {
-      // Counts are compared modulo 256 (§5): an 8-bit stencil shows n = 256 as lit.
+      // Counts are compared modulo 256 (docs/definitions.md#pixel-protocol): an 8-bit stencil shows n = 256 as lit.
       ++(((e.counts[p] % 256 == 0) != (rendered.counts[p] == 0)) ? c.lit_errors : c.count_errors);
     } else {
       v = PixelVerdict::agree;

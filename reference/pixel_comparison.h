@@ -1,19 +1,19 @@
 #pragma once
-// The pixel protocol's verdict (DESIGN.md §5): one light's rendered pixels (whatever drew them:
+// The pixel protocol's verdict (docs/definitions.md#pixel-protocol): one light's rendered pixels (whatever drew them:
 // a GL method's readback, or a test's planted fault) against the exact image. GL-free, so that
-// the comparison itself is tested without a renderer (tests/pixel_comparison_test.cpp).
+// the comparison itself is tested without a renderer (tests/reference/pixel_comparison_test.cpp).
 //
-// Per pixel: AMBIGUOUS when the exact image says so (exact/exact_image.h), whatever was drawn;
+// Per pixel: AMBIGUOUS when the exact image says so (reference/exact_image.h), whatever was drawn;
 // otherwise a HARD ERROR when coverage differs (a receiver drawn where the centre ray hits
 // nothing, or none where it hits) or, on a covered pixel, for a method that counts (a stencil
-// method) when its count differs from n(P) modulo 256 (stencil counts wrap, §5: a stencil
+// method) when its count differs from n(P) modulo 256 (stencil counts wrap, docs/definitions.md#pixel-protocol: a stencil
 // holding 256 crossings shows the pixel lit, and that is compared as 0), for a mask-only
 // method (the shadow map) when lit/shadowed differ; otherwise AGREE.
 #include <cstdint>
 #include <span>
 #include <vector>
 
-#include "exact/exact_image.h"
+#include "reference/exact_image.h"
 
 namespace shadowcert {
 

@@ -8,8 +8,8 @@ namespace shadowcert {
 namespace {
 
 // One record per input vertex. Sorting records by (position, input index) welds and orders in
-// one pass: bitwise-equal positions (and -0 == +0, which compare equal as doubles, DESIGN.md
-// §1) become adjacent, and the lexicographic order of the groups is the canonical order.
+// one pass: bitwise-equal positions (and -0 == +0, which compare equal as doubles, docs/definitions.md#inputs
+// ) become adjacent, and the lexicographic order of the groups is the canonical order.
 // Readers have rejected NaN, so double comparison is a strict weak order here.
 struct VertexRecord {
   Vec3 position;

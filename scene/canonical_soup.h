@@ -1,7 +1,7 @@
 #pragma once
 // The canonical form of a soup that multiplicities, chains and certificates work on:
-// exactly welded (DESIGN.md §1) and with its vertices renumbered in lexicographic order of
-// (x, y, z). Index order is then the strict total vertex order of DESIGN.md §3 (Milet 2014's
+// exactly welded (docs/definitions.md#inputs) and with its vertices renumbered in lexicographic order of
+// (x, y, z). Index order is then the strict total vertex order of docs/definitions.md#counts (Milet 2014's
 // Greater with weights (4, 2, 1) is this order), so "u < v" on indices compares positions:
 // answers cannot depend on how the input labelled its vertices, and a shader that compares
 // indices sorts a triangle exactly as the CPU does.

@@ -2,7 +2,7 @@
 // Plain (no CGAL): exact/ computes multiplicities over it and gpu/ uploads it as patches.
 // The edge table of a canonical soup (scene/canonical_soup.h): every undirected edge {u, v}
 // (u < v in the canonical vertex order, i.e. by index) with all its opposite vertices, any
-// number of them (DESIGN.md §3). Triangles with a repeated index have no edges. Stored as
+// number of them (docs/definitions.md#counts). Triangles with a repeated index have no edges. Stored as
 // compressed rows so that a method walks one contiguous array.
 #include <array>
 #include <cstdint>

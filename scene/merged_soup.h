@@ -1,5 +1,5 @@
 #pragma once
-// Several soups as one (DESIGN.md §1, §3): a scene's shadow volumes see every triangle of every
+// Several soups as one (docs/definitions.md#inputs, docs/definitions.md#counts): a scene's shadow volumes see every triangle of every
 // mesh as a caster, so inspect, certify, render and diff work on the scene's meshes
 // concatenated. Concatenation only: no welding (scene/welded_soup.h, canonical_soup do that
 // later), so every vertex and triangle keeps its values and its relative order.

@@ -10,9 +10,11 @@
 #include <string>
 #include <utility>
 
+#include "core/camera.h"
 #include "core/input_error.h"
+#include "core/vector3.h"
 #include "scene/affine_transform.h"
-#include "scene/generator_params.h"
+#include "scene/detail/generator_params.h"
 #include "scene/json_field.h"
 #include "scene/json_text.h"
 
@@ -20,7 +22,6 @@ namespace shadowcert {
 namespace {
 
 // Beyond any GL framebuffer; a larger value is surely a typo, not a wish.
-constexpr std::uint64_t kMaxImageSide = 32768;
 
 // ---- transforms -------------------------------------------------------------------------
 
@@ -84,7 +85,7 @@ Soup placed(Soup soup, const JsonField& transform_field) {
 
 // ---- meshes -----------------------------------------------------------------------------
 
-// The reader is outside our control (a test lambda, a future format): keep §1's guarantees.
+// The reader is outside our control (a test lambda, a future format): keep docs/definitions.md#inputs' guarantees.
 void check_reader_output(const JsonField& field, const Soup& soup) {
   if (!all_finite(soup)) field.fail("the mesh has a non-finite coordinate");
   for (const Triangle& t : soup.triangles)
@@ -184,7 +185,7 @@ Vec3 max_normalised(const Vec3& v) {
 
 bool nearly_parallel(const Vec3& a, const Vec3& b) {
   const Vec3 u = max_normalised(a), v = max_normalised(b);
-  const Vec3 c{u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+  const Vec3 c = cross(u, v);
   return std::hypot(c[0], c[1], c[2]) <= 1e-12;
 }
 

@@ -1,7 +1,7 @@
 #pragma once
 // SplitMix64 (Steele, Lea and Flood 2014, "Fast splittable pseudorandom number generators";
 // the generator java.util.SplittableRandom uses): 64 bits of state, a Weyl sequence through a
-// strong finaliser. The fuzz campaign seeds one per (seed, case, purpose) stream, millions of
+// strong finaliser. The random-soup campaign seeds one per (seed, case, purpose) stream, millions of
 // times: std::mt19937_64 costs a 312-word initialisation per stream, this one a few adds.
 // Every draw below is fully specified (no std::*_distribution), so a case is the same with any
 // standard library.

@@ -8,8 +8,8 @@
 namespace shadowcert {
 namespace {
 
-// The welding key is the bit pattern of each coordinate, with -0 mapped to +0 (DESIGN.md
-// §1): bitwise identity is the only equality that never merges points an exact predicate
+// The welding key is the bit pattern of each coordinate, with -0 mapped to +0 (docs/definitions.md#inputs
+// ): bitwise identity is the only equality that never merges points an exact predicate
 // would tell apart. Readers have already rejected NaN, so no NaN payloads reach here.
 struct PositionKey {
   std::array<std::uint64_t, 3> bits;

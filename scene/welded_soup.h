@@ -1,5 +1,5 @@
 #pragma once
-// Exact welding (DESIGN.md §1): two vertices are the same iff their three doubles are
+// Exact welding (docs/definitions.md#inputs): two vertices are the same iff their three doubles are
 // bitwise-equal, with -0 == +0. No tolerance: nearby-but-different points stay apart.
 #include <cstdint>
 #include <vector>

@@ -13,7 +13,7 @@ cd "$(dirname "$0")/.."
 
 # Debian 12 package names (build tools and every library the CMake project finds).
 PACKAGES=(
-  ca-certificates cmake ninja-build g++ pkg-config
+  ca-certificates cmake ninja-build g++ pkg-config python3
   libcgal-dev libgmp-dev libmpfr-dev libboost-dev libtbb-dev
   nlohmann-json3-dev libcli11-dev libfmt-dev
   libgtest-dev libgmock-dev libbenchmark-dev
@@ -106,7 +106,7 @@ mesa_driver() {
 }
 
 # Tests that judge leaks by the growth of the process's RSS over a hundred cycles (named
-# Hundred...Leak..., tests/gl/) are left out here: under ASan the RSS also holds the quarantine
+# Hundred...Leak..., tests/gpu/) are left out here: under ASan the RSS also holds the quarantine
 # of freed blocks (256 MiB), the allocator's per-thread caches and the shadow of every mapping
 # (35 MiB over 100 cs cycles where the plain build grows 0.3 MiB), so their figure says
 # nothing; LeakSanitizer checks the same code paths for leaks in this run instead.

@@ -42,12 +42,11 @@ void upload(const Buffer& buffer, const std::vector<T>& data) {
 
 // Sets a volume shader's `light` uniform (vec4 (l, w)) for a build: the light rounded once to
 // float, as FloatSide<float> in exact/edge_multiplicity.cpp rounds it, so that the shaders'
-// signs are refedge float32's. `function` names the caller for the error: throws
-// std::invalid_argument("<function>: the light must be finite, w in {0, 1}, not (0,0,0,0)")
-// for a light DESIGN.md §1 does not define (nothing is set then).
+// signs are refedge float32's. `function` names the caller for the error: throws as
+// core/light.h's require_defined for a light docs/definitions.md#inputs does not define
+// (nothing is set then).
 inline void set_light_uniform(GLuint program, GLint location, const Light& light, const char* function) {
-  if (!light.defined())
-    throw std::invalid_argument(std::string(function) + ": the light must be finite, w in {0, 1}, not (0,0,0,0)");
+  require_defined(light, function);
   const std::array<double, 4>& l = light.position;
   glProgramUniform4f(program, location, static_cast<float>(l[0]), static_cast<float>(l[1]), static_cast<float>(l[2]),
                      static_cast<float>(l[3]));

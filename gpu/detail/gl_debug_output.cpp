@@ -1,4 +1,4 @@
-#include "gpu/gl_debug_output.h"
+#include "gpu/detail/gl_debug_output.h"
 
 #include <epoxy/gl.h>
 

@@ -1,6 +1,6 @@
 #version 450 core
 // The `cs` shadow volume (gpu/compute_volume.h): multiplicities by Milet 2014's reference
-// edge (§2.2, Algorithms 2-4) and the chain of DESIGN.md §3, built in three dispatches of
+// edge (§2.2, Algorithms 2-4) and the chain of docs/definitions.md#counts, built in three dispatches of
 // this one shader (pass_kind):
 //   0 edges     : one invocation per edge (u, v), u < v: for every opposite vertex o, sort
 //                 {u, v, o} by canonical INDEX (index order is the vertex order,

@@ -1,6 +1,6 @@
 #version 450 core
 // The `gs` shadow volume (gpu/geometry_shader_volume.h): Milet 2014's reference-edge
-// multiplicities (§2.2) evaluated in a geometry shader and the chain of DESIGN.md §3 emitted
+// multiplicities (§2.2) evaluated in a geometry shader and the chain of docs/definitions.md#counts emitted
 // as triangle strips, captured by transform feedback. One input point per item:
 //   item < record_count : an EDGE RECORD (u, v, up to kOppositesPerRecord opposite vertices;
 //                         an edge with more opposites has several records). Its partial

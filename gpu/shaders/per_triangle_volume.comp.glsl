@@ -1,7 +1,7 @@
 #version 450 core
 // The `pertri` shadow volume (gpu/per_triangle_volume.h): Milet 2014 §2.1's per-triangle
 // volumes, no silhouette. One invocation per triangle t; where s(t) != 0 it writes the whole
-// V(t) of DESIGN.md §3: front cap t' (t, reversed when s = -1), for each directed edge (u, v)
+// V(t) of docs/definitions.md#counts: front cap t' (t, reversed when s = -1), for each directed edge (u, v)
 // of t' the side quad (v, u, u_inf, v_inf) as two triangles, and the back cap (t' at
 // infinity, reversed). s(t) is taken ONCE, by the reference-edge evaluation of
 // compute_volume.comp.glsl's triangle pass (reference_edge.glsl's triangle_side: sorted

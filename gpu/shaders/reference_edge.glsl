@@ -35,7 +35,7 @@ int triangle_side(uint a, uint b, uint c) {
   return (inversions % 2 == 0) ? sorted : -sorted;  // D(a, b, c) from D(lo, mid, hi)
 }
 
-// x_inf = (x - l, 0) for a point light, (-l, 0) for a directional one (DESIGN.md §3); x - l
+// x_inf = (x - l, 0) for a point light, (-l, 0) for a directional one (docs/definitions.md#counts); x - l
 // is `precise`, one float rounding per coordinate, as every method forms it.
 vec4 far_vertex(vec4 x) {
   if (light.w == 0.0) return vec4(-light.xyz, 0.0);

@@ -1,8 +1,8 @@
 #version 450 core
 // Ambient pass (lambert_weight = 0): albedo * colour, alpha 1 marks covered pixels.
 // Lit pass (lambert_weight = 1): albedo * colour * max(n . d, 0), alpha 0, added by
-// blending where the stencil count is 0. Soups have no trustworthy orientation (DESIGN.md
-// §1), so the normal is turned towards the viewer (two-sided lighting).
+// blending where the stencil count is 0. Soups have no trustworthy orientation (docs/definitions.md#inputs
+// ), so the normal is turned towards the viewer (two-sided lighting).
 layout(location = 0) in vec3 world_position;
 layout(location = 1) in vec3 world_normal;
 layout(location = 2) in vec3 surface_albedo;

@@ -3,7 +3,7 @@
 // program, one matrix, one expression, so a front cap and the occluder triangle it
 // coincides with, and the lit pass and the depth pass, rasterise to bit-identical depths
 // (GL_EQUAL in the lit pass, GL_LESS in the volume pass rely on it; no polygon offset).
-// Positions are homogeneous: w = 0 for shadow-volume vertices at infinity (DESIGN.md §3).
+// Positions are homogeneous: w = 0 for shadow-volume vertices at infinity (docs/definitions.md#counts).
 layout(location = 0) in vec4 position;
 layout(location = 1) in vec3 normal;   // shading only; (0, 0, 0) for volumes
 layout(location = 2) in vec3 albedo;

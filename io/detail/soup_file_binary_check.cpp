@@ -1,11 +1,11 @@
-#include "exact/soup_file_binary_check.h"
+#include "io/detail/soup_file_binary_check.h"
 
 #include <bit>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
 
-#include "exact/soup_file_lines.h"
+#include "io/detail/soup_file_lines.h"
 
 namespace shadowcert::soup_file_detail {
 

@@ -1,10 +1,10 @@
 #pragma once
-// Checks of binary mesh files before CGAL reads them (private to exact/soup_file.cpp).
+// Checks of binary mesh files before CGAL reads them (private to io/soup_file.cpp).
 // A binary file has no lines: messages name the element ("triangle 12: ...") instead.
 #include <string>
 #include <string_view>
 
-#include "exact/soup_file_ply_header.h"
+#include "io/detail/soup_file_ply_header.h"
 
 namespace shadowcert::soup_file_detail {
 

@@ -1,4 +1,4 @@
-#include "exact/soup_file_lines.h"
+#include "io/detail/soup_file_lines.h"
 
 #include <charconv>
 #include <cmath>

@@ -1,6 +1,6 @@
 #pragma once
 // Lines, tokens and numbers of text mesh files, for the checks that run before CGAL reads
-// (private to exact/soup_file.cpp). Nothing here builds a mesh: it only says where and
+// (private to io/soup_file.cpp). Nothing here builds a mesh: it only says where and
 // why a line does not fit its format.
 #include <cstddef>
 #include <optional>

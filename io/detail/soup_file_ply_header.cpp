@@ -1,11 +1,11 @@
-#include "exact/soup_file_ply_header.h"
+#include "io/detail/soup_file_ply_header.h"
 
 #include <array>
 #include <charconv>
 #include <optional>
 #include <utility>
 
-#include "exact/soup_file_lines.h"
+#include "io/detail/soup_file_lines.h"
 
 namespace shadowcert::soup_file_detail {
 

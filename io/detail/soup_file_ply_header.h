@@ -1,5 +1,5 @@
 #pragma once
-// The PLY header, read before CGAL sees the file (private to exact/soup_file.cpp).
+// The PLY header, read before CGAL sees the file (private to io/soup_file.cpp).
 //
 // CGAL's PLY reader does not check its header against what it later assumes: it skips a
 // property of unknown type (so every following value is read shifted), fills a missing

@@ -1,4 +1,4 @@
-#include "exact/soup_file_text_check.h"
+#include "io/detail/soup_file_text_check.h"
 
 #include <algorithm>
 #include <array>
@@ -10,7 +10,7 @@
 #include <optional>
 #include <span>
 
-#include "exact/soup_file_lines.h"
+#include "io/detail/soup_file_lines.h"
 
 namespace shadowcert::soup_file_detail {
 

@@ -1,6 +1,6 @@
 #pragma once
 // Line checks of the text mesh formats, run before CGAL reads a text file (private to
-// exact/soup_file.cpp).
+// io/soup_file.cpp).
 //
 // CGAL's text readers are lax, each in its own way, and a file they accept can still be
 // malformed: the OBJ reader ends a face silently at a junk token, skips to the next space
@@ -18,7 +18,7 @@
 #include <string_view>
 #include <vector>
 
-#include "exact/soup_file_ply_header.h"
+#include "io/detail/soup_file_ply_header.h"
 
 namespace shadowcert::soup_file_detail {
 

@@ -13,20 +13,12 @@
 #include "core/pixel_ray.h"
 #include "core/sign.h"
 #include "core/soup.h"
+#include "core/vector3.h"
 
 namespace shadowcert::detail {
 
 template <typename NT>
-using VecOf = std::array<NT, 3>;
-
-// The 3x3 determinant with rows x, y, z (CGAL::determinant's expression order).
-template <typename NT>
-NT det3(const VecOf<NT>& x, const VecOf<NT>& y, const VecOf<NT>& z) {
-  const NT m01 = x[0] * y[1] - y[0] * x[1];
-  const NT m02 = x[0] * z[1] - z[0] * x[1];
-  const NT m12 = y[0] * z[1] - z[0] * y[1];
-  return m01 * z[2] - m02 * y[2] + m12 * x[2];
-}
+using VecOf = Vector3<NT>;
 
 template <typename NT>
 VecOf<NT> difference(const Vec3& p, const Vec3& q) {

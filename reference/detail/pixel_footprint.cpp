@@ -1,4 +1,4 @@
-#include "exact/pixel_footprint.h"
+#include "reference/detail/pixel_footprint.h"
 
 #include <CGAL/Interval_nt.h>
 #include <CGAL/Mpzf.h>
@@ -8,7 +8,7 @@
 #include <limits>
 #include <optional>
 
-#include "exact/hit_point_coordinates.h"
+#include "reference/detail/hit_point_coordinates.h"
 
 namespace shadowcert::detail {
 namespace {
@@ -19,19 +19,6 @@ using EVec = VecOf<CGAL::Mpzf>;
 using EPoint = HomogeneousCoordinates<CGAL::Mpzf>;
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
-
-template <typename NT>
-VecOf<NT> sub(const VecOf<NT>& a, const VecOf<NT>& b) {
-  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
-}
-template <typename NT>
-VecOf<NT> cross(const VecOf<NT>& a, const VecOf<NT>& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-template <typename NT>
-NT dot(const VecOf<NT>& a, const VecOf<NT>& b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
 
 // x - origin, enclosed.
 IVec relative(const Vec3& x, const Vec3& origin) {
@@ -116,7 +103,10 @@ FootprintPolytope::FootprintPolytope(const HomogeneousPoint& apex, const std::ar
   std::array<IVec, 4> c;
   for (std::size_t i = 0; i < 4; ++i)
     for (int k = 0; k < 3; ++k) c[i][k] = Interval(hits[i].lo()[k], hits[i].hi()[k]) - from_[k];
-  IVec a{}, l{};
+  // Zero-initialised explicitly: Interval_nt's default constructor leaves its value unset, and
+  // GCC cannot see that only the branch that set `l` (or `a`) reads it.
+  const IVec zero{Interval(0.0), Interval(0.0), Interval(0.0)};
+  IVec a = zero, l = zero;
   if (directional_) {
     l = {Interval(apex[0]), Interval(apex[1]), Interval(apex[2])};
     direction_ = store_vec<BoundsVec>(l);
@@ -128,11 +118,12 @@ FootprintPolytope::FootprintPolytope(const HomogeneousPoint& apex, const std::ar
   for (std::size_t i = 0; i < 4; ++i) {
     const IVec& p = c[i];
     const IVec& q = c[(i + 1) % 4];
-    region_edges_[i] = store_vec<BoundsVec>(sub(q, p));
-    if (!directional_) apex_edges_[i] = store_vec<BoundsVec>(sub(p, a));
-    normals_[i] = store_vec<BoundsVec>(directional_ ? cross(sub(q, p), l) : cross(sub(p, a), sub(q, a)));
+    region_edges_[i] = store_vec<BoundsVec>(shadowcert::difference(q, p));
+    if (!directional_) apex_edges_[i] = store_vec<BoundsVec>(shadowcert::difference(p, a));
+    normals_[i] = store_vec<BoundsVec>(directional_ ? cross(shadowcert::difference(q, p), l)
+                                                    : cross(shadowcert::difference(p, a), shadowcert::difference(q, a)));
   }
-  normals_[4] = store_vec<BoundsVec>(cross(sub(c[1], c[0]), sub(c[2], c[0])));
+  normals_[4] = store_vec<BoundsVec>(cross(shadowcert::difference(c[1], c[0]), shadowcert::difference(c[2], c[0])));
   for (std::size_t j = 0; j < normals_.size(); ++j) {
     const IVec n = load_vec(normals_[j]);
     Extent e;
@@ -226,7 +217,7 @@ Verdict FootprintPolytope::face_verdict(std::size_t j, std::initializer_list<con
 Verdict FootprintPolytope::edge_verdict(AxisKind kind, int index, const Vec3& u, const Vec3& v) const {
   const CGAL::Protect_FPU_rounding<true> protect;
   const IVec pu = relative(u, from_), pv = relative(v, from_);
-  const IVec d = sub(pv, pu);
+  const IVec d = shadowcert::difference(pv, pu);
   const auto i = static_cast<std::size_t>(index);
   const IVec n = kind == AxisKind::region_edge ? cross(d, load_vec(region_edges_[i]))
                  : directional_               ? cross(d, load_vec(direction_))

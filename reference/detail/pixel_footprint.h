@@ -1,6 +1,6 @@
 #pragma once
 // Internal to exact/: a pixel's footprint on the surface it sees, and the two polytopes over it
-// that decide whether the pixel's answer is uniform (exact/exact_image.h, DESIGN.md §5).
+// that decide whether the pixel's answer is uniform (reference/exact_image.h, docs/definitions.md#pixel-protocol).
 //
 // The footprint region R is the convex quadrilateral of the four corner rays' hits on the hit
 // triangle h (all four see h, so R lies in h). A pixel's answer is uniform when nothing but h
@@ -8,7 +8,7 @@
 //   - the eye pyramid hull{e, R}: an edge of another triangle in front of R (a triangle seen
 //     inside the footprint but at no corner has an edge there);
 //   - the light pyramid hull{L, R} (for a directional light the prism R + s l, s >= 0): a
-//     silhouette edge (multiplicity m != 0, DESIGN.md §3) between R and the light, i.e. a side
+//     silhouette edge (multiplicity m != 0, docs/definitions.md#counts) between R and the light, i.e. a side
 //     face of the shadow-volume chain crossing R, where n changes.
 // The corner rays alone miss a shadow sliver or a small triangle that passes between the
 // corners and the centre; GL, whose depth test resolves a volume face only to ~1e-3 of the
@@ -18,14 +18,14 @@
 // polytope are disjoint iff a plane parallel to one of the polytope's faces, or to the segment
 // and one of its edges, strictly separates them). Each axis is tried in interval arithmetic
 // on enclosures of R's corners; an axis the intervals cannot settle is decided exactly, with
-// the corners as exact homogeneous points (exact/hit_point_coordinates.h) and Mpzf.
+// the corners as exact homogeneous points (reference/detail/hit_point_coordinates.h) and Mpzf.
 #include <array>
 #include <initializer_list>
 #include <memory>
 
 #include "core/soup.h"
 #include "exact/light_orientation.h"
-#include "exact/ray_hit.h"
+#include "reference/detail/ray_hit.h"
 
 namespace shadowcert::detail {
 

@@ -1,4 +1,4 @@
-#include "exact/ray_hit.h"
+#include "reference/detail/ray_hit.h"
 
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -11,7 +11,7 @@
 #include <utility>
 
 #include "exact/face_crossing.h"
-#include "exact/hit_point_coordinates.h"
+#include "reference/detail/hit_point_coordinates.h"
 #include "exact/orient_unchecked.h"
 
 namespace shadowcert::detail {
@@ -63,7 +63,7 @@ RayMeeting ray_meets_triangle(const PixelRay& ray, const Vec3& a, const Vec3& b,
   m.direction_side = orient_unchecked(ha, hb, hc, d);
   if (m.direction_side == Sign::zero) {
     // Parallel to the plane: apart when off it; in it, a triangle without area is no surface
-    // (DESIGN.md §2), one with area may be met along a segment.
+    // (docs/definitions.md#orientation), one with area may be met along a segment.
     if (m.eye_side != Sign::zero || spans_no_plane(ha, hb, hc)) return m;
     if (in_plane_meets(ray, a, b, c)) m.contact = RayContact::in_plane;
     return m;

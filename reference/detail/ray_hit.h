@@ -1,6 +1,6 @@
 #pragma once
 // Internal to exact/: where a pixel ray (core/pixel_ray.h) meets triangles, decided exactly on
-// the input doubles, for the exact image (exact/exact_image.h, DESIGN.md §5):
+// the input doubles, for the exact image (reference/exact_image.h, docs/definitions.md#pixel-protocol):
 //   - how the ray meets one triangle (orientation signs only, as exact/face_crossing.h);
 //   - which of two meetings comes first along the ray: the parameters t = N / D are compared
 //     by the sign of N1 D2 - N2 D1, an interval filter first, exact binary floats (Mpzf) when
@@ -50,7 +50,7 @@ class RayParameter {
   // sign(t - other.t), exact. Both on the same ray.
   [[nodiscard]] Sign compare(const RayParameter& other) const;
 
-  // What it was made of (for exact/hit_point_coordinates.h).
+  // What it was made of (for reference/detail/hit_point_coordinates.h).
   [[nodiscard]] const PixelRay& ray() const { return ray_; }
   [[nodiscard]] const std::array<Vec3, 3>& triangle() const { return triangle_; }
   [[nodiscard]] Sign direction_side() const { return direction_side_; }

@@ -1,4 +1,4 @@
-#include "scene/generator_params.h"
+#include "scene/detail/generator_params.h"
 
 #include <array>
 #include <cstdint>

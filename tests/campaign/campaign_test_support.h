@@ -1,11 +1,11 @@
 #pragma once
-// Planted faults for the fuzz tests: method runs whose chain is wrong on purpose, so that the
+// Planted faults for the campaign tests: method runs whose chain is wrong on purpose, so that the
 // campaign's certificates and shrinker can be seen to catch and minimise a failure.
 // Header-only, test code only.
 #include <cstdint>
 
 #include "exact/edge_multiplicity.h"
-#include "exact/fuzz_run.h"
+#include "campaign/campaign_run.h"
 #include "scene/edge_table.h"
 
 namespace shadowcert::test_support {
@@ -15,8 +15,8 @@ enum class PlantedFault { consistent_flip, cap_only_flip };
 // refedge in double, except that the first triangle (canonical order) with a nonzero sign has
 // it reversed: consistent_flip reverses its caps and its three edge entries (a closed chain,
 // -dV(t) instead of dV(t): wrong counts behind t), cap_only_flip only its caps (an open chain).
-inline FuzzRun planted_run(PlantedFault fault) {
-  FuzzRun run{MultiplicityMethod::refedge,
+inline CampaignRun planted_run(PlantedFault fault) {
+  CampaignRun run{MultiplicityMethod::refedge,
               Precision::float64,
               {},
               fault == PlantedFault::consistent_flip ? "planted-consistent-flip" : "planted-cap-flip"};

@@ -1,8 +1,8 @@
-// scene/fuzz_view.h: the view `fuzz --gl` renders each case in. Undoing the case's frame is
+// campaign/campaign_view.h: the view `fuzz --gl` renders each case in. Undoing the case's frame is
 // exact (re-framing gives the case back bit for bit, and every exact light side is unchanged);
 // the camera sees every vertex of the soup inside the image, in front of the near plane; the
 // floor lies under the soup and is exact in float.
-#include "scene/fuzz_view.h"
+#include "campaign/campaign_view.h"
 
 #include <gtest/gtest.h>
 
@@ -22,7 +22,7 @@ constexpr std::uint32_t kTriangles = 40;
 // gpu/camera_transform.h's kDefaultNearPlane: what the GL methods clip at (gpu/ is not linked).
 constexpr double kNearPlane = 0.01;
 
-double reframed(double x, const FuzzFrame& frame) { return std::ldexp(x, frame.scale_exponent) + frame.offset; }
+double reframed(double x, const SoupFrame& frame) { return std::ldexp(x, frame.scale_exponent) + frame.offset; }
 
 // Where `p` lands in image coordinates (x right, y down), and its depth along the view.
 struct Projected {
@@ -30,22 +30,22 @@ struct Projected {
 };
 Projected project(const CameraFrame& f, const Vec3& p) {
   const Vec3 v{p[0] - f.eye[0], p[1] - f.eye[1], p[2] - f.eye[2]};
-  const double depth = detail::dot(v, f.forward);
-  const double a = detail::dot(v, f.right) / depth, b = detail::dot(v, f.up) / depth;
+  const double depth = dot(v, f.forward);
+  const double a = dot(v, f.right) / depth, b = dot(v, f.up) / depth;
   return {(a / f.half_width + 1.0) * 0.5 * f.width, (1.0 - b / f.half_height) * 0.5 * f.height, depth};
 }
 
 }  // namespace
 
-TEST(FuzzView, Unframed_ReframesBitForBitAndKeepsEveryExactLightSide) {
+TEST(CampaignView, Unframed_ReframesBitForBitAndKeepsEveryExactLightSide) {
   std::uint64_t framed_cases = 0, kept_frames = 0;
   for (std::uint64_t i = 0; i < kCases; ++i) {
     SCOPED_TRACE("seed " + std::to_string(kSeed) + ", case " + std::to_string(i));
-    const FuzzCase c = fuzz_case(kSeed, i, kTriangles);
-    const FuzzFrame& frame = c.kind.frame;
+    const CampaignCase c = campaign_case(kSeed, i, kTriangles);
+    const SoupFrame& frame = c.kind.frame;
     const bool framed = frame.scale_exponent != 0 || frame.offset != 0.0;
     framed_cases += framed ? 1 : 0;
-    const FuzzView view = fuzz_view(c, 64, 48);
+    const CampaignView view = campaign_view(c, 64, 48);
     EXPECT_EQ(view.unframed, framed && unframes_exactly(c));
     if (!view.unframed) {
       // As generated: only where the map would round (a subnormal light coordinate).
@@ -74,10 +74,10 @@ TEST(FuzzView, Unframed_ReframesBitForBitAndKeepsEveryExactLightSide) {
   EXPECT_GE(kept_frames, 1u);  // this seed has one (case 286): the fallback is exercised
 }
 
-TEST(FuzzView, Camera_SeesEveryVertexInsideTheImageBeyondTheNearPlane) {
+TEST(CampaignView, Camera_SeesEveryVertexInsideTheImageBeyondTheNearPlane) {
   for (std::uint64_t i = 0; i < kCases; ++i) {
     SCOPED_TRACE("seed " + std::to_string(kSeed) + ", case " + std::to_string(i));
-    const FuzzView view = fuzz_view(fuzz_case(kSeed, i, kTriangles), 64, 48);
+    const CampaignView view = campaign_view(campaign_case(kSeed, i, kTriangles), 64, 48);
     EXPECT_EQ(view.camera.width, 64u);
     EXPECT_EQ(view.camera.height, 48u);
     const CameraFrame f = camera_frame(view.camera);
@@ -93,10 +93,10 @@ TEST(FuzzView, Camera_SeesEveryVertexInsideTheImageBeyondTheNearPlane) {
   }
 }
 
-TEST(FuzzView, Floor_UnderTheSoupFacingUpExactInFloat) {
+TEST(CampaignView, Floor_UnderTheSoupFacingUpExactInFloat) {
   for (std::uint64_t i = 0; i < kCases; ++i) {
     SCOPED_TRACE("seed " + std::to_string(kSeed) + ", case " + std::to_string(i));
-    const FuzzView view = fuzz_view(fuzz_case(kSeed, i, kTriangles), 64, 48);
+    const CampaignView view = campaign_view(campaign_case(kSeed, i, kTriangles), 64, 48);
     ASSERT_EQ(view.floor.triangles.size(), 2u);
     const double y = view.floor.vertices[0][1];
     for (const Vec3& v : view.floor.vertices) {
@@ -113,14 +113,14 @@ TEST(FuzzView, Floor_UnderTheSoupFacingUpExactInFloat) {
   }
 }
 
-TEST(FuzzView, Camera_DependsOnTheUsedVerticesOnly) {
+TEST(CampaignView, Camera_DependsOnTheUsedVerticesOnly) {
   Soup soup;
   soup.vertices = {{0.0, 0.0, 0.0}, {1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}};
   soup.triangles = {{0, 1, 2}};
   Soup with_unused = soup;
   with_unused.vertices.push_back({1e9, 1e9, 1e9});
-  const Camera a = fuzz_view_camera(soup, 32, 24), b = fuzz_view_camera(with_unused, 32, 24);
+  const Camera a = campaign_view_camera(soup, 32, 24), b = campaign_view_camera(with_unused, 32, 24);
   EXPECT_EQ(a.eye, b.eye);
   EXPECT_EQ(a.target, b.target);
-  EXPECT_THROW((void)fuzz_view_camera(soup, 0, 24), std::invalid_argument);
+  EXPECT_THROW((void)campaign_view_camera(soup, 0, 24), std::invalid_argument);
 }

@@ -1,5 +1,5 @@
-// Every hard case of DESIGN.md §6 (tests/hard_case_scenes.h) for every float method run, through
-// the fuzz campaign's case certificate (exact/fuzz_case_certificate.h): which runs lose closure
+// Every hard case of docs/definitions.md#hard-cases (tests/support/hard_case_scenes.h) for every float method run, through
+// the random-soup campaign's case certificate (campaign/case_certificate.h): which runs lose closure
 // is PINNED per case. Consistent methods (peciva, refedge, float and double) never do, nor fail
 // their counts; kim keeps closure on every case but two:
 //
@@ -9,12 +9,12 @@
 //    sliver's three edges sees the triangle in another vertex order; in float those three
 //    roundings of a near-zero determinant disagree in sign, the triangle adds +1 to one edge
 //    and -1 (as if reversed) to another, and the side faces no longer match the caps.
-//  - the pinned tilted plane of tests/closure_certificate_test.cpp: both triangles lie on a
+//  - the pinned tilted plane of tests/exact/closure_certificate_test.cpp: both triangles lie on a
 //    plane through the light up to float rounding, the same disagreement on a tilted plane.
 //
 // In double both determinants are decided (exact/float_sign_bound.h), so kim double is closed
-// everywhere here; the fuzz campaign finds its double failures on random soups
-// (docs/fuzzing.md). Peciva drops exactly such triangles and refedge evaluates each once, so
+// everywhere here; the random-soup campaign finds its double failures on random soups
+// (docs/campaign.md). Peciva drops exactly such triangles and refedge evaluates each once, so
 // both stay closed.
 #include <gtest/gtest.h>
 
@@ -22,9 +22,9 @@
 #include <string>
 #include <vector>
 
-#include "exact/fuzz_case_certificate.h"
-#include "exact/fuzz_run.h"
-#include "hard_case_scenes.h"
+#include "campaign/case_certificate.h"
+#include "campaign/campaign_run.h"
+#include "support/hard_case_scenes.h"
 
 namespace {
 
@@ -96,14 +96,14 @@ TEST_P(FloatMethodHardCase, ClosurePinned_ConsistentMethodsNeverFail) {
   const HardCaseScene& scene = scenes[GetParam()];
   const KimClosure& pin = kim_closure()[GetParam()];
   ASSERT_EQ(scene.name, pin.scene);
-  FuzzSampling sampling;  // more samples than a campaign case: one scene, checked hard
+  CampaignSampling sampling;  // more samples than a campaign case: one scene, checked hard
   sampling.straddle_pairs = 32;
   sampling.in_box = 16;
   sampling.seed = 6;
-  const std::vector<FuzzRun> runs = all_fuzz_runs();
-  const CaseVerdict verdict = certify_fuzz_case(scene.soup, scene.light, runs, sampling);
+  const std::vector<CampaignRun> runs = all_campaign_runs();
+  const CaseVerdict verdict = certify_campaign_case(scene.soup, scene.light, runs, sampling);
   for (std::size_t r = 0; r < runs.size(); ++r) {
-    const std::string name = fuzz_run_name(runs[r]);
+    const std::string name = campaign_run_name(runs[r]);
     const RunVerdict& v = verdict.runs[r];
     if (runs[r].method == MultiplicityMethod::kim) {
       EXPECT_EQ(v.closed, runs[r].precision == Precision::float32 ? pin.float_closed : pin.double_closed) << name;

@@ -1,7 +1,7 @@
-// scene/fuzz_soup.h: the campaign's cases are a function of (seed, index) alone, have exactly
+// campaign/random_soup.h: the campaign's cases are a function of (seed, index) alone, have exactly
 // the triangles asked for, cover every family and light placement, and the adversarial lights
-// are EXACTLY where they claim (checked with the exact predicate, DESIGN.md §2).
-#include "scene/fuzz_soup.h"
+// are EXACTLY where they claim (checked with the exact predicate, docs/definitions.md#orientation).
+#include "campaign/random_soup.h"
 
 #include <gtest/gtest.h>
 
@@ -20,13 +20,13 @@ using namespace shadowcert;
 
 constexpr std::uint64_t kSeed = 20240611;
 
-bool same_case(const FuzzCase& a, const FuzzCase& b) {
+bool same_case(const CampaignCase& a, const CampaignCase& b) {
   return a.soup.vertices == b.soup.vertices && a.soup.triangles == b.soup.triangles &&
          a.light.position == b.light.position && a.kind.family == b.kind.family && a.kind.light == b.kind.light &&
          a.target == b.target && a.corner == b.corner;
 }
 
-const Vec3& corner(const FuzzCase& c, int k) { return c.soup.vertices[c.soup.triangles[c.target][(c.corner + k) % 3]]; }
+const Vec3& corner(const CampaignCase& c, int k) { return c.soup.vertices[c.soup.triangles[c.target][(c.corner + k) % 3]]; }
 
 // p, q, r on one line (r may be a direction): they span no plane.
 bool collinear(const Vec3& p, const Vec3& q, const HomogeneousPoint& r) {
@@ -44,31 +44,31 @@ bool one_ulp_apart(const std::array<double, 4>& x, const std::array<double, 4>& 
   return moved == 1;
 }
 
-TEST(FuzzSoup, SameSeedAndIndex_SameCaseOnEveryCall) {
+TEST(RandomSoup, SameSeedAndIndex_SameCaseOnEveryCall) {
   std::cout << "seed " << kSeed << "\n";
   for (std::uint64_t i = 0; i < 50; ++i)
-    EXPECT_TRUE(same_case(fuzz_case(kSeed, i, 100), fuzz_case(kSeed, i, 100))) << i;
+    EXPECT_TRUE(same_case(campaign_case(kSeed, i, 100), campaign_case(kSeed, i, 100))) << i;
   // Cases do not depend on the order they are made in: index 7 alone equals index 7 after others.
-  const FuzzCase alone = fuzz_case(kSeed, 7, 60);
-  for (std::uint64_t i = 0; i < 7; ++i) (void)fuzz_case(kSeed, i, 60);
-  EXPECT_TRUE(same_case(alone, fuzz_case(kSeed, 7, 60)));
+  const CampaignCase alone = campaign_case(kSeed, 7, 60);
+  for (std::uint64_t i = 0; i < 7; ++i) (void)campaign_case(kSeed, i, 60);
+  EXPECT_TRUE(same_case(alone, campaign_case(kSeed, 7, 60)));
 }
 
-TEST(FuzzSoup, OtherSeedOrIndex_OtherCase) {
+TEST(RandomSoup, OtherSeedOrIndex_OtherCase) {
   int different_seed = 0, different_index = 0;
   for (std::uint64_t i = 0; i < 20; ++i) {
-    different_seed += !same_case(fuzz_case(kSeed, i, 50), fuzz_case(kSeed + 1, i, 50));
-    different_index += !same_case(fuzz_case(kSeed, i, 50), fuzz_case(kSeed, i + 1, 50));
+    different_seed += !same_case(campaign_case(kSeed, i, 50), campaign_case(kSeed + 1, i, 50));
+    different_index += !same_case(campaign_case(kSeed, i, 50), campaign_case(kSeed, i + 1, 50));
   }
   EXPECT_EQ(different_seed, 20);
   EXPECT_EQ(different_index, 20);
 }
 
-TEST(FuzzSoup, EveryCase_ExactTriangleCountValidIndicesFiniteCoordinatesNoNormals) {
+TEST(RandomSoup, EveryCase_ExactTriangleCountValidIndicesFiniteCoordinatesNoNormals) {
   std::cout << "seed " << kSeed << "\n";
   for (const std::uint32_t k : {1u, 2u, 7u, 100u, 333u}) {
     for (std::uint64_t i = 0; i < 60; ++i) {
-      const FuzzCase c = fuzz_case(kSeed, i, k);
+      const CampaignCase c = campaign_case(kSeed, i, k);
       ASSERT_EQ(c.soup.triangles.size(), k) << "case " << i;
       EXPECT_TRUE(c.soup.normals.empty());
       for (const Triangle& t : c.soup.triangles)
@@ -85,12 +85,12 @@ TEST(FuzzSoup, EveryCase_ExactTriangleCountValidIndicesFiniteCoordinatesNoNormal
   }
 }
 
-TEST(FuzzSoup, ManyCases_CoverEveryFamilyPlacementAndFrame) {
+TEST(RandomSoup, ManyCases_CoverEveryFamilyPlacementAndFrame) {
   std::set<SoupFamily> families;
   std::set<LightPlacement> placements;
   bool offset = false, small = false, large = false;
   for (std::uint64_t i = 0; i < 400; ++i) {
-    const FuzzKind k = draw_fuzz_kind(kSeed, i);
+    const CampaignCaseKind k = draw_case_kind(kSeed, i);
     families.insert(k.family);
     placements.insert(k.light);
     EXPECT_GE(k.frame.scale_exponent, -20);
@@ -107,17 +107,17 @@ TEST(FuzzSoup, ManyCases_CoverEveryFamilyPlacementAndFrame) {
 
 // Every adversarial placement on every family, in every frame: the light is exactly on the
 // plane, on the edge line, at the vertex, parallel to the plane; the off_* ones one ulp away.
-TEST(FuzzSoup, AdversarialLights_ExactlyWhereTheyClaim) {
+TEST(RandomSoup, AdversarialLights_ExactlyWhereTheyClaim) {
   std::cout << "seed " << kSeed << "\n";
-  const std::array<FuzzFrame, 4> frames{{{0, 0.0}, {-20, 0.0}, {20, 0.0}, {-10, 1e6}}};
+  const std::array<SoupFrame, 4> frames{{{0, 0.0}, {-20, 0.0}, {20, 0.0}, {-10, 1e6}}};
   int placed = 0;
   std::uint64_t index = 0;
   for (std::size_t f = 0; f < kSoupFamilies; ++f) {
     for (std::size_t p = 2; p < kLightPlacements; ++p) {  // the adversarial ones
-      for (const FuzzFrame& frame : frames) {
+      for (const SoupFrame& frame : frames) {
         for (int repeat = 0; repeat < 6; ++repeat) {
-          const FuzzKind kind{static_cast<SoupFamily>(f), static_cast<LightPlacement>(p), frame};
-          const FuzzCase c = make_fuzz_case(kSeed, index++, 40, kind);
+          const CampaignCaseKind kind{static_cast<SoupFamily>(f), static_cast<LightPlacement>(p), frame};
+          const CampaignCase c = make_campaign_case(kSeed, index++, 40, kind);
           SCOPED_TRACE(std::string(family_name(kind.family)) + " / " + std::string(placement_name(kind.light)) +
                        ", case " + std::to_string(index - 1));
           if (c.target == kNoTarget) {  // no usable triangle: it says so, and fell back
@@ -167,10 +167,10 @@ TEST(FuzzSoup, AdversarialLights_ExactlyWhereTheyClaim) {
 
 // On the plane means off the edge lines (the combinations avoid them): exactly on a line is
 // its own placement.
-TEST(FuzzSoup, OnPlane_NotOnTheTargetsEdgeLines) {
+TEST(RandomSoup, OnPlane_NotOnTheTargetsEdgeLines) {
   int checked = 0;
   for (std::uint64_t i = 0; i < 200; ++i) {
-    const FuzzCase c = make_fuzz_case(kSeed, i, 30, {SoupFamily::uniform, LightPlacement::on_plane, {}});
+    const CampaignCase c = make_campaign_case(kSeed, i, 30, {SoupFamily::uniform, LightPlacement::on_plane, {}});
     if (c.target == kNoTarget) continue;
     for (int k = 0; k < 3; ++k) EXPECT_FALSE(collinear(corner(c, k), corner(c, k + 1), c.light.position)) << i;
     ++checked;
@@ -180,11 +180,11 @@ TEST(FuzzSoup, OnPlane_NotOnTheTargetsEdgeLines) {
 
 // Grid families stay on the grid in every frame: coordinates are integers times 2^e plus the
 // offset, exactly; so are their point lights.
-TEST(FuzzSoup, GridFamilies_ExactGridCoordinatesInEveryFrame) {
+TEST(RandomSoup, GridFamilies_ExactGridCoordinatesInEveryFrame) {
   for (const SoupFamily family : {SoupFamily::grid, SoupFamily::snapped}) {
-    for (const FuzzFrame frame : {FuzzFrame{0, 0.0}, FuzzFrame{-20, 0.0}, FuzzFrame{7, 0.0}, FuzzFrame{-20, 1e6}}) {
+    for (const SoupFrame frame : {SoupFrame{0, 0.0}, SoupFrame{-20, 0.0}, SoupFrame{7, 0.0}, SoupFrame{-20, 1e6}}) {
       for (std::uint64_t i = 0; i < 20; ++i) {
-        const FuzzCase c = make_fuzz_case(kSeed, i, 50, {family, LightPlacement::point, frame});
+        const CampaignCase c = make_campaign_case(kSeed, i, 50, {family, LightPlacement::point, frame});
         auto on_grid = [&](double x) {
           const double unit = std::ldexp(x - frame.offset, -frame.scale_exponent);
           return unit == std::round(unit) && std::fabs(unit) <= 16.0;
@@ -197,15 +197,15 @@ TEST(FuzzSoup, GridFamilies_ExactGridCoordinatesInEveryFrame) {
   }
 }
 
-TEST(FuzzSoup, BadArguments_Throw) {
-  EXPECT_THROW((void)fuzz_case(kSeed, 0, 0), std::invalid_argument);
-  EXPECT_THROW((void)make_fuzz_case(kSeed, 0, 10, {SoupFamily::mesh, LightPlacement::point, {21, 0.0}}),
+TEST(RandomSoup, BadArguments_Throw) {
+  EXPECT_THROW((void)campaign_case(kSeed, 0, 0), std::invalid_argument);
+  EXPECT_THROW((void)make_campaign_case(kSeed, 0, 10, {SoupFamily::mesh, LightPlacement::point, {21, 0.0}}),
                std::invalid_argument);
-  EXPECT_THROW((void)make_fuzz_case(kSeed, 0, 10, {SoupFamily::mesh, LightPlacement::point, {0, 5.0}}),
+  EXPECT_THROW((void)make_campaign_case(kSeed, 0, 10, {SoupFamily::mesh, LightPlacement::point, {0, 5.0}}),
                std::invalid_argument);
 }
 
-TEST(FuzzSoup, Names_OnePerFamilyAndPlacement) {
+TEST(RandomSoup, Names_OnePerFamilyAndPlacement) {
   std::set<std::string_view> names;
   for (std::size_t f = 0; f < kSoupFamilies; ++f) names.insert(family_name(static_cast<SoupFamily>(f)));
   for (std::size_t p = 0; p < kLightPlacements; ++p) names.insert(placement_name(static_cast<LightPlacement>(p)));

@@ -1,4 +1,4 @@
-// Every shrunk reproducer the fuzz campaign ever wrote, kept under tests/regressions/ (format:
+// Every shrunk reproducer the random-soup campaign ever wrote, kept under tests/regressions/ (format:
 // tests/regressions/README.md), replayed through what `certify` computes:
 //   status "finding": a method allowed to fail (kim) still fails exactly as recorded;
 //   status "fixed":   a method that must not fail failed there once; it must pass now;
@@ -13,9 +13,9 @@
 #include <string>
 #include <vector>
 
-#include "exact/fuzz_case_certificate.h"
-#include "exact/fuzz_reproducer.h"
-#include "exact/fuzz_run.h"
+#include "campaign/case_certificate.h"
+#include "campaign/reproducer.h"
+#include "campaign/campaign_run.h"
 
 namespace {
 
@@ -30,13 +30,13 @@ std::vector<fs::path> reproducers() {
   return files;
 }
 
-TEST(FuzzRegressions, EveryReproducer_ReplaysAsItsStatusSays) {
+TEST(CampaignRegressions, EveryReproducer_ReplaysAsItsStatusSays) {
   const std::vector<fs::path> files = reproducers();
   if (files.empty()) GTEST_SKIP() << "no reproducer in tests/regressions/ yet";
   for (const fs::path& file : files) {
     SCOPED_TRACE(file.filename().string());
-    const FuzzReproducer r = read_fuzz_reproducer(file);
-    const FuzzReplay replay = replay_fuzz_reproducer(r);
+    const CampaignReproducer r = read_reproducer(file);
+    const ReproducerReplay replay = replay_reproducer(r);
     if (r.status == "finding") {
       EXPECT_TRUE(replay.reproduces) << r.failure << " no longer fails: update the pinned finding";
     } else if (r.status == "fixed") {
@@ -47,20 +47,20 @@ TEST(FuzzRegressions, EveryReproducer_ReplaysAsItsStatusSays) {
   }
 }
 
-TEST(FuzzRegressions, EveryReproducer_ConsistentMethodsPassTheCaseCertificate) {
+TEST(CampaignRegressions, EveryReproducer_ConsistentMethodsPassTheCaseCertificate) {
   const std::vector<fs::path> files = reproducers();
   if (files.empty()) GTEST_SKIP() << "no reproducer in tests/regressions/ yet";
-  std::vector<FuzzRun> runs;
-  for (const FuzzRun& run : all_fuzz_runs())
+  std::vector<CampaignRun> runs;
+  for (const CampaignRun& run : all_campaign_runs())
     if (must_not_fail(run)) runs.push_back(run);
   for (const fs::path& file : files) {
-    const FuzzReproducer r = read_fuzz_reproducer(file);
-    FuzzSampling sampling;
+    const CampaignReproducer r = read_reproducer(file);
+    CampaignSampling sampling;
     sampling.straddle_pairs = 16;
     sampling.seed = r.case_index;
-    const CaseVerdict v = certify_fuzz_case(r.soup, r.light, runs, sampling);
+    const CaseVerdict v = certify_campaign_case(r.soup, r.light, runs, sampling);
     for (std::size_t k = 0; k < runs.size(); ++k)
-      EXPECT_FALSE(v.runs[k].failed()) << file.filename().string() << ": " << fuzz_run_name(runs[k]);
+      EXPECT_FALSE(v.runs[k].failed()) << file.filename().string() << ": " << campaign_run_name(runs[k]);
   }
 }
 

@@ -1,7 +1,7 @@
-// exact/fuzz_reproducer.h: reproducers read back bit for bit, name the command that replays
+// campaign/reproducer.h: reproducers read back bit for bit, name the command that replays
 // them, and replay what `certify` computes: an open kim chain, and a count failure at the
 // recorded pair. Bad files are InputErrors naming the file.
-#include "exact/fuzz_reproducer.h"
+#include "campaign/reproducer.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -13,8 +13,8 @@
 #include <limits>
 
 #include "core/input_error.h"
-#include "exact/fuzz_case_certificate.h"
-#include "hard_case_scenes.h"
+#include "campaign/case_certificate.h"
+#include "support/hard_case_scenes.h"
 
 namespace {
 
@@ -37,8 +37,8 @@ Soup awkward_soup() {
                  {{0, 1, 2}, {1, 3, 2}, {0, 0, 3}});
 }
 
-TEST(FuzzReproducer, WriteThenRead_SameSoupLightRunAndPointsBitForBit) {
-  FuzzReproducer r;
+TEST(CampaignReproducer, WriteThenRead_SameSoupLightRunAndPointsBitForBit) {
+  CampaignReproducer r;
   r.soup = awkward_soup();
   r.light = Light{{std::nextafter(0.3, 1.0), -1.0 / 3.0, 1e-310, 1.0}};
   r.method = MultiplicityMethod::peciva;
@@ -51,8 +51,8 @@ TEST(FuzzReproducer, WriteThenRead_SameSoupLightRunAndPointsBitForBit) {
   r.family = "mesh";
   r.placement = "off_plane";
   r.original_triangles = 100;
-  const fs::path json = write_fuzz_reproducer(temp_dir(), "awkward", r);
-  const FuzzReproducer back = read_fuzz_reproducer(json);
+  const fs::path json = write_reproducer(temp_dir(), "awkward", r);
+  const CampaignReproducer back = read_reproducer(json);
   EXPECT_EQ(back.soup.vertices, r.soup.vertices);
   EXPECT_EQ(back.soup.triangles, r.soup.triangles);
   EXPECT_EQ(back.light.position, r.light.position);
@@ -70,8 +70,8 @@ TEST(FuzzReproducer, WriteThenRead_SameSoupLightRunAndPointsBitForBit) {
   EXPECT_TRUE(fs::exists(json.parent_path() / "awkward.points"));
 }
 
-TEST(FuzzReproducer, CertifyCommand_SeventeenDigitLightMethodPrecisionAndPoints) {
-  FuzzReproducer r;
+TEST(CampaignReproducer, CertifyCommand_SeventeenDigitLightMethodPrecisionAndPoints) {
+  CampaignReproducer r;
   r.light = Light{{0.1, -2.0, 1e-300, 0.0}};
   r.method = MultiplicityMethod::kim;
   r.precision = Precision::float64;
@@ -84,58 +84,58 @@ TEST(FuzzReproducer, CertifyCommand_SeventeenDigitLightMethodPrecisionAndPoints)
             "--precision double --samples 0 --points x.points");
 }
 
-TEST(FuzzReproducer, KimOnThePinnedTiltedPlane_ReplaysOpen) {
+TEST(CampaignReproducer, KimOnThePinnedTiltedPlane_ReplaysOpen) {
   const HardCaseScene scene = pinned_tilted_plane();
-  FuzzReproducer r;
+  CampaignReproducer r;
   r.soup = scene.soup;
   r.light = scene.light;
   r.method = MultiplicityMethod::kim;
   r.precision = Precision::float32;
   r.status = "finding";
-  const FuzzReplay replay =
-      replay_fuzz_reproducer(read_fuzz_reproducer(write_fuzz_reproducer(temp_dir(), "pinned", r)));
+  const ReproducerReplay replay =
+      replay_reproducer(read_reproducer(write_reproducer(temp_dir(), "pinned", r)));
   EXPECT_FALSE(replay.closed);
   EXPECT_TRUE(replay.reproduces);
   r.method = MultiplicityMethod::refedge;
-  EXPECT_FALSE(replay_fuzz_reproducer(r).reproduces);  // refedge float is closed there
+  EXPECT_FALSE(replay_reproducer(r).reproduces);  // refedge float is closed there
 }
 
 // A count failure found by the case certificate replays through certify_counts at its pair:
 // refedge in float on the 1e6-offset hard case, where float rounding merges vertices.
-TEST(FuzzReproducer, FloatCountMismatch_ReplaysAtTheRecordedPair) {
+TEST(CampaignReproducer, FloatCountMismatch_ReplaysAtTheRecordedPair) {
   const std::vector<HardCaseScene> scenes = hard_case_scenes();
   const auto scene = std::find_if(scenes.begin(), scenes.end(), [](const HardCaseScene& s) {
     return s.name == "offset 1e6 with 1e-3 features, point light";
   });
   ASSERT_NE(scene, scenes.end());
-  const FuzzRun refedge{MultiplicityMethod::refedge, Precision::float32, {}, {}};
-  FuzzSampling sampling;
+  const CampaignRun refedge{MultiplicityMethod::refedge, Precision::float32, {}, {}};
+  CampaignSampling sampling;
   sampling.straddle_pairs = 64;
   sampling.seed = 3;
-  const RunVerdict v = certify_fuzz_case(scene->soup, scene->light, {refedge}, sampling).runs[0];
+  const RunVerdict v = certify_campaign_case(scene->soup, scene->light, {refedge}, sampling).runs[0];
   ASSERT_TRUE(v.first_exact_mismatch.has_value());
-  FuzzReproducer r;
+  CampaignReproducer r;
   r.soup = scene->soup;
   r.light = scene->light;
   r.method = MultiplicityMethod::refedge;
   r.precision = Precision::float32;
   r.failure = "counts";
   r.points = {v.first_exact_mismatch->from, v.first_exact_mismatch->to};
-  const FuzzReplay replay =
-      replay_fuzz_reproducer(read_fuzz_reproducer(write_fuzz_reproducer(temp_dir(), "offset", r)));
+  const ReproducerReplay replay =
+      replay_reproducer(read_reproducer(write_reproducer(temp_dir(), "offset", r)));
   EXPECT_TRUE(replay.closed);
   EXPECT_EQ(replay.count_checks, 2u);  // the pair, both ways
   EXPECT_EQ(replay.count_failures, 2u);
   EXPECT_TRUE(replay.reproduces);
   r.method = MultiplicityMethod::exact;
-  EXPECT_FALSE(replay_fuzz_reproducer(r).reproduces);  // the exact chain counts right there
+  EXPECT_FALSE(replay_reproducer(r).reproduces);  // the exact chain counts right there
 }
 
-TEST(FuzzReproducer, BadFiles_InputErrorNamingTheFile) {
+TEST(CampaignReproducer, BadFiles_InputErrorNamingTheFile) {
   const fs::path dir = temp_dir();
-  FuzzReproducer r;
+  CampaignReproducer r;
   r.soup = awkward_soup();
-  const fs::path json = write_fuzz_reproducer(dir, "good", r);
+  const fs::path json = write_reproducer(dir, "good", r);
   auto rewrite = [&](const std::string& from, const std::string& to) {
     std::ifstream in(json);
     std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -156,7 +156,7 @@ TEST(FuzzReproducer, BadFiles_InputErrorNamingTheFile) {
            {"\"seed\"", "\"sead\""}}) {
     const fs::path bad = rewrite(from, to);
     try {
-      (void)read_fuzz_reproducer(bad);
+      (void)read_reproducer(bad);
       ADD_FAILURE() << "no error for " << to;
     } catch (const InputError& e) {
       EXPECT_NE(std::string(e.what()).find(to == "\"mesh\": \"missing.off\"" ? "missing.off" : "bad.json"),
@@ -164,7 +164,7 @@ TEST(FuzzReproducer, BadFiles_InputErrorNamingTheFile) {
           << e.what();
     }
   }
-  EXPECT_THROW((void)read_fuzz_reproducer(dir / "absent.json"), InputError);
+  EXPECT_THROW((void)read_reproducer(dir / "absent.json"), InputError);
 }
 
 }  // namespace

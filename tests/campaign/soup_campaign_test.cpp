@@ -1,14 +1,14 @@
-// exact/fuzz_campaign.h: a bounded campaign with fixed seeds finds no failure of a method that
+// campaign/soup_campaign.h: a bounded campaign with fixed seeds finds no failure of a method that
 // must not fail and counts kim's; results do not depend on the thread count; planted faults are
 // found on (nearly) every case and shrunk to a soup of a triangle or two that still fails.
-#include "exact/fuzz_campaign.h"
+#include "campaign/soup_campaign.h"
 
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
 #include <iostream>
 
-#include "fuzz_test_support.h"
+#include "campaign_test_support.h"
 
 namespace {
 
@@ -19,17 +19,17 @@ using namespace shadowcert::test_support;
 // About 3 s on one core of the development machine.
 constexpr std::uint64_t kCases = 1000;
 
-TEST(FuzzCampaign, FixedSeeds_NoFailureOfExactPecivaRefedge_KimFailuresCounted) {
+TEST(SoupCampaign, FixedSeeds_NoFailureOfExactPecivaRefedge_KimFailuresCounted) {
   for (const std::uint64_t seed : {1ULL, 2ULL, 3ULL}) {
     std::cout << "seed " << seed << "\n";
-    FuzzCampaignOptions options;
+    CampaignOptions options;
     options.seed = seed;
     options.cases = kCases;
-    const FuzzCampaignResult result = run_fuzz_campaign(options);
+    const CampaignResult result = run_campaign(options);
     ASSERT_EQ(result.cases, kCases);
     for (std::size_t r = 0; r < options.runs.size(); ++r) {
-      const FuzzRunTally& t = result.runs[r];
-      const std::string name = fuzz_run_name(options.runs[r]);
+      const CampaignRunTally& t = result.runs[r];
+      const std::string name = campaign_run_name(options.runs[r]);
       EXPECT_GT(t.checks, 5 * kCases) << name;  // every case compared pairs
       EXPECT_EQ(t.decided_sign_error_cases, 0u) << name;
       if (must_not_fail(options.runs[r])) {
@@ -40,8 +40,8 @@ TEST(FuzzCampaign, FixedSeeds_NoFailureOfExactPecivaRefedge_KimFailuresCounted) 
     }
     // Kim (per-edge evaluation, no consistency) loses closure on some soups in both precisions,
     // float more often: findings, counted, never shrunk unless asked.
-    const FuzzRunTally& kim_float = result.runs[1];
-    const FuzzRunTally& kim_double = result.runs[2];
+    const CampaignRunTally& kim_float = result.runs[1];
+    const CampaignRunTally& kim_double = result.runs[2];
     EXPECT_GT(kim_float.closure_failures, kCases / 20);
     EXPECT_GT(kim_double.closure_failures, 0u);
     EXPECT_GT(kim_float.closure_failures, kim_double.closure_failures);
@@ -54,16 +54,16 @@ TEST(FuzzCampaign, FixedSeeds_NoFailureOfExactPecivaRefedge_KimFailuresCounted) 
   }
 }
 
-TEST(FuzzCampaign, OneThreadOrMany_SameResult) {
-  FuzzCampaignOptions options;
+TEST(SoupCampaign, OneThreadOrMany_SameResult) {
+  CampaignOptions options;
   options.seed = 77;
   options.cases = 300;
   options.triangles = 40;
-  const FuzzCampaignResult many = run_fuzz_campaign(options);
-  FuzzCampaignResult one;
+  const CampaignResult many = run_campaign(options);
+  CampaignResult one;
   {
     const tbb::global_control single(tbb::global_control::max_allowed_parallelism, 1);
-    one = run_fuzz_campaign(options);
+    one = run_campaign(options);
   }
   ASSERT_EQ(one.runs.size(), many.runs.size());
   EXPECT_EQ(one.samples, many.samples);
@@ -76,13 +76,13 @@ TEST(FuzzCampaign, OneThreadOrMany_SameResult) {
   }
 }
 
-TEST(FuzzCampaign, PlantedConsistentFlip_FoundAndShrunkToATriangleThatStillFails) {
-  FuzzCampaignOptions options;
+TEST(SoupCampaign, PlantedConsistentFlip_FoundAndShrunkToATriangleThatStillFails) {
+  CampaignOptions options;
   options.seed = 5;
   options.cases = 40;
-  options.runs = {FuzzRun{}, planted_run(PlantedFault::consistent_flip)};
+  options.runs = {CampaignRun{}, planted_run(PlantedFault::consistent_flip)};
   options.max_shrunk_per_run = 3;
-  const FuzzCampaignResult result = run_fuzz_campaign(options);
+  const CampaignResult result = run_campaign(options);
   EXPECT_EQ(result.runs[0].failures, 0u);
   EXPECT_GT(result.runs[1].failures, options.cases * 3 / 4);  // all but cases where nothing casts or t is undecided
   EXPECT_EQ(result.runs[1].closure_failures, 0u);
@@ -90,45 +90,45 @@ TEST(FuzzCampaign, PlantedConsistentFlip_FoundAndShrunkToATriangleThatStillFails
   for (const ShrunkFailure& s : result.shrunk) {
     SCOPED_TRACE("case " + std::to_string(s.failure.index));
     EXPECT_EQ(s.failure.run, 1u);
-    EXPECT_EQ(s.failure.kind, FuzzFailureKind::counts);
+    EXPECT_EQ(s.failure.kind, CampaignFailureKind::counts);
     EXPECT_LE(s.soup.triangles.size(), 2u);
     EXPECT_TRUE(s.minimal);
     EXPECT_TRUE(s.verdict.failed());  // still fails, the same way
     EXPECT_TRUE(s.verdict.closed);
     EXPECT_GE(s.verdict.exact_mismatches, 1u);
     // And the same again from the shrunk soup itself.
-    const RunVerdict again = certify_fuzz_case(s.soup, s.original.light, options.runs,
-                                               fuzz_sampling_for_case(options.sampling, options.seed, s.failure.index))
+    const RunVerdict again = certify_campaign_case(s.soup, s.original.light, options.runs,
+                                               campaign_sampling_for_case(options.sampling, options.seed, s.failure.index))
                                  .runs[1];
     EXPECT_TRUE(again.failed());
   }
 }
 
-TEST(FuzzCampaign, PlantedCapOnlyFlip_ClosureFailuresShrunkToOneTriangle) {
-  FuzzCampaignOptions options;
+TEST(SoupCampaign, PlantedCapOnlyFlip_ClosureFailuresShrunkToOneTriangle) {
+  CampaignOptions options;
   options.seed = 6;
   options.cases = 30;
   options.runs = {planted_run(PlantedFault::cap_only_flip)};
   options.max_shrunk_per_run = 2;
-  const FuzzCampaignResult result = run_fuzz_campaign(options);
+  const CampaignResult result = run_campaign(options);
   EXPECT_GT(result.runs[0].closure_failures, options.cases * 3 / 4);
   ASSERT_EQ(result.shrunk.size(), 2u);
   for (const ShrunkFailure& s : result.shrunk) {
-    EXPECT_EQ(s.failure.kind, FuzzFailureKind::closure);
+    EXPECT_EQ(s.failure.kind, CampaignFailureKind::closure);
     EXPECT_EQ(s.soup.triangles.size(), 1u);
     EXPECT_EQ(s.soup.vertices.size(), 3u);
     EXPECT_FALSE(s.verdict.closed);
   }
 }
 
-TEST(FuzzCampaign, ShrinkFindings_KimClosureFailureShrunkSmallAndStillOpen) {
-  FuzzCampaignOptions options;
+TEST(SoupCampaign, ShrinkFindings_KimClosureFailureShrunkSmallAndStillOpen) {
+  CampaignOptions options;
   options.seed = 1;
   options.cases = 200;
-  options.runs = parse_fuzz_runs("exact,kim-float");
+  options.runs = parse_campaign_runs("exact,kim-float");
   options.shrink_findings = true;
   options.max_shrunk_per_run = 2;
-  const FuzzCampaignResult result = run_fuzz_campaign(options);
+  const CampaignResult result = run_campaign(options);
   ASSERT_FALSE(result.failures.empty());
   ASSERT_EQ(result.shrunk.size(), 2u);
   for (const ShrunkFailure& s : result.shrunk) {
@@ -139,20 +139,20 @@ TEST(FuzzCampaign, ShrinkFindings_KimClosureFailureShrunkSmallAndStillOpen) {
   }
 }
 
-TEST(FuzzCampaign, CaseSamplingSeeds_DifferPerCaseAndSeed) {
-  const FuzzSampling base;
-  EXPECT_NE(fuzz_sampling_for_case(base, 1, 0).seed, fuzz_sampling_for_case(base, 1, 1).seed);
-  EXPECT_NE(fuzz_sampling_for_case(base, 1, 0).seed, fuzz_sampling_for_case(base, 2, 0).seed);
-  EXPECT_EQ(fuzz_sampling_for_case(base, 1, 5).seed, fuzz_sampling_for_case(base, 1, 5).seed);
+TEST(SoupCampaign, CaseSamplingSeeds_DifferPerCaseAndSeed) {
+  const CampaignSampling base;
+  EXPECT_NE(campaign_sampling_for_case(base, 1, 0).seed, campaign_sampling_for_case(base, 1, 1).seed);
+  EXPECT_NE(campaign_sampling_for_case(base, 1, 0).seed, campaign_sampling_for_case(base, 2, 0).seed);
+  EXPECT_EQ(campaign_sampling_for_case(base, 1, 5).seed, campaign_sampling_for_case(base, 1, 5).seed);
 }
 
-TEST(FuzzCampaign, BadOptions_Throw) {
-  FuzzCampaignOptions options;
+TEST(SoupCampaign, BadOptions_Throw) {
+  CampaignOptions options;
   options.runs.clear();
-  EXPECT_THROW((void)run_fuzz_campaign(options), std::invalid_argument);
+  EXPECT_THROW((void)run_campaign(options), std::invalid_argument);
   options = {};
   options.triangles = 0;
-  EXPECT_THROW((void)run_fuzz_campaign(options), std::invalid_argument);
+  EXPECT_THROW((void)run_campaign(options), std::invalid_argument);
 }
 
 }  // namespace

@@ -1,6 +1,6 @@
-// scene/soup_shrinker.h: delta debugging keeps the failure, ends 1-minimal, compacts vertices,
+// campaign/soup_shrinker.h: delta debugging keeps the failure, ends 1-minimal, compacts vertices,
 // and respects its test budget.
-#include "scene/soup_shrinker.h"
+#include "campaign/soup_shrinker.h"
 
 #include <gtest/gtest.h>
 

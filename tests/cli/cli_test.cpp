@@ -401,7 +401,7 @@ TEST(CliFuzz, BadOptions_ExitTwo) {
   EXPECT_EQ(run_cli("fuzz --bogus").exit_code, 2);
 }
 
-// fuzz --gl (docs/fuzzing.md, "The GL methods"): cases 0 to 11 of seed 1 at 30 triangles pass
+// fuzz --gl (docs/campaign.md, "The GL methods"): cases 0 to 11 of seed 1 at 30 triangles pass
 // every robust GL method on llvmpipe; every pixel of every case is judged once per method.
 TEST(CliFuzz, TinyGlCampaign_ExitsZeroJsonHasEveryGlMethod) {
   const fs::path dir = temp_dir() / "fuzz_gl";
@@ -439,10 +439,10 @@ TEST(CliFuzz, TinyGlCampaign_ExitsZeroJsonHasEveryGlMethod) {
 
 // Case 19 of seed 1 (30 triangles): the light exactly on a triangle's plane (on_plane). Exactly
 // it casts nothing; cs evaluates its light side in float, gets a nonzero sign and shadows a
-// half-space: hard errors (docs/fuzzing.md, "What the GL campaign found"). If this test starts
+// half-space: hard errors (docs/campaign.md, "What the GL campaign found"). If this test starts
 // failing because cs passes, that finding was fixed: pin another failing case.
 TEST(CliFuzz, GlFailure_ShrunkToASceneThatDiffReplays) {
-  const fs::path dir = temp_dir() / "fuzz_gl_failure";
+  const fs::path dir = temp_dir() / "gl_campaign_failure";
   const fs::path json = dir / "gl.json";
   const RunResult r = run_cli("fuzz --gl --seed 1 --cases 20 --triangles 30 --methods exact --gl-methods cs "
                               "--max-reproducers 1 --out " + (dir / "out").string() + " --json " + json.string());

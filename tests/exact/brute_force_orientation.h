@@ -1,5 +1,5 @@
 #pragma once
-// Test-only brute force for the orientation predicate of DESIGN.md §2: exact integer
+// Test-only brute force for the orientation predicate of docs/definitions.md#orientation: exact integer
 // arithmetic (boost::multiprecision::cpp_int), written independently of exact/ (no CGAL,
 // no filter, a different determinant expansion), so that the tests compare two codes.
 #include <boost/multiprecision/cpp_int.hpp>
@@ -67,7 +67,7 @@ inline int light_orientation(const Vec3& a, const Vec3& b, const Vec3& c, const 
   return sign(det3(x, y, z));
 }
 
-// Minus the sign of the 4x4 determinant of the homogeneous rows p, q, r, s (DESIGN.md §2),
+// Minus the sign of the 4x4 determinant of the homogeneous rows p, q, r, s (docs/definitions.md#orientation),
 // by Laplace expansion along the last column (w in {0, 1}).
 inline int orient4(const std::array<double, 4>& p, const std::array<double, 4>& q, const std::array<double, 4>& r,
                    const std::array<double, 4>& s) {

@@ -1,4 +1,4 @@
-// Caster diagnostics (exact/caster_diagnostics.h, DESIGN.md §4.3): hand-built soups with known
+// Caster diagnostics (exact/caster_diagnostics.h, docs/definitions.md#caster-diagnostics): hand-built soups with known
 // answers, invariances, and the figures of the shared real meshes (data/README.md).
 #include "exact/caster_diagnostics.h"
 
@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "exact/soup_file.h"
+#include "io/soup_file.h"
 #include "exact/triangle_soup_topology.h"
 #include "scene/procedural_mesh.h"
 

@@ -11,7 +11,7 @@
 #include <stdexcept>
 #include <utility>
 
-#include "certificate_test_support.h"
+#include "support/certificate_test_support.h"
 #include "scene/procedural_mesh.h"
 
 namespace {
@@ -30,7 +30,7 @@ DirectedEdges directed_edges(const HomogeneousMesh& mesh) {
 }
 
 // Each directed edge minus its reverse, by vertex id; empty when the mesh is closed
-// (DESIGN.md §4.1 on ids, as the chain's closure certificate balances them).
+// (docs/definitions.md#closure on ids, as the chain's closure certificate balances them).
 DirectedEdges unbalanced(const HomogeneousMesh& mesh) {
   DirectedEdges balance;
   for (const auto& [edge, count] : directed_edges(mesh)) {
@@ -95,7 +95,7 @@ TEST(ChainMesh, DirectionalLight_OneFarVertexAtMinusL) {
   EXPECT_TRUE(unbalanced(mesh).empty());
 }
 
-// The exact chain is closed on any soup (DESIGN.md §3); splitting its quads must keep it so,
+// The exact chain is closed on any soup (docs/definitions.md#counts); splitting its quads must keep it so,
 // on a non-manifold fan (|m| up to k) and a closed cube, under both light kinds.
 TEST(ChainMesh, ClosedChains_GiveClosedMeshes) {
   for (const Soup& soup : {nonmanifold_fan(7), unit_cube(), open_box_with_fins()}) {

@@ -1,4 +1,4 @@
-// Closure (exact/closure_certificate.h, DESIGN.md §4.1): hand-made open chains with known
+// Closure (exact/closure_certificate.h, docs/definitions.md#closure): hand-made open chains with known
 // unbalanced edges, closed chains of every per-triangle-consistent method on known and random
 // soups, and the pinned near-degenerate soup where kim in float loses closure while refedge in
 // float keeps it (found by DISABLED_SearchKimVersusRefedge below).
@@ -12,7 +12,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "certificate_test_support.h"
+#include "support/certificate_test_support.h"
 #include "scene/procedural_mesh.h"
 
 namespace {

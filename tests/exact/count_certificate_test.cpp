@@ -1,6 +1,7 @@
-// Occluder counts (exact/count_certificate.h, DESIGN.md §3 and §4.2): the direct count n(P),
+// Occluder counts (exact/count_certificate.h, docs/definitions.md#counts and #count-certificate): the direct count n(P),
 // the crossing tests of caps and side faces against an independent rational computation,
 // the sign convention of crossings, and certify_counts on closed and broken chains.
+#include "core/vector3.h"
 #include "exact/count_certificate.h"
 
 #include <gtest/gtest.h>
@@ -9,7 +10,7 @@
 #include <random>
 #include <vector>
 
-#include "certificate_test_support.h"
+#include "support/certificate_test_support.h"
 #include "exact/closure_certificate.h"
 #include "exact/chain_crossings.h"
 #include "exact/count_sampling.h"
@@ -28,11 +29,7 @@ using detail::Meeting;
 __extension__ typedef __int128 I128;  // exact for these integer ranges (|det| < 2^100)
 using IVec = std::array<I128, 3>;
 
-IVec sub(const IVec& a, const IVec& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-IVec cross(const IVec& a, const IVec& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-I128 dot(const IVec& a, const IVec& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+IVec sub(const IVec& a, const IVec& b) { return difference(a, b); }
 IVec scaled(const IVec& a, I128 k) { return {a[0] * k, a[1] * k, a[2] * k}; }
 IVec added(const IVec& a, const IVec& b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
 int sgn(I128 x) { return x > 0 ? 1 : (x < 0 ? -1 : 0); }
@@ -133,7 +130,7 @@ void expect_same(const FaceMeeting& got, const FaceMeeting& want, Tally& tally, 
   }
 }
 
-// DESIGN.md §4.2's side-quad formula against the rational reference, random integer inputs:
+// docs/definitions.md#count-certificate's side-quad formula against the rational reference, random integer inputs:
 // a wide range for generic positions, a narrow one for many exact coplanarities and touches.
 void check_side_formula(bool directional, std::uint64_t seed) {
   SCOPED_TRACE("seed " + std::to_string(seed));
@@ -282,7 +279,7 @@ TEST(ChainCrossingIndex, RandomSegments_SameAsEveryFace) {
     const Light light = round % 3 == 0 ? directional_light(coordinate(rng), coordinate(rng), coordinate(rng))
                                        : point_light(coordinate(rng), coordinate(rng), coordinate(rng));
     const Pipeline p = build_pipeline(soup, light);
-    const detail::Box3 box = detail::sampling_box(p.canonical);
+    const Box box = detail::sampling_box(p.canonical);
     const detail::CrossingQuery query{p.canonical, light, p.chain};
     for (const double piece : {0.01, 0.2, 5.0}) {
       const detail::ChainCrossingIndex index(query, box, piece);
@@ -378,7 +375,7 @@ TEST(CertifyCounts, PointBehindSphere_CheckedAtCountTwo) {
   EXPECT_EQ(OccluderCounter(p.canonical, light).count({0.003, -3.0, 0.001}), std::optional<std::uint32_t>(2));
 }
 
-// Every fan size from 1 to 256 (DESIGN.md §6), exact: closed and counts right.
+// Every fan size from 1 to 256 (docs/definitions.md#hard-cases), exact: closed and counts right.
 TEST(CertifyCounts, FansOf1To256_CountsRight) {
   for (std::uint32_t k = 1; k <= 256; ++k) {
     for (const Light& light : {point_light(0.3, 0.45, 2.0), directional_light(0.2, 0.3, 1.0)}) {

@@ -1,8 +1,9 @@
 // exact/cpu_volume.h: the volume `render --method cpu` draws is the exact chain of the input
 // rounded to float (as the GPU receives it), as float homogeneous triangles: closed as drawn;
 // the double chain's triangles when rounding changes no sign; and on the light one double ulp
-// off the floor's plane (DESIGN.md §6), where the light lies in that plane once rounded, the
+// off the floor's plane (docs/definitions.md#hard-cases), where the light lies in that plane once rounded, the
 // floor casts nothing.
+#include "exact/volume_closure.h"
 #include "exact/cpu_volume.h"
 
 #include <gtest/gtest.h>
@@ -18,11 +19,11 @@
 #include <string>
 #include <vector>
 
-#include "certificate_test_support.h"
+#include "support/certificate_test_support.h"
 #include "core/scene.h"
-#include "exact/captured_volume.h"
+#include "io/volume_file.h"
 #include "exact/chain_mesh.h"
-#include "exact/input_rounding.h"
+#include "reference/input_rounding.h"
 #include "scene/procedural_mesh.h"
 #include "scene/scene_file.h"
 
@@ -39,7 +40,7 @@ HomogeneousMesh double_chain_mesh(const Soup& canonical, const EdgeTable& table,
 }
 
 void expect_closed_as_drawn(const HomogeneousMesh& mesh) {
-  const CapturedClosure closure = certify_captured_closure(mesh);
+  const VolumeClosure closure = certify_volume_closure(mesh);
   EXPECT_TRUE(closure.certificate.closed)
       << closure.certificate.unbalanced.size() << " unbalanced edges of " << mesh.triangles.size() << " triangles";
 }

@@ -1,6 +1,6 @@
 // Multiplicities of the four methods (exact/edge_multiplicity.h) against an independent
-// brute force: exact integer determinants (tests/brute_force_orientation.h) summed per edge in a
-// std::map, with the sign convention of DESIGN.md §3, m(u, v) = - sum sign D(u, v, o, L).
+// brute force: exact integer determinants (tests/exact/brute_force_orientation.h) summed per edge in a
+// std::map, with the sign convention of docs/definitions.md#counts, m(u, v) = - sum sign D(u, v, o, L).
 #include "exact/edge_multiplicity.h"
 
 #include <gtest/gtest.h>
@@ -80,7 +80,7 @@ std::map<EdgeKey, int> brute_multiplicities(const Soup& s, const Light& light) {
     for (int k = 0; k < 3; ++k) {
       const std::uint32_t u = std::min(t[k], t[(k + 1) % 3]), v = std::max(t[k], t[(k + 1) % 3]);
       const std::uint32_t o = t[(k + 2) % 3];
-      m[{u, v}] -= casts ? brute_d(s, u, v, o, light) : 0;  // DESIGN.md §3
+      m[{u, v}] -= casts ? brute_d(s, u, v, o, light) : 0;  // docs/definitions.md#counts
     }
   }
   return m;
@@ -117,7 +117,7 @@ void expect_matches_brute_force(const Prepared& p, const Light& light, const std
 }
 
 // Every entry's sign equals the triangle's cap sign times the permutation parity: the
-// consistency that makes the chain closed (DESIGN.md §3).
+// consistency that makes the chain closed (docs/definitions.md#counts).
 std::size_t count_inconsistent_entries(const Prepared& p, const Light& light, const Variant& v) {
   const EdgeMultiplicities m = edge_multiplicities(v.method, p.soup, p.table, light, v.precision);
   const std::vector<Sign> entries = edge_entry_signs(v.method, p.soup, p.table, light, v.precision);
@@ -209,7 +209,7 @@ Soup sliver_strip(std::uint32_t n) {
 // ---- tests ---------------------------------------------------------------------------------
 
 TEST(EdgeMultiplicities, LoneTriangleFacingLight_SignConventionOfDesign) {
-  // DESIGN.md §3: with s = +1 the front cap is t = (0, 1, 2) itself and each directed edge
+  // docs/definitions.md#counts: with s = +1 the front cap is t = (0, 1, 2) itself and each directed edge
   // (x, y) of it gives the side quad (y, x, x_inf, y_inf); the chain holds m copies of
   // (u, v, v_inf, u_inf). Directed edges (0, 1) and (1, 2) therefore give m = -1, and (2, 0),
   // whose quad is (0, 2, 2_inf, 0_inf), gives m = +1 (Milet 2014 would report the opposite).
@@ -300,7 +300,7 @@ TEST(EdgeMultiplicities, DirectionalLights_MatchBruteForce) {
 
 TEST(EdgeMultiplicities, DuplicateAndFlippedDuplicate_ContributionsAddCapsFollowWinding) {
   // D(u, v, o) depends on the vertex set, not on the winding: a triangle and its flipped copy
-  // have the same shadow volume, both count as occluders (n(P), DESIGN.md §3), so their edge
+  // have the same shadow volume, both count as occluders (n(P), docs/definitions.md#counts), so their edge
   // contributions add up; only the cap signs differ, and the front caps t' coincide.
   Soup one;
   one.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
@@ -448,7 +448,7 @@ TEST(EdgeMultiplicities, TranslationByTwoToTheTwenty_ExactMultiplicitiesInvarian
 
 TEST(EdgeMultiplicities, NearDegenerateSoups_ExactMatchesBruteForceAndConsistentMethodsStayConsistent) {
   // Light in (as computed) or a few ulps off the plane of a nearly planar grid, and slivers:
-  // the configurations where float methods lose closure (DESIGN.md §6). Exact must still match
+  // the configurations where float methods lose closure (docs/definitions.md#hard-cases). Exact must still match
   // the brute force; exact, peciva and refedge must keep every entry equal to the cap sign times
   // the permutation parity, in float and double (refedge: its per-entry Algorithm 3 evaluation
   // equals the per-triangle one bit for bit).

@@ -1,4 +1,4 @@
-// The hard cases of DESIGN.md §6, one test each, through the exact module's certificates:
+// The hard cases of docs/definitions.md#hard-cases, one test each, through the exact module's certificates:
 // for exact and for the float methods that are consistent per triangle (refedge and peciva,
 // float and double) the chain is closed; exact counts are right at every sample; a float
 // method's chain winds exactly as its own signs claim (test_support::expect_certified).
@@ -12,8 +12,8 @@
 #include <random>
 #include <vector>
 
-#include "certificate_test_support.h"
-#include "hard_case_scenes.h"
+#include "support/certificate_test_support.h"
+#include "support/hard_case_scenes.h"
 #include "scene/procedural_mesh.h"
 
 namespace {

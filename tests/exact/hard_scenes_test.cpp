@@ -1,9 +1,9 @@
-// The scenes of data/scenes/hard/ (DESIGN.md §6), GL-free: every scene loads as `shadowcert
+// The scenes of data/scenes/hard/ (docs/definitions.md#hard-cases), GL-free: every scene loads as `shadowcert
 // render` loads it (scene/scene_file.h with exact/'s read_soup), is small, is listed in the
 // folder's README.md, and really is the hard case it is named after, checked exactly where the
 // case is about exactness (a light exactly in a plane, on an edge's line, at a vertex), and by
 // counting where it is about combinatorics (256 triangles on one edge, repeated indices,
-// duplicates, bow-ties). tests/gl/hard_case_render_test.cpp renders them with every method.
+// duplicates, bow-ties). tests/gpu/hard_case_render_test.cpp renders them with every method.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -21,13 +21,14 @@
 #include <string>
 #include <vector>
 
+#include "core/vector3.h"
 #include "core/scene.h"
 #include "exact/caster_diagnostics.h"
 #include "exact/count_certificate.h"
 #include "exact/degenerate_triangles.h"
 #include "exact/edge_multiplicity.h"
 #include "exact/light_orientation.h"
-#include "exact/soup_file.h"
+#include "io/soup_file.h"
 #include "scene/canonical_soup.h"
 #include "scene/edge_table.h"
 #include "scene/merged_soup.h"
@@ -89,7 +90,7 @@ Sign sign_of(const Soup& soup, const Triangle& t, const Light& light) {
 }
 
 // Exactly collinear points: every axis-direction orientation of (a, b, c) is zero, i.e.
-// (b - a) x (c - a) = 0 (DESIGN.md §2's orient with a point at infinity).
+// (b - a) x (c - a) = 0 (docs/definitions.md#orientation's orient with a point at infinity).
 bool collinear(const Vec3& a, const Vec3& b, const Vec3& c) {
   for (const Light& axis : {Light{{1.0, 0.0, 0.0, 0.0}}, Light{{0.0, 1.0, 0.0, 0.0}}, Light{{0.0, 0.0, 1.0, 0.0}}})
     if (light_orientation(a, b, c, axis) != Sign::zero) return false;
@@ -99,7 +100,7 @@ bool collinear(const Vec3& a, const Vec3& b, const Vec3& c) {
 Vec3 position(const Light& light) { return {light.position[0], light.position[1], light.position[2]}; }
 // x rounded to float, through memory: GCC 12.2 at -O2 (its SLP vectorizer) drops the round
 // trip (double)(float)x of two neighbouring coordinates built in one braced initializer
-// (seen here and in tests/closure_certificate_test.cpp; docs/certificates.md).
+// (seen here and in tests/exact/closure_certificate_test.cpp; docs/certificates.md).
 double float_value(double x) {
   volatile float f = static_cast<float>(x);
   return f;
@@ -215,9 +216,8 @@ TEST(HardScenes, SliversAndZeroArea_CollinearSliverAndGrazingTriangles) {
     if (shapes[i] != TriangleShape::Proper) continue;
     const Triangle& t = soup.triangles[i];
     const Vec3 &a = soup.vertices[t[0]], &b = soup.vertices[t[1]], &c = soup.vertices[t[2]];
-    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-    const double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
-    const double area2 = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    const Vec3 n = cross(difference(b, a), difference(c, a));
+    const double area2 = std::sqrt(dot(n, n));
     double longest = 0.0;
     for (const auto& [p, q] : {std::pair{&a, &b}, std::pair{&b, &c}, std::pair{&c, &a}})
       longest = std::max(longest, std::hypot((*p)[0] - (*q)[0], (*p)[1] - (*q)[1], (*p)[2] - (*q)[2]));

@@ -1,5 +1,5 @@
-// The exact predicate D(a, b, c, L) and orient(p, q, r, s) of DESIGN.md §2 against an
-// independent integer brute force (tests/brute_force_orientation.h).
+// The exact predicate D(a, b, c, L) and orient(p, q, r, s) of docs/definitions.md#orientation against an
+// independent integer brute force (tests/exact/brute_force_orientation.h).
 #include "exact/light_orientation.h"
 
 #include <gtest/gtest.h>
@@ -67,7 +67,7 @@ void expect_matches_brute_force(const Vec3& a, const Vec3& b, const Vec3& c, con
 }
 
 TEST(Orient, UnitTetrahedron_PositiveLikeCgal) {
-  // DESIGN.md §2: orient = sign det[q - p, r - p, s - p]; det[e1, e2, e3] = 1.
+  // docs/definitions.md#orientation: orient = sign det[q - p, r - p, s - p]; det[e1, e2, e3] = 1.
   const HomogeneousPoint o{0, 0, 0, 1}, x{1, 0, 0, 1}, y{0, 1, 0, 1}, z{0, 0, 1, 1};
   EXPECT_EQ(orient(o, x, y, z), Sign::positive);
   EXPECT_EQ(orient(o, y, x, z), Sign::negative);
@@ -170,7 +170,7 @@ TEST(LightOrientation, ExactDegeneracies_Zero) {
 }
 
 TEST(LightOrientation, IntegerGridCoplanarities_MatchExactBruteForce) {
-  // Small integer grids make exact zeros frequent (DESIGN.md §6: soups snapped to a grid).
+  // Small integer grids make exact zeros frequent (docs/definitions.md#hard-cases: soups snapped to a grid).
   std::cout << "seed " << kSeed + 3 << "\n";
   RandomPoints rng(kSeed + 3);
   auto grid_point = [&rng] {

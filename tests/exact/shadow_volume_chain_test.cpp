@@ -1,4 +1,4 @@
-// The shadow-volume chain (exact/shadow_volume_chain.h, DESIGN.md §3): faces, orientations,
+// The shadow-volume chain (exact/shadow_volume_chain.h, docs/definitions.md#counts): faces, orientations,
 // multiplicity copies, far vertices for both light kinds, and the picture writer.
 #include "exact/shadow_volume_chain.h"
 
@@ -9,8 +9,8 @@
 #include <stdexcept>
 #include <vector>
 
-#include "certificate_test_support.h"
-#include "exact/soup_file.h"
+#include "support/certificate_test_support.h"
+#include "io/soup_file.h"
 #include "scene/procedural_mesh.h"
 
 namespace {
@@ -49,7 +49,7 @@ Soup one_triangle(bool counter_clockwise_from_above) {
 TEST(AssembleChain, TriangleFacingPointLight_FrontCapBackCapAndDesignSideQuads) {
   const Pipeline p = build_pipeline(one_triangle(true), point_light(0.2, 0.2, 5.0));
   // t' = (0, 2, 1) (normal +z, towards the light); far id of x is 3 + x.
-  // DESIGN.md §3: directed edge (u, v) of t' gives the side quad (v, u, u_inf, v_inf).
+  // docs/definitions.md#counts: directed edge (u, v) of t' gives the side quad (v, u, u_inf, v_inf).
   const std::vector<Face> expected = sorted({{0, 2, 1},
                                              {3, 4, 5},  // back cap: t' at infinity, reversed
                                              {2, 0, 3, 5},
@@ -150,7 +150,7 @@ TEST_P(WriteChainFormat, PointAndDirectional_ReadBackWithEveryFaceAsTriangles) {
   for (const Light& light : {point_light(0.3, 0.2, 4.0), directional_light(0.1, 0.3, 1.0)}) {
     const Pipeline p = build_pipeline(unit_cube(), light);
     const std::filesystem::path file = dir / (std::string("chain") + GetParam());
-    write_chain(file, p.chain, p.canonical, light, 10.0);
+    write_soup(file, chain_picture(p.chain, p.canonical, light, 10.0));
     const Soup back = read_soup(file);
     EXPECT_EQ(back.vertices.size(), 2 * p.canonical.vertices.size());
     std::size_t expected = p.chain.triangles.size() + 2 * p.chain.quads.size();

@@ -1,5 +1,6 @@
 // Exact self-intersections of welded soups (exact/triangle_soup_self_intersections.h):
-// every sharing case of DESIGN.md §4.3 by hand, then the parallel split against brute force.
+// every sharing case of docs/definitions.md#caster-diagnostics by hand, then the parallel split against brute force.
+#include "core/vector3.h"
 #include "exact/triangle_soup_self_intersections.h"
 
 #include <gtest/gtest.h>
@@ -19,6 +20,9 @@ namespace {
 
 using shadowcert::find_self_intersecting_pairs;
 using shadowcert::Soup;
+using shadowcert::cross;
+using shadowcert::difference;
+using shadowcert::dot;
 using shadowcert::Triangle;
 using shadowcert::TrianglePair;
 using shadowcert::Vec3;
@@ -143,12 +147,6 @@ std::array<std::int64_t, 3> minus(const Vec3& a, const Vec3& b) {
   return {static_cast<std::int64_t>(a[0] - b[0]), static_cast<std::int64_t>(a[1] - b[1]),
           static_cast<std::int64_t>(a[2] - b[2])};
 }
-std::array<std::int64_t, 3> cross(const std::array<std::int64_t, 3>& u, const std::array<std::int64_t, 3>& v) {
-  return {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
-}
-std::int64_t dot(const std::array<std::int64_t, 3>& u, const std::array<std::int64_t, 3>& v) {
-  return u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
-}
 
 TEST(SelfIntersections, CommonEdgeOnIntegerGrid_MatchesIntegerReference) {
   std::mt19937 rng(17);
@@ -185,7 +183,7 @@ TEST(SelfIntersections, DuplicateBeforeWelding_OnePair) {
   EXPECT_EQ(pair_count(s), 1u);
 }
 
-// Degenerate triangles cast nothing (DESIGN.md §2) and are skipped.
+// Degenerate triangles cast nothing (docs/definitions.md#orientation) and are skipped.
 TEST(SelfIntersections, CollinearTrianglePiercingAFace_None) {
   const Soup s = soup_of({{0, 0, 0}, {2, 0, 0}, {0, 2, 0}, {0.5, 0.5, -1}, {0.5, 0.5, 0}, {0.5, 0.5, 1}},
                          {{0, 1, 2}, {3, 4, 5}});

@@ -1,5 +1,5 @@
 // The GL camera (gpu/camera_transform.h) and the exact image's pixel rays (core/pixel_ray.h)
-// are one camera (DESIGN.md §5): a point on the ray of image point (x, y) projects back to
+// are one camera (docs/definitions.md#pixel-protocol): a point on the ray of image point (x, y) projects back to
 // (x, y). Pure double math: no GL context needed.
 #include "gpu/camera_transform.h"
 
@@ -10,6 +10,7 @@
 #include <string>
 
 #include "core/pixel_ray.h"
+#include "square_test_camera.h"
 
 namespace shadowcert::gpu {
 namespace {
@@ -89,5 +90,26 @@ TEST(CameraTransform, ViewMatrix_IsTheFramesBasis) {
   EXPECT_NEAR(eye.z, 0.0, kEyeRounding);
 }
 
+TEST(CameraTransform, ProjectsWithTheDocumentedPixelConvention) {
+  const Camera camera = square_test_camera();
+  const auto apex = project_to_image(camera, {0.0, 2.5, 0.0});
+  EXPECT_NEAR(apex.x, 32.0, kProjectionTolerancePx);
+  EXPECT_NEAR(apex.y, 16.0, kProjectionTolerancePx);  // y grows downwards: row 16 is near the top
+  const auto left = project_to_image(camera, {-2.5, -2.5, 0.0});
+  EXPECT_NEAR(left.x, 16.0, kProjectionTolerancePx);
+  EXPECT_NEAR(left.y, 48.0, kProjectionTolerancePx);
+}
+
+TEST(CameraTransform, RejectsDegenerateCameras) {
+  Camera camera = square_test_camera();
+  camera.target = camera.eye;
+  EXPECT_THROW((void)view_matrix(camera), std::invalid_argument);
+  camera = square_test_camera();
+  camera.up = {0.0, 0.0, -1.0};
+  EXPECT_THROW((void)view_matrix(camera), std::invalid_argument);
+  camera = square_test_camera();
+  camera.fov_y_degrees = 180.0;
+  EXPECT_THROW((void)projection_matrix(camera), std::invalid_argument);
+}
 }  // namespace
 }  // namespace shadowcert::gpu

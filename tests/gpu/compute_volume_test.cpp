@@ -3,7 +3,7 @@
 //     refedge_multiplicities(..., Precision::float32) bit for bit (the shader mirrors
 //     core/light_side_formula.h with `precise`; Milet 2014 §2.2), on the default scene soup, a
 //     closed UV sphere and a fan of 100 triangles on one edge, point and directional lights;
-//  2. the emitted triangles form a closed chain (DESIGN.md §3): welded bitwise, every directed
+//  2. the emitted triangles form a closed chain (docs/definitions.md#counts): welded bitwise, every directed
 //     edge is balanced by its reverse;
 //  3. the stencil counts drawn from it equal those of the exact cpu chain except on volume
 //     boundaries (default.json, z-fail).
@@ -20,8 +20,8 @@
 #include <vector>
 
 #include "exact/edge_multiplicity.h"
-#include "gl_test_support.h"
-#include "volume_test_support.h"
+#include "support/gl_test_support.h"
+#include "support/volume_test_support.h"
 #include "gpu/shadow_method_renderer.h"
 #include "scene/merged_soup.h"
 #include "scene/procedural_mesh.h"
@@ -45,8 +45,11 @@ NamedSoups test_soups() {
           {"uv sphere", uv_sphere({0.2, 0.1, -0.3}, 1.0, 32, 16)},
           {"fan of 100", nonmanifold_fan(100)}};
 }
+// The GL context fixture (support/gl_test_support.h) under this unit's name, for
+// --gtest_filter=ComputeVolumeTest.*
+class ComputeVolumeTest : public GlTest {};
 
-TEST_F(GlTest, MultiplicitiesAndCapSignsEqualCpuRefedgeFloat32) {
+TEST_F(ComputeVolumeTest, MultiplicitiesAndCapSignsEqualCpuRefedgeFloat32) {
   for_each_build<ComputeShadowVolume>(
       test_soups(), {kPointLight, kDirectionalLight},
       [](const ComputeShadowVolume& volume, const Prepared& p, const Light& light) {
@@ -59,7 +62,7 @@ TEST_F(GlTest, MultiplicitiesAndCapSignsEqualCpuRefedgeFloat32) {
 
 // A half fan (volume_test_support.h) lit from the plane x = 0: |m| = k, the worst case the
 // output buffer is sized for.
-TEST_F(GlTest, HalfFanEdgeReachesMultiplicityK) {
+TEST_F(ComputeVolumeTest, HalfFanEdgeReachesMultiplicityK) {
   constexpr std::uint32_t kBlades = 100;
   const Prepared p = prepare(half_fan(kBlades));
   const ComputeVolumeSoup gpu_soup(p.canonical.soup, p.table);
@@ -74,14 +77,14 @@ TEST_F(GlTest, HalfFanEdgeReachesMultiplicityK) {
   EXPECT_TRUE(unbalanced_edges(volume.read_triangles()).empty());
 }
 
-TEST_F(GlTest, CapturedVolumeIsClosed) {
+TEST_F(ComputeVolumeTest, CapturedVolumeIsClosed) {
   for_each_build<ComputeShadowVolume>(test_soups(), {kPointLight, kDirectionalLight},
                                       [](const ComputeShadowVolume& volume, const Prepared&, const Light&) {
                                         expect_drawn_closed(volume);
                                       });
 }
 
-TEST_F(GlTest, StencilCountsMatchCpuExceptOnBoundaries) {
+TEST_F(ComputeVolumeTest, StencilCountsMatchCpuExceptOnBoundaries) {
   const Scene scene = default_scene();
   const StencilDifference c =
       stencil_difference_from_cpu(ShadowMethod::cs, merged_soup(scene), scene.lights.front(), scene.camera);

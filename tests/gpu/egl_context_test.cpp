@@ -5,7 +5,7 @@
 
 #include <iostream>
 
-#include "gl_test_support.h"
+#include "support/gl_test_support.h"
 #include "gpu/gl_error.h"
 #include "gpu/gl_object.h"
 
@@ -13,8 +13,11 @@ namespace shadowcert::gpu {
 namespace {
 
 using test::GlTest;
+// The GL context fixture (support/gl_test_support.h) under this unit's name, for
+// --gtest_filter=EglContextTest.*
+class EglContextTest : public GlTest {};
 
-TEST_F(GlTest, ReportsDeviceRendererAndVersion) {
+TEST_F(EglContextTest, ReportsDeviceRendererAndVersion) {
   EXPECT_FALSE(context_->device().empty());
   EXPECT_FALSE(context_->renderer().empty());
   EXPECT_FALSE(context_->version().empty());
@@ -33,14 +36,14 @@ TEST_F(GlTest, ReportsDeviceRendererAndVersion) {
   if (!context_->fallback_reason().empty()) std::cout << "fallback: " << context_->fallback_reason() << "\n";
 }
 
-TEST_F(GlTest, ListsDevicesWithDescriptions) {
+TEST_F(EglContextTest, ListsDevicesWithDescriptions) {
   for (const EglDeviceInfo& device : list_egl_devices()) {
     EXPECT_NE(device.describe().find("EGL device " + std::to_string(device.index)), std::string::npos);
     std::cout << device.describe() << "\n";
   }
 }
 
-TEST_F(GlTest, MovedContextKeepsWorkingAndMovedFromRefuses) {
+TEST_F(EglContextTest, MovedContextKeepsWorkingAndMovedFromRefuses) {
   EglContext moved = std::move(*context_);
   EXPECT_THROW(context_->make_current(), std::logic_error);
   moved.make_current();
@@ -53,7 +56,7 @@ TEST_F(GlTest, MovedContextKeepsWorkingAndMovedFromRefuses) {
   check_gl_errors("after moves");
 }
 
-TEST_F(GlTest, UnknownDeviceIndexThrowsEnvironmentError) {
+TEST_F(EglContextTest, UnknownDeviceIndexThrowsEnvironmentError) {
   try {
     EglContext bad(EglContextOptions{999, false});
     FAIL() << "device 999 should not exist";
@@ -62,7 +65,7 @@ TEST_F(GlTest, UnknownDeviceIndexThrowsEnvironmentError) {
   }
 }
 
-TEST_F(GlTest, EveryListedDeviceIndexIsAccepted) {
+TEST_F(EglContextTest, EveryListedDeviceIndexIsAccepted) {
   // The explicit --device path: each index either gives a 4.5 context or says why.
   for (const EglDeviceInfo& device : list_egl_devices()) {
     try {
@@ -74,9 +77,9 @@ TEST_F(GlTest, EveryListedDeviceIndexIsAccepted) {
   }
 }
 
-TEST_F(GlTest, CheckGlErrorsIsQuietWithoutErrors) { EXPECT_NO_THROW(check_gl_errors("idle")); }
+TEST_F(EglContextTest, CheckGlErrorsIsQuietWithoutErrors) { EXPECT_NO_THROW(check_gl_errors("idle")); }
 
-TEST_F(GlTest, GlErrorBecomesExceptionWithWhereAndDriverMessage) {
+TEST_F(EglContextTest, GlErrorBecomesExceptionWithWhereAndDriverMessage) {
   // A name never generated: core profile makes binding it GL_INVALID_OPERATION.
   glBindBuffer(GL_ARRAY_BUFFER, 0xBAD);
   try {
@@ -89,11 +92,6 @@ TEST_F(GlTest, GlErrorBecomesExceptionWithWhereAndDriverMessage) {
     EXPECT_NE(what.find("driver:"), std::string::npos) << what;  // the debug callback's text
   }
   EXPECT_NO_THROW(check_gl_errors("errors are consumed once reported"));
-}
-
-TEST(GlErrorName, NamesKnownAndUnknownCodes) {
-  EXPECT_EQ(gl_error_name(GL_INVALID_ENUM), "GL_INVALID_ENUM");
-  EXPECT_EQ(gl_error_name(0x1234), "GL error 0x1234");
 }
 
 }  // namespace

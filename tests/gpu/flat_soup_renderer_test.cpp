@@ -4,29 +4,17 @@
 
 #include <array>
 
-#include "gl_test_support.h"
+#include "support/gl_test_support.h"
 #include "gpu/camera_transform.h"
 #include "gpu/gl_error.h"
 #include "gpu/offscreen_target.h"
 #include "gpu/png_image.h"
+#include "square_test_camera.h"
 
 namespace shadowcert::gpu {
 namespace {
 
 using test::GlTest;
-
-// A 64x64 view where world (X, Y, 0) lands at image ((X/5 + 1) * 32, (1 - Y/5) * 32):
-// fov 90 degrees at distance 5 spans [-5, 5] both ways.
-Camera test_camera() {
-  Camera camera;
-  camera.eye = {0.0, 0.0, 5.0};
-  camera.target = {0.0, 0.0, 0.0};
-  camera.up = {0.0, 1.0, 0.0};
-  camera.fov_y_degrees = 90.0;
-  camera.width = 64;
-  camera.height = 64;
-  return camera;
-}
 
 // Apex up: image vertices (16, 48), (48, 48), (32, 16). Not symmetric top/bottom, so a
 // readback that forgot to flip rows fails the checks below.
@@ -44,33 +32,12 @@ Soup apex_up_triangle(int copies) {
 constexpr std::array<std::array<std::uint32_t, 2>, 4> kInside{{{32, 20}, {32, 37}, {20, 44}, {44, 44}}};
 constexpr std::array<std::array<std::uint32_t, 2>, 5> kOutside{{{2, 2}, {20, 20}, {44, 20}, {32, 12}, {32, 52}}};
 
-// project_to_image is exact up to double rounding of the matrices.
-constexpr double kProjectionTolerancePx = 1e-9;
+// The GL context fixture (support/gl_test_support.h) under this unit's name, for
+// --gtest_filter=FlatSoupRendererTest.*
+class FlatSoupRendererTest : public GlTest {};
 
-TEST(CameraTransform, ProjectsWithTheDocumentedPixelConvention) {
-  const Camera camera = test_camera();
-  const auto apex = project_to_image(camera, {0.0, 2.5, 0.0});
-  EXPECT_NEAR(apex.x, 32.0, kProjectionTolerancePx);
-  EXPECT_NEAR(apex.y, 16.0, kProjectionTolerancePx);  // y grows downwards: row 16 is near the top
-  const auto left = project_to_image(camera, {-2.5, -2.5, 0.0});
-  EXPECT_NEAR(left.x, 16.0, kProjectionTolerancePx);
-  EXPECT_NEAR(left.y, 48.0, kProjectionTolerancePx);
-}
-
-TEST(CameraTransform, RejectsDegenerateCameras) {
-  Camera camera = test_camera();
-  camera.target = camera.eye;
-  EXPECT_THROW((void)view_matrix(camera), std::invalid_argument);
-  camera = test_camera();
-  camera.up = {0.0, 0.0, -1.0};
-  EXPECT_THROW((void)view_matrix(camera), std::invalid_argument);
-  camera = test_camera();
-  camera.fov_y_degrees = 180.0;
-  EXPECT_THROW((void)projection_matrix(camera), std::invalid_argument);
-}
-
-TEST_F(GlTest, TriangleColoursKnownPixelsTopRowFirst) {
-  const Camera camera = test_camera();
+TEST_F(FlatSoupRendererTest, TriangleColoursKnownPixelsTopRowFirst) {
+  const Camera camera = square_test_camera();
   OffscreenTarget target(camera.width, camera.height);
   target.bind();
   target.clear({0.0f, 0.0f, 0.0f, 1.0f});
@@ -93,8 +60,8 @@ TEST_F(GlTest, TriangleColoursKnownPixelsTopRowFirst) {
   }
 }
 
-TEST_F(GlTest, StencilCountsEveryTriangleCoveringAPixel) {
-  const Camera camera = test_camera();
+TEST_F(FlatSoupRendererTest, StencilCountsEveryTriangleCoveringAPixel) {
+  const Camera camera = square_test_camera();
   OffscreenTarget target(camera.width, camera.height);
   target.bind();
   target.clear();
@@ -112,8 +79,8 @@ TEST_F(GlTest, StencilCountsEveryTriangleCoveringAPixel) {
   for (const auto& [x, row] : kOutside) EXPECT_EQ(*lit.at(x, row), 255);
 }
 
-TEST_F(GlTest, StencilCountsWrapModulo256) {
-  const Camera camera = test_camera();
+TEST_F(FlatSoupRendererTest, StencilCountsWrapModulo256) {
+  const Camera camera = square_test_camera();
   OffscreenTarget target(camera.width, camera.height);
   target.bind();
   target.clear();
@@ -123,8 +90,8 @@ TEST_F(GlTest, StencilCountsWrapModulo256) {
   for (const auto& [x, row] : kInside) EXPECT_EQ(*stencil.at(x, row), 1);  // 257 mod 256
 }
 
-TEST_F(GlTest, DepthTestKeepsTheNearerTriangle) {
-  const Camera camera = test_camera();
+TEST_F(FlatSoupRendererTest, DepthTestKeepsTheNearerTriangle) {
+  const Camera camera = square_test_camera();
   OffscreenTarget target(camera.width, camera.height);
   target.bind();
   target.clear();
@@ -138,8 +105,8 @@ TEST_F(GlTest, DepthTestKeepsTheNearerTriangle) {
   for (const auto& [x, row] : kInside) EXPECT_EQ(image.at(x, row)[1], 255) << x << "," << row;
 }
 
-TEST_F(GlTest, RenderedImagesWriteAsPng) {
-  const Camera camera = test_camera();
+TEST_F(FlatSoupRendererTest, RenderedImagesWriteAsPng) {
+  const Camera camera = square_test_camera();
   OffscreenTarget target(camera.width, camera.height);
   target.bind();
   target.clear();
@@ -150,7 +117,7 @@ TEST_F(GlTest, RenderedImagesWriteAsPng) {
   EXPECT_NO_THROW(write_png(dir + "shadowcert_triangle_stencil.png", target.read_stencil()));
 }
 
-TEST_F(GlTest, OffscreenTargetRejectsEmptySize) { EXPECT_THROW(OffscreenTarget(0, 4), GlError); }
+TEST_F(FlatSoupRendererTest, OffscreenTargetRejectsEmptySize) { EXPECT_THROW(OffscreenTarget(0, 4), GlError); }
 
 }  // namespace
 }  // namespace shadowcert::gpu

@@ -1,10 +1,11 @@
-// gpu/frame_timing.h: medians, minima and maxima of timed frames (no GL needed; it lives
-// with the GL tests because it links shadowcert_gpu).
+// gpu/frame_timing.h: medians, minima and maxima of timed frames, and the stages' JSON keys
+// (gpu/gpu_stage_timer.h's render_stage_name). No GL context needed.
 #include "gpu/frame_timing.h"
 
 #include <gtest/gtest.h>
 
 #include <stdexcept>
+#include <string_view>
 #include <vector>
 
 namespace shadowcert::gpu {
@@ -56,6 +57,12 @@ TEST(SummarizeFrames, NoFrameOrCountsDiffer_Throws) {
   const std::vector<FrameStageTimes> gpu(2);
   const std::vector<double> cpu{1.0};
   EXPECT_THROW((void)summarize_frames(stages, StageSync::none, gpu, cpu), std::invalid_argument);
+}
+
+TEST(RenderStageName, EveryStage_HasItsJsonKey) {
+  const std::vector<std::string_view> expected{"volume", "depth", "stencil", "lit", "shadow_map"};
+  ASSERT_EQ(kRenderStages.size(), expected.size());
+  for (std::size_t i = 0; i < kRenderStages.size(); ++i) EXPECT_EQ(render_stage_name(kRenderStages[i]), expected[i]);
 }
 
 }  // namespace

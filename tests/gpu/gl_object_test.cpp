@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "core/soup.h"
-#include "gl_test_support.h"
+#include "support/gl_test_support.h"
 #include "gpu/flat_soup_renderer.h"
 #include "gpu/gl_error.h"
 #include "gpu/offscreen_target.h"
@@ -94,8 +94,11 @@ TYPED_TEST(GlObjectMoveTest, MoveTransfersOwnershipAndDeletesOnce) {
   EXPECT_NE(other, name);  // its deletion by the assignment is checked by GL: no error below
   check_gl_errors("move test");
 }
+// The GL context fixture (support/gl_test_support.h) under this unit's name, for
+// --gtest_filter=GlObjectTest.*
+class GlObjectTest : public GlTest {};
 
-TEST_F(GlTest, DeletedNamesAreNoLongerObjects) {
+TEST_F(GlObjectTest, DeletedNamesAreNoLongerObjects) {
   AllObjects::Names names{};
   {
     AllObjects objects;

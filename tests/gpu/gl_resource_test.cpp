@@ -1,4 +1,4 @@
-// GL resources of the volume methods (issue 4: "no GL error, no leak across 100 create/destroy
+// GL resources of the volume methods (the promise: "no GL error, no leak across 100 create/destroy
 // cycles"), on llvmpipe or any EGL device, with a debug context (a GL error anywhere throws).
 // Each method is driven as `render --method` drives it, by gpu/shadow_method_renderer.h:
 //  1. per method (cpu, cs, gs, ts, pertri), 100 cycles in ONE context of: create the method's
@@ -10,7 +10,7 @@
 //  2. 100 cycles of the EGL context itself around one cs frame (context, renderer, target):
 //     the same counts every time, every name created in the context deleted before it goes,
 //     the same RSS bound (a leaked llvmpipe context costs about 2.6 MiB, so 90 of them would
-//     exceed it). tests/gl/gl_object_test.cpp cycles contexts around the plain GL object
+//     exceed it). tests/gpu/gl_object_test.cpp cycles contexts around the plain GL object
 //     owners.
 #include <epoxy/gl.h>
 #include <gtest/gtest.h>
@@ -29,14 +29,14 @@
 
 #include "core/camera.h"
 #include "core/light.h"
-#include "gl_test_support.h"
+#include "support/gl_test_support.h"
 #include "gpu/egl_context.h"
 #include "gpu/gl_error.h"
 #include "gpu/offscreen_target.h"
 #include "gpu/shadow_method_renderer.h"
 #include "scene/merged_soup.h"
 #include "scene/procedural_mesh.h"
-#include "volume_test_support.h"
+#include "support/volume_test_support.h"
 
 namespace shadowcert::gpu {
 namespace {

@@ -1,9 +1,9 @@
-// Every volume method against the exact `cpu` chain on the hard cases of DESIGN.md §6 (issue 4),
+// Every volume method against the exact `cpu` chain on the hard cases of docs/definitions.md#hard-cases,
 // on llvmpipe or any EGL device, each drawn as `render --method` draws it
 // (gpu/shadow_method_renderer.h, one light at a time):
 //  1. every scene of data/scenes/hard/, every one of its lights (point and directional): each
 //     method (cpu, cs, gs, ts, pertri) builds its volume without overflow and the volume it drew
-//     is certified closed by exact/'s certify_captured_closure (DESIGN.md §4.1, on the float
+//     is certified closed by exact/'s certify_volume_closure (docs/definitions.md#closure, on the float
 //     triangles read back); each GPU method's z-fail stencil counts equal the reference's on
 //     every pixel that is not a boundary pixel (defined at kBoundaryRadius), and the boundary
 //     pixels where they differ are counted and bounded by kMaxBoundaryDifferenceFraction of the
@@ -29,12 +29,13 @@
 #include <utility>
 #include <vector>
 
+#include "exact/volume_closure.h"
 #include "core/homogeneous_mesh.h"
 #include "core/scene.h"
-#include "exact/captured_volume.h"
+#include "io/volume_file.h"
 #include "exact/count_certificate.h"
-#include "exact/soup_file.h"
-#include "gl_test_support.h"
+#include "io/soup_file.h"
+#include "support/gl_test_support.h"
 #include "gpu/flat_soup_renderer.h"
 #include "gpu/offscreen_target.h"
 #include "gpu/shadow_method_renderer.h"
@@ -42,7 +43,7 @@
 #include "gpu/stencil_shadow_renderer.h"
 #include "scene/merged_soup.h"
 #include "scene/scene_file.h"
-#include "volume_test_support.h"
+#include "support/volume_test_support.h"
 
 namespace shadowcert::gpu {
 namespace {
@@ -57,7 +58,7 @@ using namespace test;
 //   - the reference's stencil count (modulo 256): a face of the reference volume passes
 //     between the two pixel centres;
 //   - coverage (a receiver drawn or not): a silhouette of the scene; or
-//   - the receiver triangle visible at the pixel centre: DESIGN.md §5 calls a pixel whose
+//   - the receiver triangle visible at the pixel centre: docs/definitions.md#pixel-protocol calls a pixel whose
 //     footprint sees different triangles ambiguous. Along a triangle's edge the volume faces
 //     that start on that edge (every edge's quads for pertri, whose interior pairs must cancel;
 //     the silhouette's quads for all) have the visible surface's own depth, and which of them
@@ -252,10 +253,10 @@ struct Rig {
   TriangleIds ids;
 };
 
-// The volume `drawn` drew is closed: exact/'s certificate (DESIGN.md §4.1) on its float
+// The volume `drawn` drew is closed: exact/'s certificate (docs/definitions.md#closure) on its float
 // triangles as drawn.
 void expect_closed(const MethodFrame& drawn) {
-  const CapturedClosure closure = certify_captured_closure(drawn.volume);
+  const VolumeClosure closure = certify_volume_closure(drawn.volume);
   EXPECT_TRUE(closure.certificate.closed)
       << shadow_method_name(drawn.method) << ": " << closure.certificate.unbalanced.size() << " unbalanced edges of "
       << drawn.volume.triangles.size() << " triangles";
@@ -301,8 +302,11 @@ INSTANTIATE_TEST_SUITE_P(HardScenes, HardCaseRenderTest, ::testing::ValuesIn(har
 // Covered non-boundary pixels where z-pass must be off by n(eye): most of the image (the eye
 // looks at floor and wall in and out of the slab's shadow).
 constexpr std::size_t kMinZPassOffPixels = 20000;
+// The GL context fixture (support/gl_test_support.h) under this unit's name, for
+// --gtest_filter=HardCaseSceneTest.*
+class HardCaseSceneTest : public GlTest {};
 
-TEST_F(GlTest, CameraInsideAVolume_ZFailEqualsCpuZPassIsOffByTheEyesCount) {
+TEST_F(HardCaseSceneTest, CameraInsideAVolume_ZFailEqualsCpuZPassIsOffByTheEyesCount) {
   const Scene scene = load_hard_scene("camera_inside_volume");
   const Rig rig(merged_soup(scene), scene.camera);
   for (std::size_t l = 0; l < scene.lights.size(); ++l) {
@@ -358,7 +362,7 @@ std::int64_t drawn_side_multiplicity(const HomogeneousMesh& volume, const Vec4f&
   return m;
 }
 
-TEST_F(GlTest, EdgeWithHundredOppositeTriangles_EveryMethodReachesMultiplicity100AndCountsAsCpu) {
+TEST_F(HardCaseSceneTest, EdgeWithHundredOppositeTriangles_EveryMethodReachesMultiplicity100AndCountsAsCpu) {
   Camera camera;
   camera.eye = {4.0, 3.0, -6.0};  // on the light's side, looking at the fan and the wall
   camera.target = {0.0, 0.5, kHalfFanWallZ};

@@ -4,7 +4,7 @@
 //     triangle_sign bit for bit, on the default scene soup and a UV sphere, point and
 //     directional lights;
 //  2. the emitted triangles, welded bitwise, balance every directed edge (each V(t) is closed,
-//     DESIGN.md §3, so their union is);
+//     docs/definitions.md#counts, so their union is);
 //  3. its stencil counts equal those of the exact cpu chain on default.json's camera except on
 //     volume boundaries (z-fail).
 #include "gpu/per_triangle_volume.h"
@@ -19,8 +19,8 @@
 #include <vector>
 
 #include "exact/edge_multiplicity.h"
-#include "gl_test_support.h"
-#include "volume_test_support.h"
+#include "support/gl_test_support.h"
+#include "support/volume_test_support.h"
 #include "gpu/shadow_method_renderer.h"
 #include "scene/merged_soup.h"
 #include "scene/procedural_mesh.h"
@@ -32,7 +32,7 @@ using test::GlTest;
 using namespace test;
 
 // Pixels of default.json at its 1024x768 camera where the pertri and cpu stencil counts may
-// differ. pertri's union of closed V(t) counts what the chain counts (DESIGN.md §3: interior
+// differ. pertri's union of closed V(t) counts what the chain counts (docs/definitions.md#counts: interior
 // sides cancel in pairs, per_triangle_volume.comp.glsl emits them as bitwise-identical
 // reversed triangles), so they differ only next to volume boundaries: a silhouette quad is
 // split on the lower-index diagonal, cpu splits it first-to-third vertex, which for half the
@@ -46,8 +46,11 @@ NamedSoups test_soups() {
   return {{"default scene", merged_soup(default_scene())},
           {"uv sphere", uv_sphere({0.2, 0.1, -0.3}, 1.0, 32, 16)}};
 }
+// The GL context fixture (support/gl_test_support.h) under this unit's name, for
+// --gtest_filter=PerTriangleVolumeTest.*
+class PerTriangleVolumeTest : public GlTest {};
 
-TEST_F(GlTest, PerTriangleSignsEqualCpuRefedgeFloat32) {
+TEST_F(PerTriangleVolumeTest, PerTriangleSignsEqualCpuRefedgeFloat32) {
   for_each_build<PerTriangleShadowVolume>(
       test_soups(), {kPointLight, kDirectionalLight},
       [](const PerTriangleShadowVolume& volume, const Prepared& p, const Light& light) {
@@ -57,7 +60,7 @@ TEST_F(GlTest, PerTriangleSignsEqualCpuRefedgeFloat32) {
       });
 }
 
-TEST_F(GlTest, CapturedPerTriangleVolumesAreClosed) {
+TEST_F(PerTriangleVolumeTest, CapturedPerTriangleVolumesAreClosed) {
   for_each_build<PerTriangleShadowVolume>(
       test_soups(), {kPointLight, kDirectionalLight},
       [](const PerTriangleShadowVolume& volume, const Prepared&, const Light& light) {
@@ -69,7 +72,7 @@ TEST_F(GlTest, CapturedPerTriangleVolumesAreClosed) {
       });
 }
 
-TEST_F(GlTest, StencilCountsMatchCpuExceptOnBoundaries) {
+TEST_F(PerTriangleVolumeTest, StencilCountsMatchCpuExceptOnBoundaries) {
   const Scene scene = default_scene();
   const StencilDifference c =
       stencil_difference_from_cpu(ShadowMethod::pertri, merged_soup(scene), scene.lights.front(), scene.camera);

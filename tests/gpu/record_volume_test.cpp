@@ -2,7 +2,7 @@
 // (gpu/tessellation_volume.h, Milet 2014 §2.2), on llvmpipe or any EGL device. They share
 // cs's signs and far vertices and differ only in how a record's |m| quads are emitted, so one
 // typed suite checks both:
-//  1. the captured triangles form a closed chain (DESIGN.md §3) on the default scene soup, a
+//  1. the captured triangles form a closed chain (docs/definitions.md#counts) on the default scene soup, a
 //     closed UV sphere and a fan of 100 triangles on one edge, point and directional lights,
 //     and the draw count is every generated primitive (no overflow);
 //  2. the stencil counts drawn from it equal those of the exact cpu chain except on volume
@@ -15,8 +15,8 @@
 #include <utility>
 #include <vector>
 
-#include "gl_test_support.h"
-#include "volume_test_support.h"
+#include "support/gl_test_support.h"
+#include "support/volume_test_support.h"
 #include "gpu/compute_volume.h"
 #include "gpu/geometry_shader_volume.h"
 #include "gpu/tessellation_volume.h"

@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include "gl_test_support.h"
+#include "support/gl_test_support.h"
 #include "gpu/flat_soup_renderer.h"
 #include "gpu/gl_error.h"
 
@@ -10,8 +10,11 @@ namespace shadowcert::gpu {
 namespace {
 
 using test::GlTest;
+// The GL context fixture (support/gl_test_support.h) under this unit's name, for
+// --gtest_filter=ShaderCompilerTest.*
+class ShaderCompilerTest : public GlTest {};
 
-TEST_F(GlTest, CompileErrorThrowsWithNameAndInfoLog) {
+TEST_F(ShaderCompilerTest, CompileErrorThrowsWithNameAndInfoLog) {
   const char* broken = "#version 450 core\nout vec4 c;\nvoid main() { c = undeclared_thing; }\n";
   try {
     (void)compile_shader(GL_FRAGMENT_SHADER, broken, "broken.frag.glsl");
@@ -24,7 +27,7 @@ TEST_F(GlTest, CompileErrorThrowsWithNameAndInfoLog) {
   }
 }
 
-TEST_F(GlTest, LinkErrorThrowsWithProgramName) {
+TEST_F(ShaderCompilerTest, LinkErrorThrowsWithProgramName) {
   // A fragment shader without main(): compiles alone, fails to link.
   const Shader no_main = compile_shader(GL_FRAGMENT_SHADER, "#version 450 core\nout vec4 c;\n", "no_main.frag");
   try {
@@ -35,7 +38,7 @@ TEST_F(GlTest, LinkErrorThrowsWithProgramName) {
   }
 }
 
-TEST_F(GlTest, EmbeddedShadersCompileAndLink) { EXPECT_NO_THROW(FlatSoupRenderer{}); }
+TEST_F(ShaderCompilerTest, EmbeddedShadersCompileAndLink) { EXPECT_NO_THROW(FlatSoupRenderer{}); }
 
 }  // namespace
 }  // namespace shadowcert::gpu

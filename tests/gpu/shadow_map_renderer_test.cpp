@@ -16,13 +16,13 @@
 #include <stdexcept>
 #include <string>
 
-#include "gl_test_support.h"
+#include "support/gl_test_support.h"
 #include "gpu/shadow_volume_geometry.h"
 #include "gpu/stencil_shadow_renderer.h"
 #include "scene/merged_soup.h"
 #include "scene/scene_file.h"
 #include "triangle_over_floor.h"
-#include "volume_test_support.h"
+#include "support/volume_test_support.h"
 
 namespace shadowcert::gpu {
 namespace {
@@ -39,10 +39,13 @@ StencilShadowFrame render_triangle(const Camera& camera, const Light& light, std
   const std::array lights{light};
   return renderer.render(target, receivers, soup_bounds(soup), camera, lights);
 }
+// The GL context fixture (support/gl_test_support.h) under this unit's name, for
+// --gtest_filter=ShadowMapRendererTest.*
+class ShadowMapRendererTest : public GlTest {};
 
 // Point light kSideLight (triangle_over_floor.h): every test point is >= 0.4 world units from
 // the shadow's boundary, many texels of even a 256^2 map fitted to the 20 x 20 floor.
-TEST_F(GlTest, PointLightShadowOfATriangleOnTheFloor) {
+TEST_F(ShadowMapRendererTest, PointLightShadowOfATriangleOnTheFloor) {
   const Camera camera = side_camera();
   for (std::uint32_t size : {256u, kDefaultShadowMapSize}) {
     SCOPED_TRACE("size " + std::to_string(size));
@@ -51,13 +54,13 @@ TEST_F(GlTest, PointLightShadowOfATriangleOnTheFloor) {
 }
 
 // Directional light kDirectionalSideLight (triangle_over_floor.h).
-TEST_F(GlTest, DirectionalLightShadowOfATriangleOnTheFloor) {
+TEST_F(ShadowMapRendererTest, DirectionalLightShadowOfATriangleOnTheFloor) {
   const Camera camera = side_camera();
   expect_shadow_pattern(camera, render_triangle(camera, kDirectionalSideLight, kDefaultShadowMapSize),
                         kDirectionalShadowed, kDirectionalLit);
 }
 
-TEST_F(GlTest, SizesOutsideTheRangeAreRejected) {
+TEST_F(ShadowMapRendererTest, SizesOutsideTheRangeAreRejected) {
   EXPECT_THROW(ShadowMapRenderer(0), std::invalid_argument);
   EXPECT_THROW(ShadowMapRenderer(kMaxShadowMapSize + 1), std::invalid_argument);
 }
@@ -68,7 +71,7 @@ TEST_F(GlTest, SizesOutsideTheRangeAreRejected) {
 // default biases: 5559 (17%) at 256, 1808 at 1024, 1041 at 2048, 634 at 4096.
 constexpr double kMaxMismatchFractionAt256 = 0.25;
 
-TEST_F(GlTest, LitMaskAgreesWithCpuExceptOnABandThatNarrowsWithSize) {
+TEST_F(ShadowMapRendererTest, LitMaskAgreesWithCpuExceptOnABandThatNarrowsWithSize) {
   const Scene scene = default_scene();
   const Soup soup = merged_soup(scene);
   const Light& light = scene.lights.front();

@@ -1,8 +1,9 @@
 // The stencil shadow pipeline on hand-built volumes of one triangle occluder over a floor
-// (DESIGN.md §3: front cap, three side quads, back cap at infinity), with the shadow region
+// (docs/definitions.md#counts: front cap, three side quads, back cap at infinity), with the shadow region
 // computed analytically: pixels well inside it must count 1 and stay unlit, pixels well
 // outside must count 0 and be lit; z-fail must survive an eye inside the volume where z-pass
-// cannot; counts wrap modulo 256 (§5).
+// cannot; counts wrap modulo 256 (docs/definitions.md#pixel-protocol).
+#include "core/vector3.h"
 #include "gpu/stencil_shadow_renderer.h"
 
 #include <gtest/gtest.h>
@@ -12,7 +13,7 @@
 #include <stdexcept>
 #include <utility>
 
-#include "gl_test_support.h"
+#include "support/gl_test_support.h"
 #include "triangle_over_floor.h"
 
 namespace shadowcert::gpu {
@@ -24,17 +25,16 @@ std::array<float, 4> finite(const Vec3& p) {
   return {static_cast<float>(p[0]), static_cast<float>(p[1]), static_cast<float>(p[2]), 1.0f};
 }
 
-// The per-triangle volume V(t) of DESIGN.md §3, built by hand for one triangle.
-ShadowVolumeGeometry triangle_volume(const Light& light) {
+// The per-triangle volume V(t) of docs/definitions.md#counts, built by hand for one triangle.
+HomogeneousMesh triangle_volume(const Light& light) {
   const auto& L = light.position;
   Vec3 a = kOccluder[0], b = kOccluder[1], c = kOccluder[2];
   // Orient t' so that its normal points towards the light.
-  const Vec3 u{b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v{c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-  const Vec3 n{u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+  const Vec3 n = cross(difference(b, a), difference(c, a));
   const Vec3 to_light = light.directional() ? Vec3{L[0], L[1], L[2]} : Vec3{L[0] - a[0], L[1] - a[1], L[2] - a[2]};
   if (n[0] * to_light[0] + n[1] * to_light[1] + n[2] * to_light[2] < 0.0) std::swap(b, c);
 
-  ShadowVolumeGeometry g;
+  HomogeneousMesh g;
   const std::array<Vec3, 3> t{a, b, c};
   for (const Vec3& p : t) g.vertices.push_back(finite(p));
   if (light.directional()) {
@@ -61,7 +61,7 @@ ShadowVolumeGeometry triangle_volume(const Light& light) {
 }
 
 StencilShadowFrame render(const Camera& camera, const Light& light, StencilMethod method, int copies = 1) {
-  ShadowVolumeGeometry g = triangle_volume(light);
+  HomogeneousMesh g = triangle_volume(light);
   const std::size_t faces = g.triangles.size();
   for (int c = 1; c < copies; ++c)
     for (std::size_t f = 0; f < faces; ++f) g.triangles.push_back(g.triangles[f]);
@@ -75,9 +75,12 @@ StencilShadowFrame render(const Camera& camera, const Light& light, StencilMetho
 }
 
 std::uint8_t stencil_at(const StencilShadowFrame& f, Pixel p) { return *f.first_stencil.at(p.x, p.row); }
+// The GL context fixture (support/gl_test_support.h) under this unit's name, for
+// --gtest_filter=StencilShadowRendererTest.*
+class StencilShadowRendererTest : public GlTest {};
 
 // Point light kSideLight (triangle_over_floor.h): both stencil methods count the floor shadow.
-TEST_F(GlTest, PointLightShadowOnTheFloorZFailAndZPass) {
+TEST_F(StencilShadowRendererTest, PointLightShadowOnTheFloorZFailAndZPass) {
   const Camera camera = side_camera();
   for (StencilMethod method : {StencilMethod::zfail, StencilMethod::zpass}) {
     SCOPED_TRACE(method == StencilMethod::zfail ? "zfail" : "zpass");
@@ -89,7 +92,7 @@ TEST_F(GlTest, PointLightShadowOnTheFloorZFailAndZPass) {
 // The eye between occluder and floor, inside V(t): looking down at shadowed floor. z-fail
 // counts the faces behind P (the volume's exit below the floor) and gets 1; z-pass sees no face between the
 // eye and P and gets 0, the textbook failure z-fail exists to avoid.
-TEST_F(GlTest, EyeInsideTheVolumeZFailCountsRightZPassDoesNot) {
+TEST_F(StencilShadowRendererTest, EyeInsideTheVolumeZFailCountsRightZPassDoesNot) {
   // Light at (0, 3, 0): the volume below the occluder widens by (3 - y) / 2 from the y axis.
   constexpr Light kOverheadLight{{0.0, 3.0, 0.0, 1.0}};
   Camera camera;
@@ -109,7 +112,7 @@ TEST_F(GlTest, EyeInsideTheVolumeZFailCountsRightZPassDoesNot) {
 
 // Directional light (triangle_over_floor.h's kDirectionalSideLight): side faces meet the one
 // far vertex (-l, 0); there is no back cap.
-TEST_F(GlTest, DirectionalLightShadow) {
+TEST_F(StencilShadowRendererTest, DirectionalLightShadow) {
   const Camera camera = side_camera();
   for (StencilMethod method : {StencilMethod::zfail, StencilMethod::zpass}) {
     SCOPED_TRACE(method == StencilMethod::zfail ? "zfail" : "zpass");
@@ -119,7 +122,7 @@ TEST_F(GlTest, DirectionalLightShadow) {
 }
 
 // 257 copies of the same volume: the count is 257 mod 256 = 1 (GL_INCR_WRAP / GL_DECR_WRAP).
-TEST_F(GlTest, CountsWrapModulo256) {
+TEST_F(StencilShadowRendererTest, CountsWrapModulo256) {
   const Camera camera = side_camera();
   const StencilShadowFrame frame = render(camera, kSideLight, StencilMethod::zfail, 257);
   for (const Vec3& p : kSideShadowed) EXPECT_EQ(stencil_at(frame, pixel_of(camera, p)), 1);
@@ -128,7 +131,7 @@ TEST_F(GlTest, CountsWrapModulo256) {
   EXPECT_EQ(stencil_at(two, pixel_of(camera, kSideShadowed[0])), 2);
 }
 
-TEST_F(GlTest, LightWithoutVolumeIsRejected) {
+TEST_F(StencilShadowRendererTest, LightWithoutVolumeIsRejected) {
   const Soup soup = triangle_over_floor();
   const ShadedSoupMesh receivers(soup);
   const StencilShadowRenderer renderer;

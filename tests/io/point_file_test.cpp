@@ -1,6 +1,6 @@
-// scene/point_file.h: certify's --points files, read from a file or from text, with every
+// io/point_file.h: certify's --points files, read from a file or from text, with every
 // bad line an InputError naming the file and line.
-#include "scene/point_file.h"
+#include "io/point_file.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>

@@ -1,6 +1,6 @@
-// Tests of exact/soup_file.h: round trips, the same cube in every format, fan
+// Tests of io/soup_file.h: round trips, the same cube in every format, fan
 // triangulation, the bad-file corpus (tests/data/bad/EXPECTED.tsv) and the real meshes.
-#include "exact/soup_file.h"
+#include "io/soup_file.h"
 
 #include <gtest/gtest.h>
 

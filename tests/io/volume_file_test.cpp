@@ -1,6 +1,6 @@
-// exact/captured_volume.h: the .vol file round-trips floats bit for bit, rejects bad files
-// naming file:line, and its closure certificate sees a missing face.
-#include "exact/captured_volume.h"
+// io/volume_file.h: the .vol file round-trips floats bit for bit, welds what it writes, and
+// rejects bad files naming file:line.
+#include "io/volume_file.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -20,7 +20,7 @@ namespace {
 namespace fs = std::filesystem;
 
 fs::path temp_file(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("shadowcert_captured_volume_test_" + std::to_string(::getpid()));
+  const fs::path dir = fs::temp_directory_path() / ("shadowcert_volume_file_test_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   return dir / name;
 }
@@ -31,34 +31,25 @@ fs::path write_text(const std::string& name, const std::string& text) {
   return file;
 }
 
-// A tetrahedron with outward faces: the smallest closed volume; vertex 3 is at infinity so
-// w = 0 vertices take part like any other.
-CapturedVolume tetrahedron() {
-  CapturedVolume v;
-  v.vertices = {{0, 0, 0, 1}, {1, 0, 0, 1}, {0, 1, 0, 1}, {0.25f, 0.25f, 1, 0}};
-  v.triangles = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {2, 0, 3}};
-  return v;
-}
-
 std::string read_error(const fs::path& file) {
   try {
-    (void)read_captured_volume(file);
+    (void)read_volume_file(file);
   } catch (const InputError& e) {
     return e.what();
   }
   return "no error";
 }
 
-TEST(CapturedVolume, RoundTrip_IsBitwiseIncludingNegativeZeroAndInfinity) {
-  CapturedVolume v;
+TEST(VolumeFile, RoundTrip_IsBitwiseIncludingNegativeZeroAndInfinity) {
+  HomogeneousMesh v;
   const float tiny = std::numeric_limits<float>::denorm_min();
   v.vertices = {{0.1f, -0.0f, 1e-30f, 1.0f},
                 {3.4028235e38f, tiny, -7.123456789f, 0.0f},
                 {1.0f / 3.0f, -2.0f / 3.0f, 12345.678f, 1.0f}};
   v.triangles = {{0, 1, 2}};
   const fs::path file = temp_file("round_trip.vol");
-  write_captured_volume(file, v, "two\nlines");
-  const CapturedVolume back = read_captured_volume(file);
+  write_volume_file(file, v, "two\nlines");
+  const HomogeneousMesh back = read_volume_file(file);
   ASSERT_EQ(back.vertices.size(), 3u);
   ASSERT_EQ(back.triangles, v.triangles);
   for (std::size_t i = 0; i < 3; ++i)
@@ -67,26 +58,26 @@ TEST(CapturedVolume, RoundTrip_IsBitwiseIncludingNegativeZeroAndInfinity) {
           << i << "," << k;
 }
 
-TEST(CapturedVolume, Write_WeldsBitwiseEqualVerticesAndSignedZeros) {
-  CapturedVolume v;
+TEST(VolumeFile, Write_WeldsBitwiseEqualVerticesAndSignedZeros) {
+  HomogeneousMesh v;
   v.vertices = {{0, 0, 0, 1}, {1, 0, 0, 1}, {0, 1, 0, 1}, {-0.0f, 0, -0.0f, 1}, {1, 0, 0, 0}};
   v.triangles = {{0, 1, 2}, {3, 2, 4}};
   const fs::path file = temp_file("weld.vol");
-  write_captured_volume(file, v);
-  const CapturedVolume back = read_captured_volume(file);
+  write_volume_file(file, v);
+  const HomogeneousMesh back = read_volume_file(file);
   EXPECT_EQ(back.vertices.size(), 4u);  // (-0, 0, -0, 1) is (0, 0, 0, 1); (1, 0, 0, 0) stays apart (w)
   ASSERT_EQ(back.triangles.size(), 2u);
   EXPECT_EQ(back.triangles[1][0], 0u);
 }
 
-TEST(CapturedVolume, PolygonFace_IsReadAsAFan) {
+TEST(VolumeFile, PolygonFace_IsReadAsAFan) {
   const fs::path file = write_text("quad.vol", "# a quad\nv 0 0 0 1\nv 1 0 0 1\nv 1 1 0 1\nv 0 1 0 0\nf 1 2 3 4\n");
-  const CapturedVolume v = read_captured_volume(file);
+  const HomogeneousMesh v = read_volume_file(file);
   ASSERT_EQ(v.triangles.size(), 2u);
   EXPECT_EQ(v.triangles[1], (std::array<std::uint32_t, 3>{0, 2, 3}));
 }
 
-TEST(CapturedVolume, BadFiles_NameFileAndLine) {
+TEST(VolumeFile, BadFiles_NameFileAndLine) {
   struct Case {
     const char* name;
     const char* text;
@@ -111,57 +102,23 @@ TEST(CapturedVolume, BadFiles_NameFileAndLine) {
   EXPECT_NE(read_error(temp_file("missing.vol")).find("missing.vol: cannot open"), std::string::npos);
 }
 
-TEST(CapturedVolume, ParseText_SameAsReadingTheFile) {
+TEST(VolumeFile, ParseText_SameAsReadingTheFile) {
   const std::string text = "# c\nv 0 0 0 1\nv 1 0 0 1\nv 0 1 0 1\nv 0.25 0.25 1 0\nf 1 3 2\nf 1 2 4 3\n";
   const fs::path file = write_text("parse.vol", text);
-  const CapturedVolume from_file = read_captured_volume(file);
-  const CapturedVolume from_text = parse_captured_volume(text, file.string());
+  const HomogeneousMesh from_file = read_volume_file(file);
+  const HomogeneousMesh from_text = parse_volume_file(text, file.string());
   EXPECT_EQ(from_text.vertices, from_file.vertices);
   EXPECT_EQ(from_text.triangles, from_file.triangles);
   EXPECT_EQ(from_text.triangles.size(), 3u);
   const std::string bad = "v 0 0 0 1\nf 1 1 2\n";
   const fs::path bad_file = write_text("parse_bad.vol", bad);
   try {
-    (void)parse_captured_volume(bad, bad_file.string());
+    (void)parse_volume_file(bad, bad_file.string());
     FAIL() << "not rejected";
   } catch (const InputError& e) {
     EXPECT_EQ(std::string(e.what()), read_error(bad_file));
     EXPECT_EQ(e.line(), 2u);
   }
-}
-
-TEST(CapturedVolume, ClosedTetrahedron_IsClosed) {
-  const CapturedClosure result = certify_captured_closure(tetrahedron());
-  EXPECT_TRUE(result.certificate.closed);
-  EXPECT_TRUE(result.certificate.unbalanced.empty());
-}
-
-TEST(CapturedVolume, TetrahedronMissingAFace_HasThreeUnbalancedEdges) {
-  CapturedVolume v = tetrahedron();
-  v.triangles.pop_back();
-  const CapturedClosure result = certify_captured_closure(v);
-  EXPECT_FALSE(result.certificate.closed);
-  EXPECT_EQ(result.certificate.unbalanced.size(), 3u);
-}
-
-TEST(CapturedVolume, TriangleSoupOfAClosedVolume_IsClosedAfterWelding) {
-  // As the GPU reads back: three fresh vertices per triangle, some zeros negative.
-  CapturedVolume soup;
-  const CapturedVolume tet = tetrahedron();
-  for (const auto& t : tet.triangles) {
-    const auto first = static_cast<std::uint32_t>(soup.vertices.size());
-    for (std::uint32_t id : t) {
-      auto p = tet.vertices[id];
-      if (first % 2 == 1)
-        for (float& x : p)
-          if (x == 0.0f) x = -0.0f;
-      soup.vertices.push_back(p);
-    }
-    soup.triangles.push_back({first, first + 1, first + 2});
-  }
-  const CapturedClosure result = certify_captured_closure(soup);
-  EXPECT_TRUE(result.certificate.closed);
-  EXPECT_EQ(result.welded.vertices.size(), 4u);
 }
 
 }  // namespace

@@ -1,8 +1,8 @@
-// `shadowcert diff`'s protocol on real GL frames (DESIGN.md §5; docs/diff.md): every method
+// `shadowcert diff`'s protocol on real GL frames (docs/definitions.md#pixel-protocol; docs/diff.md): every method
 // of gpu/shadow_method_renderer.h renders each light alone, and its readback is compared with
-// the exact image (exact/exact_image.h with the GL depth band of gpu/depth_precision.h,
-// marked by the float-rounded scene, exact/input_rounding.h) by exact/pixel_comparison.h; the
-// volume it drew is certified by exact/captured_volume.h.
+// the exact image (pipeline/scene_comparison.h's reference_image and compare_light, the code
+// diff runs: the GL depth band, the float-rounded scene's marks, reference/pixel_comparison.h);
+// the volume it drew is certified by exact/volume_closure.h.
 //  1. the default scene and every scene of data/scenes/hard/: zero hard errors and closed
 //     volumes for every robust method (cpu, cs, gs, ts, pertri) with z-fail; cpu included on
 //     light_one_ulp_off_floor_plane.json, as it draws the exact chain of the float-rounded
@@ -23,16 +23,14 @@
 #include <vector>
 
 #include "core/homogeneous_mesh.h"
-#include "exact/captured_volume.h"
-#include "exact/exact_image.h"
-#include "exact/input_rounding.h"
-#include "exact/pixel_comparison.h"
-#include "exact/soup_file.h"
-#include "gl_test_support.h"
-#include "gpu/depth_precision.h"
 #include "gpu/offscreen_target.h"
 #include "gpu/shadow_method_renderer.h"
-#include "volume_test_support.h"
+#include "io/soup_file.h"
+#include "pipeline/scene_comparison.h"
+#include "reference/exact_image.h"
+#include "reference/pixel_comparison.h"
+#include "support/gl_test_support.h"
+#include "support/volume_test_support.h"
 
 namespace shadowcert::gpu {
 namespace {
@@ -44,16 +42,14 @@ constexpr std::uint32_t kWidth = 96;
 constexpr std::uint32_t kHeight = 72;
 
 // One scene prepared as `shadowcert diff` prepares it: every method's inputs, and the exact
-// image at kWidth x kHeight.
-struct DiffScene : MethodInputs {
+// image at kWidth x kHeight (pipeline/scene_comparison.h's reference_image).
+struct DiffScene : PreparedScene {
   ExactImage exact;
 
-  explicit DiffScene(Scene s) : MethodInputs(std::move(s)) {
+  explicit DiffScene(Scene s) : PreparedScene(std::move(s)) {
     scene.camera.width = kWidth;
     scene.camera.height = kHeight;
-    ExactImageOptions options;
-    options.depth_band = [](double view_depth) { return depth_band(view_depth); };
-    exact = exact_image_of_float_input(soup, scene.lights, scene.camera, options);
+    exact = reference_image(scene);
   }
 };
 
@@ -62,20 +58,15 @@ struct LightResult {
   bool closed = true;  // what was drawn, certified exactly (volume methods)
 };
 
-// Renders light `k` alone with `method` and compares; `cpu_volume` replaces cpu's exact chain.
+// Renders light `k` alone with `method` and compares it as diff does (compare_light);
+// `cpu_volume` replaces cpu's exact chain.
 LightResult run_light(const DiffScene& d, ShadowMethod method, std::size_t k, const ShadowMethodOptions& options,
                       const HomogeneousMesh* cpu_volume = nullptr) {
   ShadowMethodRenderer renderer(method, d.light_scene(k, cpu_volume), options);
   const OffscreenTarget target(d.scene.camera.width, d.scene.camera.height);
-  const StencilShadowFrame frame = renderer.render(target, d.scene.camera);
-  renderer.check_capacity();
-  std::vector<std::uint8_t> covered(frame.first_lit_mask.pixels.size());
-  for (std::size_t p = 0; p < covered.size(); ++p) covered[p] = frame.colour.pixels[4 * p + 3];
-  RenderedPixels rendered{d.scene.camera.width, d.scene.camera.height, covered, frame.first_lit_mask.pixels, {}};
-  if (draws_volume(method)) rendered.counts = frame.first_stencil.pixels;
-  LightResult r{compare_pixels(d.exact, k, rendered)};
-  if (draws_volume(method)) r.closed = certify_captured_closure(renderer.first_volume()).certificate.closed;
-  return r;
+  const LightRun run = compare_light(renderer, d.exact, k, target, d.scene.camera);
+  EXPECT_EQ(run.capacity_error, "");
+  return {run.comparison, !run.closure || run.closure->closed};
 }
 
 constexpr std::array<ShadowMethod, 5> kRobustMethods{ShadowMethod::cpu, ShadowMethod::cs, ShadowMethod::gs,
@@ -93,8 +84,11 @@ void expect_robust_methods_exact(const DiffScene& d, const std::string& name) {
                                               << r.comparison.lit_errors << ", count " << r.comparison.count_errors;
     }
 }
+// The GL context fixture (support/gl_test_support.h) under this unit's name, for
+// --gtest_filter=SceneComparisonTest.*
+class SceneComparisonTest : public GlTest {};
 
-TEST_F(GlTest, DefaultScene_RobustMethodsWithZFail_HaveNoHardErrorAndClosedVolumes) {
+TEST_F(SceneComparisonTest, DefaultScene_RobustMethodsWithZFail_HaveNoHardErrorAndClosedVolumes) {
   const DiffScene d(default_scene());
   expect_robust_methods_exact(d, "default");
 }
@@ -130,7 +124,7 @@ TEST(HardSceneList, IsNotEmpty) { EXPECT_GE(hard_scenes().size(), 10u); }
 
 // ---- planted faults ---------------------------------------------------------------------------
 
-TEST_F(GlTest, DroppedSideQuad_IsAnOpenVolumeAndHardErrors) {
+TEST_F(SceneComparisonTest, DroppedSideQuad_IsAnOpenVolumeAndHardErrors) {
   const DiffScene d(default_scene());
   const LightResult exact = run_light(d, ShadowMethod::cpu, 0, {});
   ASSERT_EQ(exact.comparison.hard_errors, 0u);
@@ -150,7 +144,7 @@ TEST_F(GlTest, DroppedSideQuad_IsAnOpenVolumeAndHardErrors) {
   EXPECT_TRUE(leaked) << "no dropped side quad of the 40 last ones changed an unambiguous pixel";
 }
 
-TEST_F(GlTest, ReversedCap_IsAnOpenVolumeAndHardErrors) {
+TEST_F(SceneComparisonTest, ReversedCap_IsAnOpenVolumeAndHardErrors) {
   const DiffScene d(default_scene());
   // The caps come first in chain_mesh's output: reverse each of the first ones in turn until
   // one whose shadow reaches unambiguous pixels (its own volume then counts the other way).
@@ -167,7 +161,7 @@ TEST_F(GlTest, ReversedCap_IsAnOpenVolumeAndHardErrors) {
 
 // ---- the shadow map: speed against error -------------------------------------------------------
 
-TEST_F(GlTest, ShadowMap_HardErrorsShrinkAsItsResolutionGrows) {
+TEST_F(SceneComparisonTest, ShadowMap_HardErrorsShrinkAsItsResolutionGrows) {
   Scene scene = default_scene();
   const DiffScene d(std::move(scene));
   std::vector<std::uint64_t> errors;

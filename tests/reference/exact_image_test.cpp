@@ -1,8 +1,8 @@
-// The exact image (exact/exact_image.h, DESIGN.md §5): the shadow of a sphere over a floor
+// The exact image (reference/exact_image.h, docs/definitions.md#pixel-protocol): the shadow of a sphere over a floor
 // against the analytic disc, a square's shadow under a directional light, invariance under
 // vertex relabelling, face reversal and translation, a ray exactly through a shared edge, the
 // terminator of a triangle facing away from the light, and input validation.
-#include "exact/exact_image.h"
+#include "reference/exact_image.h"
 
 #include <gtest/gtest.h>
 
@@ -14,7 +14,7 @@
 #include <random>
 #include <vector>
 
-#include "certificate_test_support.h"
+#include "support/certificate_test_support.h"
 #include "exact/count_certificate.h"
 #include "core/pixel_ray.h"
 #include "scene/procedural_mesh.h"
@@ -389,14 +389,14 @@ std::uint32_t float_first_hit(const Soup& soup, const PixelRay& ray) {
     const Vec3& b = soup.vertices[soup.triangles[id][1]];
     const Vec3& c = soup.vertices[soup.triangles[id][2]];
     const Vec3 e1{b[0] - a[0], b[1] - a[1], b[2] - a[2]}, e2{c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-    const Vec3 p = detail::cross(ray.direction, e2);
-    const double det = detail::dot(e1, p);
+    const Vec3 p = cross(ray.direction, e2);
+    const double det = dot(e1, p);
     if (det == 0.0) continue;
     const Vec3 s{ray.origin[0] - a[0], ray.origin[1] - a[1], ray.origin[2] - a[2]};
-    const double u = detail::dot(s, p) / det;
-    const Vec3 q = detail::cross(s, e1);
-    const double v = detail::dot(ray.direction, q) / det;
-    const double t = detail::dot(e2, q) / det;
+    const double u = dot(s, p) / det;
+    const Vec3 q = cross(s, e1);
+    const double v = dot(ray.direction, q) / det;
+    const double t = dot(e2, q) / det;
     if (u < 0.0 || v < 0.0 || u + v > 1.0 || t <= 0.0 || t >= best_t) continue;
     best_t = t;
     best = id;
@@ -422,7 +422,7 @@ TEST(ExactImage, UnambiguousPixels_AgreeWithAFloatRayCasterAndTheOccluderCounter
       // On the floor (y = 0, facing the lights): the double floor point lifted by 2^-30 sees
       // the same occluders as P unless a shadow boundary passes within ~1e-9 of the pixel
       // centre, which the pixel's agreeing corners make implausible; the lift keeps the
-      // floor itself out of the count, as P's own triangle is (§5).
+      // floor itself out of the count, as P's own triangle is (docs/definitions.md#pixel-protocol).
       Vec3 x = floor_point(frame, i, r);
       x[1] = std::ldexp(1.0, -30);
       for (std::size_t l = 0; l < s.lights.size(); ++l) {

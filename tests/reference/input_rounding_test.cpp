@@ -1,14 +1,14 @@
-// The scene as a float renderer receives it (exact/input_rounding.h): rounding, and the pixels
-// whose exact answer it changes. DESIGN.md §6's floor lit one double ulp above its plane is
+// The scene as a float renderer receives it (reference/input_rounding.h): rounding, and the pixels
+// whose exact answer it changes. docs/definitions.md#hard-cases's floor lit one double ulp above its plane is
 // lit exactly, but in float the light lies on the floor: every floor pixel becomes ambiguous.
-#include "exact/input_rounding.h"
+#include "reference/input_rounding.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <vector>
 
-#include "certificate_test_support.h"
+#include "support/certificate_test_support.h"
 #include "scene/procedural_mesh.h"
 
 namespace {

@@ -1,9 +1,10 @@
-// The diff's verdicts without GL (exact/pixel_comparison.h, DESIGN.md §5): a renderer that
+// The diff's verdicts without GL (reference/pixel_comparison.h, docs/definitions.md#pixel-protocol): a renderer that
 // draws the exact answer agrees everywhere; planted faults are caught. A triangle whose light
 // side is flipped (consistently, so its volume stays closed) leaves hard errors exactly where
 // its own volume covers an unambiguous pixel; a dropped side quad or a reversed cap leaves the
-// captured volume open (exact/captured_volume.h). Ambiguous pixels never count as errors.
-#include "exact/pixel_comparison.h"
+// captured volume open (io/volume_file.h). Ambiguous pixels never count as errors.
+#include "exact/volume_closure.h"
+#include "reference/pixel_comparison.h"
 
 #include <gtest/gtest.h>
 
@@ -12,12 +13,12 @@
 #include <filesystem>
 #include <vector>
 
-#include "certificate_test_support.h"
-#include "exact/captured_volume.h"
+#include "support/certificate_test_support.h"
+#include "io/volume_file.h"
 #include "exact/chain_mesh.h"
 #include "exact/edge_multiplicity.h"
 #include "exact/shadow_volume_chain.h"
-#include "exact/soup_file.h"
+#include "io/soup_file.h"
 #include "scene/canonical_soup.h"
 #include "scene/edge_table.h"
 #include "scene/merged_soup.h"
@@ -174,7 +175,7 @@ TEST(PixelComparison, EachKindOfMismatch_IsOneHardError) {
   EXPECT_EQ(compare_pixels(image, 0, r.pixels(false)).hard_errors, 2u);
 }
 
-// Stencil counts wrap (DESIGN.md §5): 256 crossings leave 0 in an 8-bit stencil, which agrees
+// Stencil counts wrap (docs/definitions.md#pixel-protocol): 256 crossings leave 0 in an 8-bit stencil, which agrees
 // with n = 256 for a counting method; a mask-only method has no such excuse.
 TEST(PixelComparison, CountsAreComparedModulo256) {
   ExactImage image;
@@ -213,25 +214,25 @@ HomogeneousMesh default_scene_volume() {
                     light);
 }
 
-TEST(CapturedClosure, ExactChainMesh_IsClosed) {
-  EXPECT_TRUE(certify_captured_closure(default_scene_volume()).certificate.closed);
+TEST(VolumeClosure, ExactChainMesh_IsClosed) {
+  EXPECT_TRUE(certify_volume_closure(default_scene_volume()).certificate.closed);
 }
 
-TEST(CapturedClosure, DroppedSideQuad_IsAnOpenVolume) {
+TEST(VolumeClosure, DroppedSideQuad_IsAnOpenVolume) {
   HomogeneousMesh mesh = default_scene_volume();
   // chain_mesh writes the quads last, each as two triangles: drop the last quad.
   ASSERT_GE(mesh.triangles.size(), 2u);
   mesh.triangles.resize(mesh.triangles.size() - 2);
-  const CapturedClosure c = certify_captured_closure(mesh);
+  const VolumeClosure c = certify_volume_closure(mesh);
   EXPECT_FALSE(c.certificate.closed);
   // Its four edges, less the diagonal both halves shared.
   EXPECT_EQ(c.certificate.unbalanced.size(), 4u);
 }
 
-TEST(CapturedClosure, ReversedCap_IsAnOpenVolume) {
+TEST(VolumeClosure, ReversedCap_IsAnOpenVolume) {
   HomogeneousMesh mesh = default_scene_volume();
   std::swap(mesh.triangles.front()[1], mesh.triangles.front()[2]);  // a front cap, sign flipped
-  const CapturedClosure c = certify_captured_closure(mesh);
+  const VolumeClosure c = certify_volume_closure(mesh);
   EXPECT_FALSE(c.certificate.closed);
   EXPECT_EQ(c.certificate.unbalanced.size(), 3u);
   for (const UnbalancedEdge& e : c.certificate.unbalanced) EXPECT_EQ(std::abs(e.excess), 2);

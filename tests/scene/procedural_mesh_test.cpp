@@ -1,3 +1,4 @@
+#include "core/vector3.h"
 #include "scene/procedural_mesh.h"
 
 #include <gtest/gtest.h>
@@ -14,6 +15,9 @@
 #include "scene/sphere_grid_layout.h"
 
 using shadowcert::Soup;
+using shadowcert::cross;
+using shadowcert::difference;
+using shadowcert::dot;
 using shadowcert::Triangle;
 using shadowcert::Vec3;
 
@@ -58,11 +62,7 @@ std::map<UndirectedEdge, int> undirected_edge_counts(const Soup& s) {
   return ::testing::AssertionFailure() << s.vertices.size() - distinct.size() << " duplicated positions";
 }
 
-Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-Vec3 cross(const Vec3& a, const Vec3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+Vec3 sub(const Vec3& a, const Vec3& b) { return difference(a, b); }
 
 // Divergence theorem about `origin`: positive iff the closed surface is oriented outwards.
 double signed_volume(const Soup& s, const Vec3& origin) {

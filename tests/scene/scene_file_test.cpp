@@ -1,3 +1,4 @@
+#include "core/vector3.h"
 #include "scene/scene_file.h"
 
 #include <gtest/gtest.h>
@@ -15,6 +16,9 @@
 using shadowcert::InputError;
 using shadowcert::Scene;
 using shadowcert::Soup;
+using shadowcert::cross;
+using shadowcert::difference;
+using shadowcert::dot;
 using shadowcert::Vec3;
 
 namespace {
@@ -29,11 +33,7 @@ Soup no_mesh_files(const std::filesystem::path& p) {
 
 Scene parse(const std::string& json) { return shadowcert::parse_scene(json, "inline.json", "/scenes", no_mesh_files); }
 
-Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-Vec3 cross(const Vec3& a, const Vec3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+Vec3 sub(const Vec3& a, const Vec3& b) { return difference(a, b); }
 Vec3 unit(const Vec3& v) {
   const double l = std::sqrt(dot(v, v));
   return {v[0] / l, v[1] / l, v[2] / l};
@@ -46,7 +46,7 @@ double signed_volume(const Soup& s) {
   return six_v / 6.0;
 }
 
-// Whether a world point projects inside the camera's image (pinhole, DESIGN.md section 5).
+// Whether a world point projects inside the camera's image (pinhole, docs/definitions.md#pixel-protocol).
 bool in_view(const shadowcert::Camera& c, const Vec3& q) {
   const Vec3 f = unit(sub(c.target, c.eye));
   const Vec3 r = unit(cross(f, c.up));
@@ -299,7 +299,7 @@ TEST(LoadScene, BadScenes_ErrorNamesFileKeyAndProblem) {
       {"vec3_length.json", "camera.eye: expected an array of 3 numbers, got 2 elements", 0},
       {"fractional_integer.json", "meshes[0].params.subdivisions: expected an unsigned integer, got 2.5", 0},
       {"meshes_not_array.json", "meshes: expected an array, got object", 0},
-      {"image_too_large.json", "camera.size[0]: expected an unsigned integer <= 32768, got 100000", 0},
+      {"image_too_large.json", "camera.size[0]: expected an unsigned integer <= 16384, got 100000", 0},
       {"open_box_params.json", "unknown key 'size' in meshes[0].params (it takes no keys)", 0},
       {"overflowing_transform.json", "meshes[0].transform: maps a vertex to a non-finite coordinate", 0},
       {"description_type.json", "description: expected a string, got number", 0},

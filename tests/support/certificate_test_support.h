@@ -1,6 +1,6 @@
 #pragma once
 // Shared by the chain and certificate tests: the pipeline soup -> canonical soup -> edge table
-// -> multiplicities -> chain (DESIGN.md §3, §4), small soups, and the checks every hard case
+// -> multiplicities -> chain (docs/definitions.md#counts, docs/definitions.md#certificates), small soups, and the checks every hard case
 // runs. Header-only, test code only.
 #include <gtest/gtest.h>
 
@@ -60,7 +60,7 @@ inline std::string run_name(const MethodRun& r) {
   return std::string(method_name(r.method)) + (r.precision == Precision::float32 ? " float" : " double");
 }
 
-// Methods that are consistent per triangle (DESIGN.md §3): their chains must close.
+// Methods that are consistent per triangle (docs/definitions.md#counts): their chains must close.
 inline const std::vector<MethodRun>& consistent_runs() {
   static const std::vector<MethodRun> runs{{MultiplicityMethod::exact, Precision::float64},
                                            {MultiplicityMethod::refedge, Precision::float32},
@@ -137,7 +137,7 @@ inline CountSampling small_sampling(std::uint64_t seed, std::uint64_t in_box = 3
   return s;
 }
 
-// Every check a hard case runs (DESIGN.md §6), for one consistent method:
+// Every check a hard case runs (docs/definitions.md#hard-cases), for one consistent method:
 //  - the chain is closed;
 //  - certify_counts finds no failure, when the method's signs are the exact ones (always for
 //    exact); a float method that rounds a sign differently claims another count there, so

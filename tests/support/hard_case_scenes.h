@@ -1,7 +1,7 @@
 #pragma once
-// The hard cases of DESIGN.md §6: the soups tests/hard_cases_test.cpp certifies (one builder
+// The hard cases of docs/definitions.md#hard-cases: the soups tests/exact/hard_cases_test.cpp certifies (one builder
 // each, the only copy), and the same configurations as named (soup, light) scenes for tests
-// that run every method over all of them (tests/float_method_hard_cases_test.cpp).
+// that run every method over all of them (tests/campaign/float_method_hard_cases_test.cpp).
 // Header-only, test code only.
 #include <cmath>
 #include <cstdint>
@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "certificate_test_support.h"
+#include "support/certificate_test_support.h"
 #include "scene/procedural_mesh.h"
 
 namespace shadowcert::test_support {
@@ -41,7 +41,7 @@ inline Soup cube_on_floor() {
 
 // k triangles on the edge (0,0,0)-(0,1,0), apexes on the half circle z > 0, alternately
 // flipped: with the light in the plane z = 0 away from the edge every apex lies on the same
-// side of the plane (edge, light), so |m| = k (DESIGN.md §6: beyond 32, one patch).
+// side of the plane (edge, light), so |m| = k (docs/definitions.md#hard-cases: beyond 32, one patch).
 inline Soup half_fan(std::uint32_t k) {
   Soup s;
   s.vertices = {{0.0, 0.0, 0.0}, {0.0, 1.0, 0.0}};
@@ -151,7 +151,7 @@ inline std::vector<GridSoup> integer_grid_soups(std::uint64_t seed, int rounds) 
   return soups;
 }
 
-// The pinned soup of tests/closure_certificate_test.cpp: two triangles on a tilted plane
+// The pinned soup of tests/exact/closure_certificate_test.cpp: two triangles on a tilted plane
 // through the light, up to the rounding of every coordinate to float.
 inline HardCaseScene pinned_tilted_plane() {
   return {"pinned tilted plane through the light",
@@ -211,7 +211,7 @@ inline std::vector<HardCaseScene> hard_case_scenes() {
   add("light above a cube on a floor (camera inside a volume)", cube_on_floor(), point_light(0.1, 4.0, 0.2));
   add("light inside a closed sphere", uv_sphere({0, 0, 0}, 1.0, 16, 8), point_light(0.1, 0.2, -0.05));
   add("light inside a closed cube", unit_cube(), point_light(0.5, 0.5, 0.5));
-  // Soups snapped to the grid {-2, ..., 2}^3, as in tests/hard_cases_test.cpp (seed 128).
+  // Soups snapped to the grid {-2, ..., 2}^3, as in tests/exact/hard_cases_test.cpp (seed 128).
   int round = 0;
   for (const GridSoup& g : integer_grid_soups(128, 4)) {
     add("integer grid soup " + std::to_string(round) + ", point light", g.soup, g.point);

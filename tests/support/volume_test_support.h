@@ -5,8 +5,8 @@
 // difference from cpu, the per-soup, per-light build loop of the volume classes' own tests, and
 // the closure check of captured triangles. The reference every method is compared with is the
 // exact cpu chain as GPU geometry, exact/cpu_volume.h's cpu_volume_mesh (what render --method
-// cpu draws): tests that include this header link shadowcert_exact (CPU reference only: gpu/ never
-// does; tests/gl/CMakeLists.txt). Scenes are merged into one soup as the CLI merges them
+// cpu draws): tests that include this header link shadowcert_pipeline (CPU reference only: gpu/
+// never links exact/; tests/CMakeLists.txt). Scenes are merged into one soup as the CLI merges them
 // (scene/merged_soup.h). Test code only.
 #include <gtest/gtest.h>
 
@@ -37,6 +37,7 @@
 #include "gpu/shadow_method_renderer.h"
 #include "gpu/shadow_volume_geometry.h"
 #include "gpu/stencil_shadow_renderer.h"
+#include "pipeline/method_inputs.h"
 #include "scene/canonical_soup.h"
 #include "scene/edge_table.h"
 #include "scene/merged_soup.h"
@@ -47,15 +48,12 @@ namespace shadowcert::gpu::test {
 inline const Light kPointLight{{1.5, 4.0, 2.5, 1.0}};
 inline const Light kDirectionalLight{{0.3, 1.0, 0.2, 0.0}};
 
-struct Prepared {
-  CanonicalSoup canonical;
-  EdgeTable table;
-};
+// The canonical soup and edge table of a test soup (pipeline/method_inputs.h, no cpu volumes).
+using Prepared = MethodInputs;
 
 inline Prepared prepare(const Soup& soup) {
-  Prepared p{canonical_soup(soup), {}};
-  p.table = build_edge_table(p.canonical.soup);
-  return p;
+  const std::array gpu_built{ShadowMethod::cs};
+  return prepare_method_inputs(soup, {}, gpu_built);
 }
 
 inline Scene default_scene() {
@@ -88,12 +86,8 @@ inline HomogeneousMesh cpu_volume(const Prepared& p, const Light& light) {
 // they live, and keep `*cpu` alive as long as the renderer (it reads the rest while constructed).
 inline ShadowMethodScene one_light_scene(std::span<const ShadedSoupPart> receivers, const Prepared& p,
                                          const Light& light, const HomogeneousMesh* cpu) {
-  ShadowMethodScene scene;
-  scene.receivers = receivers;
-  scene.lights = std::span(&light, 1);
-  scene.canonical = &p.canonical.soup;
-  scene.table = &p.table;
-  if (cpu != nullptr) scene.cpu_volumes = std::span(cpu, 1);
+  ShadowMethodScene scene = method_scene(p, receivers, std::span(&light, 1));
+  scene.cpu_volumes = cpu != nullptr ? std::span(cpu, 1) : std::span<const HomogeneousMesh>{};
   return scene;
 }
 
@@ -112,32 +106,31 @@ inline ShadowMethodRenderer one_light_renderer(ShadowMethod method, const Soup& 
   return ShadowMethodRenderer(method, one_light_scene(parts, prepared, light, cpu), options);
 }
 
-// A scene ready for every method, as `shadowcert render` prepares it: its meshes merged
-// (merged_soup) as the casters, canonicalised; each mesh a receiver part; cpu's volume of
-// each light (cpu_volume). Set the camera's size before or after; change the lights only
-// before (cpu_volumes follow them). Not copyable: `parts` point into `scene`.
-struct MethodInputs {
-  explicit MethodInputs(Scene s) : scene(std::move(s)), soup(merged_soup(scene)), prepared(prepare(soup)) {
+// A scene ready for every method, as `shadowcert render` prepares it (pipeline/method_inputs.h):
+// its meshes merged (merged_soup) as the casters; each mesh a receiver part; cpu's volume of
+// each light. Set the camera's size before or after; change the lights only before
+// (cpu_volumes follow them). Not copyable: `parts` point into `scene`.
+struct PreparedScene {
+  explicit PreparedScene(Scene s)
+      : scene(std::move(s)), soup(merged_soup(scene)),
+        prepared(prepare_method_inputs(soup, scene.lights, kShadowMethods)) {
     for (const SceneMesh& mesh : scene.meshes) parts.push_back({&mesh.soup});
-    for (const Light& light : scene.lights) cpu_volumes.push_back(cpu_volume(prepared, light));
   }
-  MethodInputs(const MethodInputs&) = delete;
-  MethodInputs& operator=(const MethodInputs&) = delete;
+  PreparedScene(const PreparedScene&) = delete;
+  PreparedScene& operator=(const PreparedScene&) = delete;
 
   // Every light (the renderer's cpu draws cpu_volumes).
-  [[nodiscard]] ShadowMethodScene method_scene() const {
-    return {parts, scene.lights, &prepared.canonical.soup, &prepared.table, cpu_volumes};
-  }
+  [[nodiscard]] ShadowMethodScene method_scene() const { return shadowcert::method_scene(prepared, parts, scene.lights); }
   // Light k alone; cpu draws `cpu` when given (it must outlive the renderer), else cpu_volumes[k].
   [[nodiscard]] ShadowMethodScene light_scene(std::size_t k, const HomogeneousMesh* cpu = nullptr) const {
-    return one_light_scene(parts, prepared, scene.lights.at(k), cpu != nullptr ? cpu : &cpu_volumes.at(k));
+    return shadowcert::light_scene(prepared, parts, scene.lights, k, cpu);
   }
 
   Scene scene;
   Soup soup;
-  Prepared prepared;
+  MethodInputs prepared;
   std::vector<ShadedSoupPart> parts;
-  std::vector<HomogeneousMesh> cpu_volumes;
+  const std::vector<HomogeneousMesh>& cpu_volumes = prepared.cpu_volumes;
 };
 
 // A method's first-light stencil counts (z-fail) against cpu's, pixel by pixel.
@@ -167,7 +160,7 @@ inline StencilDifference stencil_difference_from_cpu(ShadowMethod method, const 
 
 // `blades` triangles on the edge (0,0,0)-(0,1,0), apexes on the half circle x > 0 at y = 0.5,
 // alternately flipped. With the light in the plane x = 0 every apex lies on one side of the
-// plane (edge, light), so the edge's |m| is `blades` (DESIGN.md §6: fans beyond one record,
+// plane (edge, light), so the edge's |m| is `blades` (docs/definitions.md#hard-cases: fans beyond one record,
 // patch or invocation); nonmanifold_fan spreads its apexes all around and keeps |m| small.
 inline Soup half_fan(std::uint32_t blades) {
   constexpr double kPi = 3.14159265358979323846;

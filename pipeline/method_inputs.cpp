@@ -1,0 +1,51 @@
+#include "pipeline/method_inputs.h"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+#include "exact/cpu_volume.h"
+
+namespace shadowcert {
+
+MethodInputs prepare_method_inputs(const Soup& casters, std::span<const Light> lights,
+                                   std::span<const gpu::ShadowMethod> methods) {
+  MethodInputs inputs;
+  if (std::any_of(methods.begin(), methods.end(), gpu::draws_volume)) {
+    inputs.canonical = canonical_soup(casters);
+    inputs.table = build_edge_table(inputs.canonical.soup);
+  }
+  if (std::find(methods.begin(), methods.end(), gpu::ShadowMethod::cpu) != methods.end()) {
+    inputs.cpu_volumes.reserve(lights.size());
+    for (const Light& light : lights)
+      inputs.cpu_volumes.push_back(cpu_volume_mesh(inputs.canonical.soup, inputs.table, light));
+  }
+  return inputs;
+}
+
+gpu::ShadowMethodScene method_scene(const MethodInputs& inputs, std::span<const gpu::ShadedSoupPart> receivers,
+                                    std::span<const Light> lights) {
+  gpu::ShadowMethodScene scene;
+  scene.receivers = receivers;
+  scene.lights = lights;
+  scene.canonical = &inputs.canonical.soup;
+  scene.table = &inputs.table;
+  scene.cpu_volumes = inputs.cpu_volumes;
+  return scene;
+}
+
+gpu::ShadowMethodScene light_scene(const MethodInputs& inputs, std::span<const gpu::ShadedSoupPart> receivers,
+                                   std::span<const Light> lights, std::size_t k, const HomogeneousMesh* cpu) {
+  if (k >= lights.size())
+    throw std::out_of_range("light_scene: light " + std::to_string(k) + " of " + std::to_string(lights.size()));
+  gpu::ShadowMethodScene scene = method_scene(inputs, receivers, lights.subspan(k, 1));
+  if (cpu != nullptr)
+    scene.cpu_volumes = std::span<const HomogeneousMesh>(cpu, 1);
+  else if (k < inputs.cpu_volumes.size())
+    scene.cpu_volumes = std::span<const HomogeneousMesh>(&inputs.cpu_volumes[k], 1);
+  else
+    scene.cpu_volumes = {};
+  return scene;
+}
+
+}  // namespace shadowcert
