@@ -15,6 +15,17 @@ namespace shadowcert {
 // rounded floats); a directional light's n is (-l, 0). Chain triangles are copied; each quad
 // (a, b, c, d) becomes (a, b, c) and (a, c, d), which keeps its outward orientation and its
 // boundary (the diagonal a-c cancels).
+//
+// Wide far edges (point light): when the far vertices u - l and v - l of an edge make more than
+// a right angle (the light close to the edge's line, between its ends), one triangle between
+// them rasterises wrong: GL interpolates the clip coordinates of its far edge through nearly
+// the zero vector, and clipping there keeps no digit (a third of a 256x192 frame wrong, with
+// the volume closed: tests/regressions/gl/). Such an edge gets far vertices at the bisectors of
+// its angle, ids from 2n on, appended in the order they are met, until no piece spans more than
+// a right angle; the side quads of that edge become fans over the far polyline, and every back
+// cap with a split edge a fan from the far vertex of its plane's normal (at less than a right
+// angle from every direction of the cap). The rule depends on the edge alone, so the mesh stays
+// closed edge for edge; an unsplit chain's mesh is exactly the two-triangles-per-quad one.
 // Preconditions: `chain` was assembled from `canonical` (n == chain.finite_vertices) under
 // `light`; throws std::invalid_argument("chain_mesh: ...") when the vertex counts or the
 // light's kind disagree.

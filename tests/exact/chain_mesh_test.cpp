@@ -6,10 +6,12 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <map>
 #include <stdexcept>
 #include <utility>
+#include <vector>
 
 #include "support/certificate_test_support.h"
 #include "scene/procedural_mesh.h"
@@ -106,6 +108,50 @@ TEST(ChainMesh, ClosedChains_GiveClosedMeshes) {
       EXPECT_TRUE(unbalanced(mesh).empty()) << soup.triangles.size() << " triangles, w " << light.position[3];
     }
   }
+}
+
+// Every triangle edge whose two ends are at infinity, as (direction, direction).
+std::vector<std::pair<std::array<float, 4>, std::array<float, 4>>> far_edges(const HomogeneousMesh& mesh) {
+  std::vector<std::pair<std::array<float, 4>, std::array<float, 4>>> out;
+  for (const auto& t : mesh.triangles)
+    for (int k = 0; k < 3; ++k) {
+      const auto& a = mesh.vertices[t[k]];
+      const auto& b = mesh.vertices[t[(k + 1) % 3]];
+      if (a[3] == 0.0f && b[3] == 0.0f) out.push_back({a, b});
+    }
+  return out;
+}
+
+// The shrunk GL campaign case of a point light just off the line of an edge, between its ends
+// (tests/regressions/gl/light_between_edge_ends.json): the edge's far vertices u - l and v - l
+// are nearly antipodal, and a far triangle spanning them rasterised a third of a 256x192 image
+// wrong. Split at the direction of the edge's midpoint (in the side quad and in the back cap
+// that shares the far edge), no far edge spans more than a right angle, and the mesh stays closed.
+TEST(ChainMesh, LightBetweenAnEdgesEnds_WideFarEdgeIsSplitAndTheMeshStaysClosed) {
+  const Soup soup = soup_of({{0.61239820718765259, -1.4280834794044495, -0.2593187689781189},
+                             {0.37003326416015625, -1.1857147216796875, -0.25931549072265625},
+                             {0.612396240234375, -1.024139404296875, -0.9589691162109375}},
+                            {{0, 1, 2}});
+  const Light light = point_light(0.4912147521972656, -1.1049270629882812, -0.6091422438621521);
+  const Pipeline p = build_pipeline(soup, light);
+  const HomogeneousMesh mesh = chain_mesh(p.chain, p.canonical, light);
+  EXPECT_GT(mesh.vertices.size(), 2 * p.canonical.vertices.size()) << "no far edge was split";
+  EXPECT_TRUE(unbalanced(mesh).empty());
+  // Split pieces and the back cap's spokes span at most a right angle, up to the rounding of
+  // the directions to float (relative 2^-24 per coordinate, far below this slack): the
+  // interpolation between a far edge's ends then stays at least 0.7 of their length away from
+  // the zero vector, where clipping loses every digit.
+  constexpr double kWidestFarEdgeCosine = -1e-6;
+  for (const auto& [a, b] : far_edges(mesh)) {
+    const double ab = double{a[0]} * b[0] + double{a[1]} * b[1] + double{a[2]} * b[2];
+    const double aa = double{a[0]} * a[0] + double{a[1]} * a[1] + double{a[2]} * a[2];
+    const double bb = double{b[0]} * b[0] + double{b[1]} * b[1] + double{b[2]} * b[2];
+    EXPECT_GE(ab / std::sqrt(aa * bb), kWidestFarEdgeCosine) << "a far edge close to antipodal";
+  }
+  // The same volume for the unsplit reference: no edge of this soup is wide for a light far above.
+  const Light above = point_light(0.5, 6.0, -0.5);
+  const Pipeline q = build_pipeline(soup, above);
+  EXPECT_EQ(chain_mesh(q.chain, q.canonical, above).vertices.size(), 2 * q.canonical.vertices.size());
 }
 
 // Moving soup and light together by a vector that keeps every sum exact (open_box_with_fins'
