@@ -79,8 +79,8 @@ struct GridScene {
   Soup soup;  // the grid with the floor appended: the one caster and receiver soup
   std::vector<Light> lights{kLight};
   Camera camera;
-  // pipeline/method_inputs.h: canonical soup and edge table, and cpu's volumes (prepared
-  // again, with them, on cpu's first use).
+  // pipeline/method_inputs.h: canonical soup and edge table, and cpu's volumes (added on
+  // cpu's first use).
   MethodInputs inputs;
 };
 
@@ -136,8 +136,7 @@ GridScene& grid_scene(std::uint64_t triangles, const Settings& settings) {
 }
 
 void prepare_cpu_volumes(GridScene& s) {
-  const std::array cpu{gpu::ShadowMethod::cpu};
-  if (s.inputs.cpu_volumes.empty()) s.inputs = prepare_method_inputs(s.soup, s.lights, cpu);
+  if (s.inputs.cpu_volumes.empty()) add_cpu_volumes(s.inputs, s.lights);
 }
 
 void run_method(benchmark::State& state, gpu::ShadowMethod method, std::uint64_t triangles, const Settings& settings,

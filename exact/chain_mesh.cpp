@@ -25,15 +25,21 @@ class FarVertices {
   [[nodiscard]] std::uint32_t n() const { return static_cast<std::uint32_t>(canonical_.vertices.size()); }
   [[nodiscard]] bool far(std::uint32_t id) const { return id >= n() && id < 2 * n(); }
 
-  // The far vertices strictly between far(u) and far(v), in order from u to v: none when the
-  // far edge spans at most a right angle, else the directions that bisect its angle,
+  // A wide far edge far(u) - far(v) spans more than a right angle; the far vertices strictly
+  // between its ends are the directions that bisect its angle,
   // recursively, until no piece spans more than a right angle (two levels at most: the angle is
   // below 180 degrees). A bisector d0/|d0| + d1/|d1| is a positive combination of the two
   // directions, so it is the direction to a point of the edge: the pieces stay in the side's
   // plane and on its sweep. The rule reads only the edge's two finite vertices, so every face
   // with that far edge (its side quads, the back caps on both sides) splits it alike and the
   // mesh stays closed.
-  std::vector<std::uint32_t> split(std::uint32_t u, std::uint32_t v) {
+  // Whether far(u) - far(v) is such an edge: one dot product, the fast path of every face.
+  [[nodiscard]] bool wide(std::uint32_t u, std::uint32_t v) const {
+    return dot(difference(canonical_.vertices[u], l_), difference(canonical_.vertices[v], l_)) < 0.0;
+  }
+
+  // Appends those vertices of a wide edge to `out`, in order from u to v (built on first use).
+  void append_between(std::uint32_t u, std::uint32_t v, std::vector<std::uint32_t>& out) {
     const bool reversed = u > v;
     if (reversed) std::swap(u, v);
     const std::uint64_t key = (std::uint64_t{u} << 32) | v;
@@ -43,9 +49,10 @@ class FarVertices {
       bisect(difference(canonical_.vertices[u], l_), difference(canonical_.vertices[v], l_), kMaxSplitDepth, ids);
       it = middles_.emplace(key, std::move(ids)).first;
     }
-    std::vector<std::uint32_t> out = it->second;
-    if (reversed) std::reverse(out.begin(), out.end());
-    return out;
+    if (reversed)
+      out.insert(out.end(), it->second.rbegin(), it->second.rend());
+    else
+      out.insert(out.end(), it->second.begin(), it->second.end());
   }
 
   // A new far vertex in the direction of the normal of triangle (u, v, w)'s plane that points
@@ -86,36 +93,38 @@ class FarVertices {
 
 void add_point_light_faces(const ShadowVolumeChain& chain, FarVertices& far, HomogeneousMesh& mesh) {
   const std::uint32_t n = far.n();
+  std::vector<std::uint32_t> boundary;
   for (const auto& t : chain.triangles) {
-    if (!(far.far(t[0]) && far.far(t[1]) && far.far(t[2]))) {
+    const bool back_cap = far.far(t[0]) && far.far(t[1]) && far.far(t[2]);
+    if (!back_cap || !(far.wide(t[0] - n, t[1] - n) || far.wide(t[1] - n, t[2] - n) || far.wide(t[2] - n, t[0] - n))) {
       mesh.triangles.push_back(t);
       continue;
     }
-    // A back cap: its boundary with every wide far edge split, then fanned from the far vertex
-    // of its plane's normal (a fan from a point outside the polygon covers the outside twice
-    // with opposite orientations, which cancels in the stencil count and in the closure).
-    std::vector<std::uint32_t> boundary;
+    // A back cap with a wide far edge: its boundary with those edges split, fanned from the far
+    // vertex of its plane's normal (a fan from a point outside the polygon covers the outside
+    // twice with opposite orientations, which cancels in the stencil count and in the closure).
+    boundary.clear();
     for (int k = 0; k < 3; ++k) {
       boundary.push_back(t[k]);
-      const std::vector<std::uint32_t> between = far.split(t[k] - n, t[(k + 1) % 3] - n);
-      boundary.insert(boundary.end(), between.begin(), between.end());
-    }
-    if (boundary.size() == 3) {
-      mesh.triangles.push_back(t);
-      continue;
+      if (far.wide(t[k] - n, t[(k + 1) % 3] - n)) far.append_between(t[k] - n, t[(k + 1) % 3] - n, boundary);
     }
     const std::uint32_t g = far.away_normal(t[0] - n, t[1] - n, t[2] - n);
     for (std::size_t k = 0; k < boundary.size(); ++k)
       mesh.triangles.push_back({g, boundary[k], boundary[(k + 1) % boundary.size()]});
   }
+  std::vector<std::uint32_t> polyline;
   for (const auto& q : chain.quads) {
-    // (p, q, far(q), far(p)); a wide far edge's inner vertices m1..mk (from q to p) make it
-    // (p, q, far q), (p, far q, m1), ..., (p, mk, far p): a fan from p over the far polyline.
-    std::vector<std::uint32_t> polyline{q[2]};
-    const std::vector<std::uint32_t> between = far.split(q[1], q[0]);
-    polyline.insert(polyline.end(), between.begin(), between.end());
-    polyline.push_back(q[3]);
+    // (p, q, far(q), far(p)) is (p, q, far q), (p, far q, far p); a wide far edge's inner
+    // vertices m1..mk (from q to p) make the second (p, far q, m1), ..., (p, mk, far p): a fan
+    // from p over the far polyline.
     mesh.triangles.push_back({q[0], q[1], q[2]});
+    if (!far.wide(q[1], q[0])) {
+      mesh.triangles.push_back({q[0], q[2], q[3]});
+      continue;
+    }
+    polyline.assign(1, q[2]);
+    far.append_between(q[1], q[0], polyline);
+    polyline.push_back(q[3]);
     for (std::size_t k = 0; k + 1 < polyline.size(); ++k) mesh.triangles.push_back({q[0], polyline[k], polyline[k + 1]});
   }
 }

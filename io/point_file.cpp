@@ -10,22 +10,12 @@
 #include <string_view>
 
 #include "core/input_error.h"
+#include "io/detail/text_token.h"
 
 namespace shadowcert {
 namespace {
 
-std::string_view next_token(std::string_view& rest) {
-  const auto begin = rest.find_first_not_of(" \t\r");
-  if (begin == std::string_view::npos) {
-    rest = {};
-    return {};
-  }
-  rest.remove_prefix(begin);
-  const auto end = std::min(rest.find_first_of(" \t\r"), rest.size());
-  const std::string_view token = rest.substr(0, end);
-  rest.remove_prefix(end);
-  return token;
-}
+using io_detail::next_token;
 
 // The points of a point-file text, from any stream; `name` is the file named in messages.
 std::vector<Vec3> read_points(std::istream& in, const std::string& name) {

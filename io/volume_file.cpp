@@ -8,28 +8,13 @@
 #include <string>
 
 #include "core/input_error.h"
+#include "io/detail/text_token.h"
 #include "scene/welded_volume.h"
 
 namespace shadowcert {
-namespace {
-
-std::string_view next_token(std::string_view& rest) {
-  const auto begin = rest.find_first_not_of(" \t\r");
-  if (begin == std::string_view::npos) {
-    rest = {};
-    return {};
-  }
-  rest.remove_prefix(begin);
-  const auto end = rest.find_first_of(" \t\r");
-  const std::string_view token = rest.substr(0, end);
-  rest.remove_prefix(end == std::string_view::npos ? rest.size() : end);
-  return token;
-}
-
-}  // namespace
 
 void write_volume_file(const std::filesystem::path& file, const HomogeneousMesh& volume,
-                           std::string_view comment) {
+                       std::string_view comment) {
   const HomogeneousMesh welded = weld_volume(volume);
   std::ofstream out(file, std::ios::binary);
   if (!out) throw InputError(file.string(), "cannot open for writing");
@@ -65,6 +50,8 @@ void write_volume_file(const std::filesystem::path& file, const HomogeneousMesh&
 }
 
 namespace {
+
+using io_detail::next_token;
 
 // The records of a .vol text, from any stream; `name` is the file named in messages.
 HomogeneousMesh read_records(std::istream& in, const std::string& name) {

@@ -15,12 +15,16 @@ MethodInputs prepare_method_inputs(const Soup& casters, std::span<const Light> l
     inputs.canonical = canonical_soup(casters);
     inputs.table = build_edge_table(inputs.canonical.soup);
   }
-  if (std::find(methods.begin(), methods.end(), gpu::ShadowMethod::cpu) != methods.end()) {
-    inputs.cpu_volumes.reserve(lights.size());
-    for (const Light& light : lights)
-      inputs.cpu_volumes.push_back(cpu_volume_mesh(inputs.canonical.soup, inputs.table, light));
-  }
+  if (std::find(methods.begin(), methods.end(), gpu::ShadowMethod::cpu) != methods.end())
+    add_cpu_volumes(inputs, lights);
   return inputs;
+}
+
+void add_cpu_volumes(MethodInputs& inputs, std::span<const Light> lights) {
+  if (!inputs.cpu_volumes.empty()) throw std::logic_error("add_cpu_volumes: the inputs have cpu volumes already");
+  inputs.cpu_volumes.reserve(lights.size());
+  for (const Light& light : lights)
+    inputs.cpu_volumes.push_back(cpu_volume_mesh(inputs.canonical.soup, inputs.table, light));
 }
 
 gpu::ShadowMethodScene method_scene(const MethodInputs& inputs, std::span<const gpu::ShadedSoupPart> receivers,

@@ -38,6 +38,11 @@ struct MethodInputs {
 [[nodiscard]] MethodInputs prepare_method_inputs(const Soup& casters, std::span<const Light> lights,
                                                  std::span<const gpu::ShadowMethod> methods);
 
+// Adds cpu's volumes for `lights` to inputs prepared for a volume method but without cpu (the
+// render benchmark prepares the 1M grid once and builds cpu's chain only when cpu runs). Throws
+// std::logic_error when `inputs` has cpu volumes already, and as prepare_method_inputs otherwise.
+void add_cpu_volumes(MethodInputs& inputs, std::span<const Light> lights);
+
 // The renderer's view of `inputs` for every light of `lights` (those `inputs` was prepared
 // with). The result points into `inputs`, `receivers` and `lights`: the renderer reads all but
 // the cpu volumes while it is constructed, and the cpu volumes while it lives.

@@ -42,6 +42,14 @@ std::vector<std::uint8_t> coverage(const gpu::RgbaImage& colour) {
   return c;
 }
 
+// reference_image of `scene`, whose merged soup the caller has (compare_scene merges once).
+// Every triangle of the scene receives and casts, as in the GL methods. The GPU gets the scene
+// in float: where that rounding changes the exact answer, the pixel is ambiguous
+// (reference/input_rounding.h), so the scene is imaged twice.
+ExactImage reference_image_of(const Soup& merged, const Scene& scene, bool progress, double* rounded_seconds) {
+  return exact_image_of_float_input(merged, scene.lights, scene.camera, exact_options(progress), rounded_seconds);
+}
+
 }  // namespace
 
 std::uint64_t MethodRun::sum(std::uint64_t PixelComparison::*figure) const {
@@ -68,11 +76,7 @@ bool SceneComparison::passed() const {
 }
 
 ExactImage reference_image(const Scene& scene, bool progress, double* rounded_seconds) {
-  // Every triangle of the scene receives and casts, as in the GL methods. The GPU gets the
-  // scene in float: where that rounding changes the exact answer, the pixel is ambiguous
-  // (reference/input_rounding.h), so the scene is imaged twice.
-  return exact_image_of_float_input(merged_soup(scene), scene.lights, scene.camera, exact_options(progress),
-                                    rounded_seconds);
+  return reference_image_of(merged_soup(scene), scene, progress, rounded_seconds);
 }
 
 LightRun compare_light(gpu::ShadowMethodRenderer& renderer, const ExactImage& exact, std::size_t light,
@@ -108,7 +112,7 @@ SceneComparison compare_scene(const Scene& scene, const std::vector<gpu::ShadowM
   if (merged.triangles.empty()) throw std::invalid_argument("compare_scene: the scene has no triangle");
 
   SceneComparison result;
-  result.exact = reference_image(scene, options.progress, &result.rounded_seconds);
+  result.exact = reference_image_of(merged, scene, options.progress, &result.rounded_seconds);
   const MethodInputs inputs = prepare_method_inputs(merged, scene.lights, methods);
   const std::vector<gpu::ShadedSoupPart> parts = shaded_parts(scene);
   const gpu::OffscreenTarget target(scene.camera.width, scene.camera.height);
