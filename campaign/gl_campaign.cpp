@@ -34,8 +34,13 @@ std::optional<GlFailureKind> failure_of(const MethodRun& run) {
 
 std::string_view failure_name(GlFailureKind kind) { return kind == GlFailureKind::closure ? "closure" : "hard_errors"; }
 
-// The GL comparison of the campaign: z-fail (the robust default), no timed frames.
-SceneComparisonOptions comparison_options() { return {}; }
+// The GL comparison of the campaign: z-fail (the robust default), the options' signs, no
+// timed frames.
+SceneComparisonOptions comparison_options(const GlCampaignOptions& options) {
+  SceneComparisonOptions o;
+  o.method_options.sign = options.sign;
+  return o;
+}
 
 void tally(GlCampaignTally& t, const MethodRun& run, const CampaignCase& c) {
   const bool open = run.closed() == false;
@@ -69,7 +74,7 @@ ShrunkGlFailure shrink_gl_failure(const GlCampaignOptions& options, const GlCamp
   // The floor and camera stay the case's: the failure is a property of that picture.
   const auto still_fails = [&](const Soup& soup) {
     candidate.soup = soup;
-    const SceneComparison c = compare_scene(campaign_view_scene(candidate), method, comparison_options());
+    const SceneComparison c = compare_scene(campaign_view_scene(candidate), method, comparison_options(options));
     return failure_of(c.runs.front()) == failure.kind;
   };
   const ShrinkResult shrunk = shrink_soup(out.view.soup, still_fails, kMaxShrinkTests);
@@ -109,7 +114,7 @@ GlCampaignResult run_gl_campaign(const GlCampaignOptions& options) {
   for (std::uint64_t i = 0; i < options.cases; ++i) {
     const CampaignCase c = campaign_case(options.seed, i, options.triangles);
     const SceneComparison comparison = compare_scene(
-        campaign_view_scene(campaign_view(c, options.width, options.height)), options.methods, comparison_options());
+        campaign_view_scene(campaign_view(c, options.width, options.height)), options.methods, comparison_options(options));
     result.exact_seconds += comparison.exact.stats.seconds + comparison.rounded_seconds;
     for (std::size_t m = 0; m < options.methods.size(); ++m) {
       tally(result.methods[m], comparison.runs[m], c);
@@ -167,14 +172,15 @@ GlReproducer write_gl_reproducer(const fs::path& dir, const GlCampaignOptions& o
         {"fov_y_deg", camera.fov_y_degrees},
         {"size", nlohmann::json::array({camera.width, camera.height})}}}};
   write_json_file(r.json, scene);
-  r.command = fmt::format("shadowcert diff {} --methods {}", r.json.string(), gpu::shadow_method_name(method));
+  r.command = fmt::format("shadowcert diff {} --methods {}{}", r.json.string(), gpu::shadow_method_name(method),
+                          options.sign == gpu::SignMode::float32 ? " --sign float" : "");
 
   // Read back as `diff` reads it, then compared as `diff` compares it.
   const Scene back = load_scene_or_mesh(r.json);
   const bool same = back.meshes.size() == 2 && same_soup(back.meshes[0].soup, shrunk.view.soup) &&
                     same_soup(back.meshes[1].soup, shrunk.view.floor) && back.lights.size() == 1 &&
                     back.lights[0].position == light.position && same_camera(back.camera, camera);
-  r.replayed = same && failure_of(compare_scene(back, {method}, comparison_options()).runs.front()) ==
+  r.replayed = same && failure_of(compare_scene(back, {method}, comparison_options(options)).runs.front()) ==
                            shrunk.failure.kind;
   return r;
 }

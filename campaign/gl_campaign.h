@@ -29,6 +29,7 @@ struct GlCampaignOptions {
   std::uint32_t width = 64;                // the image, >= 1 each
   std::uint32_t height = 48;
   std::size_t max_shrunk_per_method = 4;  // failing cases shrunk per method: the first by index
+  gpu::SignMode sign = gpu::SignMode::exact;  // cs, gs, ts, pertri (gpu/sign_mode.h)
   std::atomic<std::uint64_t>* progress = nullptr;  // when set, incremented as cases complete
 };
 
@@ -89,7 +90,7 @@ struct GlReproducer {
   std::string failure;  // "closure" or "hard_errors"
   std::size_t original_triangles = 0, triangles = 0;
   std::filesystem::path json;
-  std::string command;  // shadowcert diff DIR/NAME.json --methods M (the scene holds the size)
+  std::string command;  // shadowcert diff DIR/NAME.json --methods M [--sign float] (the scene holds the size)
   // Read back through the scene loader: bitwise the scene that failed, and `diff`'s
   // comparison on it fails the same way.
   bool replayed = false;

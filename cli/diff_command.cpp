@@ -15,6 +15,7 @@
 #include "cli/diff_report.h"
 #include "cli/exit_code.h"
 #include "cli/option_values.h"
+#include "cli/stencil_output.h"
 #include "io/output_file.h"
 #include "pipeline/scene_comparison.h"
 #include "io/scene_input.h"
@@ -36,6 +37,8 @@ constexpr std::size_t kTimedFrames = 5;
 struct DiffOptions {
   std::string input;
   std::string methods;  // comma-separated; empty: every method
+  std::string sign = "exact";  // --sign exact|float (gpu/sign_mode.h)
+  std::string stencil;  // --stencil auto|zpass|zfail; empty: not given (the aliases, else zfail)
   bool zpass = false;
   bool zfail = false;
   std::string size;
@@ -99,6 +102,16 @@ gpu::RgbaImage overlay(const gpu::RgbaImage& colour, const PixelComparison& comp
   return out;
 }
 
+// The report's "stencil" fact: the choice, and in auto mode each light's method.
+std::string stencil_facts(StencilChoice choice, const SceneComparison& comparison) {
+  if (choice != StencilChoice::automatic) return choice == StencilChoice::zpass ? "z-pass" : "z-fail";
+  std::string text(stencil_choice_name(choice));
+  for (std::size_t k = 0; k < comparison.stencil.size(); ++k)
+    text += fmt::format("{} light {}: {}", k == 0 ? ";" : ",", k,
+                        describe_stencil(comparison.stencil[k]));
+  return text;
+}
+
 // "" for a single light, "_light<k>" with several: the output files' suffix.
 std::string light_suffix(std::size_t light, std::size_t lights) {
   return lights > 1 ? fmt::format("_light{}", light) : std::string();
@@ -140,7 +153,8 @@ nlohmann::json method_json(const MethodRun& run, const DiffOptions& options) {
 
 int run_diff(const DiffOptions& options) {
   const std::vector<gpu::ShadowMethod> methods = shadow_methods_option(options.methods, "--methods");
-  if (options.zpass && options.zfail) throw CLI::ValidationError("--zpass", "excludes --zfail");
+  const StencilChoice stencil_choice = stencil_option(options.stencil, options.zpass, options.zfail);
+  const std::string_view stencil = stencil_choice_name(stencil_choice);
   if (options.shadowmap_size < 1 || options.shadowmap_size > gpu::kMaxShadowMapSize)
     throw CLI::ValidationError("--shadowmap-size", fmt::format("must be in [1, {}], got {}", gpu::kMaxShadowMapSize,
                                                                options.shadowmap_size));
@@ -153,8 +167,11 @@ int run_diff(const DiffOptions& options) {
 
   const gpu::EglContext context = gpu::open_gl_context("diff", options.device);
   SceneComparisonOptions comparison_options;
-  comparison_options.method_options.stencil = options.zpass ? gpu::StencilMethod::zpass : gpu::StencilMethod::zfail;
+  comparison_options.method_options.stencil =
+      stencil_choice == StencilChoice::zpass ? gpu::StencilMethod::zpass : gpu::StencilMethod::zfail;
+  comparison_options.stencil_auto = stencil_choice == StencilChoice::automatic;
   comparison_options.method_options.shadow_map_size = static_cast<std::uint32_t>(options.shadowmap_size);
+  comparison_options.method_options.sign = *gpu::parse_sign_mode(options.sign);  // CLI11 checked the name
   comparison_options.timed_frames = kTimedFrames;
   // A progress bar only on a terminal: logs and pipes get no carriage returns.
   comparison_options.progress = isatty(fileno(stderr)) != 0;
@@ -196,7 +213,8 @@ int run_diff(const DiffOptions& options) {
   nlohmann::json summary{
       {"input", options.input},
       {"size", {scene.camera.width, scene.camera.height}},
-      {"stencil", options.zpass ? "zpass" : "zfail"},
+      {"stencil", stencil},
+      {"stencil_per_light", stencil_json(comparison.stencil)},
       {"renderer", context.renderer()},
       {"device", context.device()},
       {"lights", light_count},
@@ -225,7 +243,7 @@ int run_diff(const DiffOptions& options) {
     report.passed = passed;
     report.facts = {{"image", fmt::format("{}x{}, {} light(s), {} triangles", scene.camera.width, scene.camera.height,
                                           light_count, merged.triangles.size())},
-                    {"stencil", options.zpass ? "z-pass" : "z-fail"},
+                    {"stencil", stencil_facts(stencil_choice, comparison)},
                     {"renderer", context.renderer()},
                     {"exact image", fmt::format("{:.2f} s (tree {:.2f}, hits {:.2f}, footprints {:.2f}, counts {:.2f}; "
                                                 "{} rays, {} counts), and {:.2f} s for the float-rounded scene",
@@ -256,7 +274,8 @@ int run_diff(const DiffOptions& options) {
   }
 
   fmt::print("{}: {} triangles, {} light(s), {}x{}, {} on {}\n", options.input, merged.triangles.size(), light_count,
-             scene.camera.width, scene.camera.height, options.zpass ? "zpass" : "zfail", context.renderer());
+             scene.camera.width, scene.camera.height, stencil, context.renderer());
+  print_stencil(comparison.stencil);
   fmt::print("  exact image: {:.2f} s (tree {:.2f}, hits {:.2f}, footprints {:.2f}, counts {:.2f}), float-rounded "
              "scene {:.2f} s; ambiguous pixels {}\n",
              exact.stats.seconds, exact.stats.tree_seconds, exact.stats.hit_seconds, exact.stats.footprint_seconds,
@@ -287,8 +306,13 @@ void add_diff_command(CLI::App& app, int& exit_code) {
   cmd->add_option("input", options->input, "Mesh file (.obj .off .ply .stl) or scene (.json)")->required();
   cmd->add_option("--methods", options->methods,
                   "Comma-separated methods to compare: cpu, cs, gs, ts, pertri, shadowmap (default: all)");
-  cmd->add_flag("--zfail", options->zfail, "Volume methods count faces behind the visible point (default)");
-  cmd->add_flag("--zpass", options->zpass, "Volume methods count faces in front of the visible point");
+  cmd->add_option("--stencil", options->stencil,
+                  "Stencil counting of the volume methods: zfail (default; faces behind the visible point), zpass "
+                  "(faces in front of it) or auto (per light, zpass where it is proven exactly for this camera, "
+                  "else zfail; the reasons are printed and written to --json)")
+      ->check(CLI::IsMember({"auto", "zpass", "zfail"}));
+  cmd->add_flag("--zfail", options->zfail, "Alias of --stencil zfail");
+  cmd->add_flag("--zpass", options->zpass, "Alias of --stencil zpass");
   cmd->add_option("--size", options->size, "Image size WxH (default: the scene camera's)");
   cmd->add_option("--out", options->out,
                   "Write into this folder: exact_mask/_counts/_ambiguous.png, METHOD_mask.png and "
@@ -299,6 +323,9 @@ void add_diff_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--report", options->report,
                   "Write one self-contained HTML page (images inlined) with the images side by side and the table");
   cmd->add_option("--shadowmap-size", options->shadowmap_size, "shadowmap: side of the depth map in texels")
+      ->capture_default_str();
+  cmd->add_option("--sign", options->sign, "cs, gs, ts, pertri: each triangle's light side as the exact sign of its float inputs (exact: a proven float filter, integer arithmetic where it cannot decide) or the float formula's sign (float: Milet 2014 refedge, wrong where the light is within rounding of a plane)")
+      ->check(CLI::IsMember({"exact", "float"}))
       ->capture_default_str();
   cmd->add_option("--device", options->device, "Use EGL device N (default: a hardware device, else llvmpipe)");
   cmd->callback([options, &exit_code] { exit_code = run_diff(*options); });

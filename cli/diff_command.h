@@ -1,5 +1,5 @@
 #pragma once
-// `shadowcert diff SCENE [--methods LIST] [--zpass|--zfail] [--size WxH] [--out DIR]
+// `shadowcert diff SCENE [--methods LIST] [--stencil zfail|zpass|auto] [--size WxH] [--out DIR]
 //                        [--json FILE] [--report FILE.html]`
 // What users run to certify a renderer (docs/definitions.md#pixel-protocol, docs/diff.md): the exact image
 // (reference/exact_image.h) against every chosen GL method (gpu/shadow_method_renderer.h), light

@@ -53,6 +53,7 @@ struct FuzzOptions {
   bool shrink_findings = false;
   std::string gl_methods = "cpu,cs,gs,ts,pertri";
   std::string gl_size = "64x48";
+  std::string sign = "exact";  // --sign exact|float (gpu/sign_mode.h)
   std::optional<int> device;
 };
 
@@ -223,8 +224,8 @@ nlohmann::json tally_json(const CampaignRun& run, const CampaignRunTally& t) {
 }
 
 void print_gl_summary(const GlCampaignOptions& gl, const GlCampaignResult& result, const gpu::EglContext& context) {
-  fmt::print("GL methods: {}x{} images of each case's campaign view (docs/campaign.md), z-fail, on {}\n", gl.width,
-             gl.height, context.renderer());
+  fmt::print("GL methods: {}x{} images of each case's campaign view (docs/campaign.md), z-fail, {} signs, on {}\n",
+             gl.width, gl.height, gpu::sign_mode_name(gl.sign), context.renderer());
   fmt::print("  {:<16}{:>5}{:>10}{:>9}{:>12}{:>12}{:>12}{:>12}{:>10}\n", "run", "must", "failures", "closure",
              "hard-error", "hard px", "ambiguous", "agree", "capacity");
   for (std::size_t m = 0; m < gl.methods.size(); ++m) {
@@ -289,6 +290,7 @@ int run_fuzz(const FuzzOptions& options) {
     gl.width = size.width;
     gl.height = size.height;
     gl.max_shrunk_per_method = options.max_reproducers;
+    gl.sign = *gpu::parse_sign_mode(options.sign);  // CLI11 checked the name
     context.emplace(gpu::open_gl_context("fuzz --gl", options.device));
   }
 
@@ -377,6 +379,7 @@ int run_fuzz(const FuzzOptions& options) {
       gl_json = {{"renderer", context->renderer()},
                  {"device", context->device()},
                  {"size", {gl.width, gl.height}},
+                 {"sign", gpu::sign_mode_name(gl.sign)},
                  {"methods", names},
                  {"cases", gl_result->cases},
                  {"seconds", gl_result->seconds},
@@ -438,6 +441,12 @@ void add_fuzz_command(CLI::App& app, int& exit_code) {
       ->capture_default_str()
       ->needs(gl_flag);
   cmd->add_option("--gl-size", options->gl_size, "With --gl: image size WxH")->capture_default_str()->needs(gl_flag);
+  cmd->add_option("--sign", options->sign,
+                  "With --gl: cs, gs, ts, pertri take exact signs of their float inputs (exact) or the float "
+                  "formula's (float, Milet 2014 refedge)")
+      ->check(CLI::IsMember({"exact", "float"}))
+      ->capture_default_str()
+      ->needs(gl_flag);
   cmd->add_option("--device", options->device, "With --gl: EGL device N (default: a hardware device, else llvmpipe)")
       ->needs(gl_flag);
   cmd->add_option("--out", options->out_dir, "Folder for shrunk reproducers (written only on failures)")

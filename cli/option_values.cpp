@@ -37,6 +37,19 @@ gpu::ShadowMethod shadow_method_option(const std::string& name, const std::strin
   throw CLI::ValidationError(option, "unknown method '" + name + "': use " + names);
 }
 
+StencilChoice stencil_option(const std::string& stencil, bool zpass, bool zfail) {
+  if (zpass && zfail) throw CLI::ValidationError("--zpass", "excludes --zfail");
+  std::optional<StencilChoice> alias;
+  if (zpass) alias = StencilChoice::zpass;
+  if (zfail) alias = StencilChoice::zfail;
+  if (stencil.empty()) return alias.value_or(StencilChoice::zfail);
+  const std::optional<StencilChoice> choice = parse_stencil_choice(stencil);
+  if (!choice) throw CLI::ValidationError("--stencil", "unknown stencil method '" + stencil + "': use auto, zpass or zfail");
+  if (alias && *alias != *choice)
+    throw CLI::ValidationError(zpass ? "--zpass" : "--zfail", "contradicts --stencil " + stencil);
+  return *choice;
+}
+
 std::vector<gpu::ShadowMethod> shadow_methods_option(const std::string& list, const std::string& option) {
   if (list.empty()) return {gpu::kShadowMethods.begin(), gpu::kShadowMethods.end()};
   std::vector<gpu::ShadowMethod> methods;

@@ -2,12 +2,14 @@
 // Values of the options several subcommands share, read in one place with one message each:
 // `--size WxH` (the camera's image size, each side in [1, kMaxImageSide], core/camera.h:
 // GL_MAX_RENDERBUFFER_SIZE of every driver we target) and GL method names (render --method,
-// diff --methods, fuzz --gl-methods), read by gpu::parse_shadow_method.
+// diff --methods, fuzz --gl-methods), read by gpu::parse_shadow_method, and the stencil choice
+// (--stencil and its aliases --zpass and --zfail).
 #include <string>
 #include <vector>
 
 #include "core/camera.h"
 #include "gpu/shadow_method_renderer.h"
+#include "pipeline/stencil_choice.h"
 
 namespace shadowcert::cli {
 
@@ -18,6 +20,11 @@ void apply_image_size(const std::string& size, Camera& camera, const std::string
 // The method named `name`. Throws CLI::ValidationError naming `option` and the unknown name,
 // with the list of names.
 [[nodiscard]] gpu::ShadowMethod shadow_method_option(const std::string& name, const std::string& option);
+
+// `--stencil auto|zpass|zfail` (empty: not given) with its aliases `--zpass` and `--zfail`
+// (render, diff): the choice, zfail when none is given. Throws CLI::ValidationError for --zpass
+// with --zfail, and for an alias that contradicts --stencil (an agreeing one is accepted).
+[[nodiscard]] StencilChoice stencil_option(const std::string& stencil, bool zpass, bool zfail);
 
 // A comma-separated list of method names, duplicates dropped, in the list's order; empty:
 // every method (gpu::kShadowMethods). Throws as shadow_method_option.

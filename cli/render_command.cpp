@@ -13,6 +13,7 @@
 
 #include "cli/exit_code.h"
 #include "cli/option_values.h"
+#include "cli/stencil_output.h"
 #include "pipeline/mesh_palette.h"
 #include "io/output_file.h"
 #include "io/scene_input.h"
@@ -24,6 +25,7 @@
 #include "gpu/png_image.h"
 #include "gpu/shadow_method_renderer.h"
 #include "pipeline/method_inputs.h"
+#include "pipeline/stencil_choice.h"
 #include "scene/merged_soup.h"
 
 namespace shadowcert::cli {
@@ -40,6 +42,8 @@ constexpr std::size_t kDefaultTimingFrames = 20;
 struct RenderOptions {
   std::string input;
   std::string method = "cpu";
+  std::string sign = "exact";  // --sign exact|float (gpu/sign_mode.h)
+  std::string stencil;  // --stencil auto|zpass|zfail; empty: not given (the aliases, else zfail)
   bool zpass = false;
   bool zfail = false;
   std::string size;  // "WxH"; empty: the scene camera's
@@ -61,20 +65,25 @@ struct RenderOptions {
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
-// The method, after the checks that need no input file.
-gpu::ShadowMethod validate(const RenderOptions& options) {
+struct Validated {
+  gpu::ShadowMethod method;
+  StencilChoice stencil;
+};
+
+// The method and the stencil choice, after the checks that need no input file.
+Validated validate(const RenderOptions& options) {
   const gpu::ShadowMethod method = shadow_method_option(options.method, "--method");
+  const StencilChoice stencil = stencil_option(options.stencil, options.zpass, options.zfail);
   if (method == gpu::ShadowMethod::shadowmap) {
     if (options.shadowmap_size < 1 || options.shadowmap_size > gpu::kMaxShadowMapSize)
       throw CLI::ValidationError("--shadowmap-size", fmt::format("must be in [1, {}] (a {}^2 depth texture), got {}",
                                                                  gpu::kMaxShadowMapSize, gpu::kMaxShadowMapSize,
                                                                  options.shadowmap_size));
-    if (options.zpass) throw CLI::ValidationError("--zpass", "is a stencil option; shadowmap counts no volume");
+    if (stencil != StencilChoice::zfail)
+      throw CLI::ValidationError(options.zpass ? "--zpass" : "--stencil", "is a stencil option; shadowmap counts no volume");
     if (!options.capture.empty()) throw CLI::ValidationError("--capture", "shadowmap draws no volume to capture");
-  } else if (options.zpass && options.zfail) {
-    throw CLI::ValidationError("--zpass", "excludes --zfail");
   }
-  return method;
+  return {method, stencil};
 }
 
 std::uint64_t count_pixels(const gpu::RgbaImage& colour, const gpu::GrayImage& stencil, bool lit) {
@@ -129,7 +138,7 @@ void print_timing(const gpu::FrameTiming& timing) {
 
 int run_render(const RenderOptions& options) {
   const auto start = Clock::now();
-  const gpu::ShadowMethod method = validate(options);
+  const auto [method, stencil_choice] = validate(options);
   const bool shadowmap = method == gpu::ShadowMethod::shadowmap;
   Scene scene = load_scene_or_mesh(options.input);
   if (scene.lights.empty()) throw InputError(options.input, "the scene has no light");
@@ -145,15 +154,23 @@ int run_render(const RenderOptions& options) {
   const MethodInputs inputs = prepare_method_inputs(merged, scene.lights, methods);
   const double chain_seconds = seconds_since(stage);
 
+  // Each light's stencil method (pipeline/stencil_choice.h); auto proves z-pass per light at
+  // the camera, exactly, on the float-rounded casters.
+  stage = Clock::now();
+  std::vector<LightStencil> stencils;
+  if (!shadowmap) stencils = choose_stencil(stencil_choice, inputs, scene.lights, scene.camera);
+  const double proof_seconds = seconds_since(stage);
+
   const gpu::EglContext context = gpu::open_gl_context("render", options.device);
 
   stage = Clock::now();
   const std::vector<gpu::ShadedSoupPart> parts = shaded_parts(scene);
   const gpu::ShadowMethodScene method_scene_ = method_scene(inputs, parts, scene.lights);
   gpu::ShadowMethodOptions method_options;
-  method_options.stencil = options.zpass ? gpu::StencilMethod::zpass : gpu::StencilMethod::zfail;
+  method_options.light_stencil = stencil_methods(stencils);
   if (shadowmap) method_options.shadow_map_size = static_cast<std::uint32_t>(options.shadowmap_size);
   method_options.shadow_map_bias = options.shadowmap_bias;
+  method_options.sign = *gpu::parse_sign_mode(options.sign);  // CLI11 checked the name
   method_options.shadow_map_slope = options.shadowmap_slope;
   gpu::ShadowMethodRenderer renderer(method, method_scene_, method_options);
   const gpu::OffscreenTarget target(scene.camera.width, scene.camera.height);
@@ -202,7 +219,7 @@ int run_render(const RenderOptions& options) {
   const std::uint64_t shadowed = count_pixels(frame.colour, frame.first_stencil, false);
   const double seconds = seconds_since(start);
 
-  const char* stencil = options.zpass ? "zpass" : "zfail";
+  const std::string_view stencil = stencil_choice_name(stencil_choice);
   if (shadowmap) {
     fmt::print("{}: {} triangles, {} lights, {}x{}, shadowmap {}^2 (bias {}, slope {}) on {}\n", options.input,
                merged.triangles.size(), scene.lights.size(), scene.camera.width, scene.camera.height,
@@ -211,6 +228,7 @@ int run_render(const RenderOptions& options) {
     fmt::print("{}: {} triangles, {} lights, {}x{}, {}/{} on {}\n", options.input, merged.triangles.size(),
                scene.lights.size(), scene.camera.width, scene.camera.height, options.method, stencil,
                context.renderer());
+    print_stencil(stencils);
     fmt::print("  volume triangles (first light) {}\n", volume_triangles);
   }
   fmt::print("  first light: {} lit, {} shadowed receiver pixels\n", lit, shadowed);
@@ -236,8 +254,10 @@ int run_render(const RenderOptions& options) {
       report["stage_seconds"] = {{"upload", upload_seconds}, {"first_frame", first_frame_seconds}};
     } else {
       report["stencil"] = stencil;
+      report["stencil_per_light"] = stencil_json(stencils);
       report["stage_seconds"] = {
           {"chains", chain_seconds}, {"upload", upload_seconds}, {"first_frame", first_frame_seconds}};
+      if (stencil_choice == StencilChoice::automatic) report["stage_seconds"]["zpass_proof"] = proof_seconds;
     }
     if (timing) report["timing"] = timing_json(*timing);
     write_json_file(options.json_file, report);
@@ -265,8 +285,14 @@ void add_render_command(CLI::App& app, int& exit_code) {
                   "multiplicities and capture; gpu/tessellation_volume.h). shadowmap (no volume: a depth map "
                   "from each light, --shadowmap-size/-bias/-slope; gpu/shadow_map_renderer.h)")
       ->capture_default_str();
-  cmd->add_flag("--zfail", options->zfail, "Count faces behind the visible point (default; right with the eye in a volume)");
-  cmd->add_flag("--zpass", options->zpass, "Count faces in front of the visible point (wrong with the eye in a volume)");
+  cmd->add_option("--stencil", options->stencil,
+                  "Stencil counting of the volume methods: zfail (default; faces behind the visible point, right "
+                  "wherever the eye is), zpass (faces in front of it; wrong with the eye in a volume) or auto (per "
+                  "light, zpass where it is proven exactly for this camera, else zfail; the reasons are printed and "
+                  "written to --json)")
+      ->check(CLI::IsMember({"auto", "zpass", "zfail"}));
+  cmd->add_flag("--zfail", options->zfail, "Alias of --stencil zfail");
+  cmd->add_flag("--zpass", options->zpass, "Alias of --stencil zpass");
   cmd->add_option("--size", options->size, "Image size WxH (default: the scene camera's)");
   cmd->add_option("--out", options->out, "Write the shaded image (RGBA PNG; alpha 0 where no surface)");
   cmd->add_option("--counts", options->counts, "Write the first light's stencil counts mod 256 (8-bit gray PNG)");
@@ -276,6 +302,9 @@ void add_render_command(CLI::App& app, int& exit_code) {
                   "Write the first light's volume as drawn (.vol text; check it with certify --volume FILE)");
   cmd->add_option("--shadowmap-size", options->shadowmap_size,
                   "shadowmap: side of the square depth map in texels, at most 16384")
+      ->capture_default_str();
+  cmd->add_option("--sign", options->sign, "cs, gs, ts, pertri: each triangle's light side as the exact sign of its float inputs (exact: a proven float filter, integer arithmetic where it cannot decide) or the float formula's sign (float: Milet 2014 refedge, wrong where the light is within rounding of a plane)")
+      ->check(CLI::IsMember({"exact", "float"}))
       ->capture_default_str();
   cmd->add_option("--shadowmap-bias", options->shadowmap_bias,
                   "shadowmap: constant bias subtracted from the light-space depth (window units, [0, 1]) "

@@ -290,6 +290,19 @@ EdgeMultiplicities exact_multiplicities(const Soup& canonical, const EdgeTable& 
                         Precision::float64);
 }
 
+EdgeMultiplicities glsign_multiplicities(const Soup& canonical, const EdgeTable& table, const Light& light) {
+  require_valid("glsign_multiplicities", canonical, table, light);
+  const auto to_float = [](double x) { return static_cast<double>(static_cast<float>(x)); };
+  Soup rounded = canonical;
+  for (Vec3& v : rounded.vertices)
+    for (double& x : v) x = to_float(x);
+  Light rounded_light = light;
+  for (double& x : rounded_light.position) x = to_float(x);
+  // Rounding may merge two vertices' positions, never their indices: the table still fits.
+  return multiplicities("glsign_multiplicities", MultiplicityMethod::exact, rounded, table, rounded_light,
+                        Precision::float64);
+}
+
 EdgeMultiplicities kim_multiplicities(const Soup& canonical, const EdgeTable& table, const Light& light,
                                       Precision precision) {
   return multiplicities("kim_multiplicities", MultiplicityMethod::kim, canonical, table, light, precision);

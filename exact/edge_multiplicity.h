@@ -37,6 +37,11 @@ struct EdgeMultiplicities {
 
 [[nodiscard]] EdgeMultiplicities exact_multiplicities(const Soup& canonical, const EdgeTable& table,
                                                       const Light& light);
+// The exact multiplicities of the soup and the light rounded to float (every coordinate once,
+// as the GL upload rounds them): the CPU twin of the GL volume methods under their default
+// exact signs (gpu/sign_mode.h; docs/gpu.md "Exact signs"), which must equal it bit for bit.
+[[nodiscard]] EdgeMultiplicities glsign_multiplicities(const Soup& canonical, const EdgeTable& table,
+                                                       const Light& light);
 [[nodiscard]] EdgeMultiplicities kim_multiplicities(const Soup& canonical, const EdgeTable& table, const Light& light,
                                                     Precision precision);
 [[nodiscard]] EdgeMultiplicities peciva_multiplicities(const Soup& canonical, const EdgeTable& table,

@@ -30,6 +30,12 @@ constexpr GLint kEdgeCountLocation = 4;
 constexpr GLuint kEdgePass = 0, kTrianglePass = 1, kFinishPass = 2;
 
 constexpr std::uint64_t kVerticesPerSideOrCaps = 6;  // one quad or front + back cap: two triangles
+// Wide far edges (gpu/shaders/far_split.glsl) add up to 7 triangles to a quad and 21 to a back
+// cap; they occur only on edges whose diametral sphere holds the light, so the volumes are
+// sized for the unsplit worst case plus a quarter and 64 Ki vertices; past that, the overflow
+// is reported (`requested`), never drawn open.
+constexpr std::uint64_t kSplitHeadroomDivisor = 4;
+constexpr std::uint64_t kSplitHeadroomVertices = 65536;
 using compute_pass::Command;
 using compute_pass::dispatch;
 using compute_pass::kVertexBytes;
@@ -66,19 +72,22 @@ ComputeVolumeSoup::ComputeVolumeSoup(const Soup& canonical, const EdgeTable& tab
   upload(triangles_, canonical.triangles);
   edge_count_ = static_cast<std::uint32_t>(table.size());
   triangle_count_ = static_cast<std::uint32_t>(canonical.triangles.size());
-  worst_case_vertices_ =
+  const std::uint64_t unsplit =
       kVerticesPerSideOrCaps * (static_cast<std::uint64_t>(table.opposite_vertex.size()) + triangle_count_);
+  worst_case_vertices_ = unsplit + (unsplit / kSplitHeadroomDivisor + kSplitHeadroomVertices) /
+                                       kVerticesPerSideOrCaps * kVerticesPerSideOrCaps;
   check_gl_errors("ComputeVolumeSoup upload");
 }
 
-ComputeShadowVolume::ComputeShadowVolume(const ComputeVolumeSoup& soup)
+ComputeShadowVolume::ComputeShadowVolume(const ComputeVolumeSoup& soup, SignMode sign)
     : soup_(&soup),
       signs_(Buffer::create()),
       command_(Buffer::create()),
       volume_(Buffer::create()),
       vertex_array_(VertexArray::create()) {
   const Shader shader =
-      compile_shader(GL_COMPUTE_SHADER, shaders::compute_volume_comp, "compute_volume.comp.glsl");
+      compile_shader(GL_COMPUTE_SHADER, shaders::compute_volume_comp, "compute_volume.comp.glsl",
+                     sign_mode_defines(sign));
   program_ = link_program({&shader}, "compute_volume");
 
   // Worst case, but no more than one storage block may address (llvmpipe: 128 MiB) nor a

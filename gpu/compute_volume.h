@@ -23,6 +23,7 @@
 #include "core/light.h"
 #include "core/soup.h"
 #include "gpu/gl_object.h"
+#include "gpu/sign_mode.h"
 #include "gpu/stencil_shadow_renderer.h"
 #include "scene/edge_table.h"
 
@@ -38,8 +39,9 @@ class ComputeVolumeSoup {
 
   [[nodiscard]] std::uint32_t edge_count() const { return edge_count_; }
   [[nodiscard]] std::uint32_t triangle_count() const { return triangle_count_; }
-  // Sum over edges of opposite count x 6 plus 6 per triangle: no chain can need more
-  // (a fan edge with k opposites can have |m| = k).
+  // Sum over edges of opposite count x 6 plus 6 per triangle, which no chain without wide far
+  // edges can exceed (a fan edge with k opposites can have |m| = k), plus room for those
+  // (compute_volume.cpp: a quarter more and 64 Ki vertices).
   [[nodiscard]] std::uint64_t worst_case_vertices() const { return worst_case_vertices_; }
 
  private:
@@ -62,7 +64,7 @@ class ComputeShadowVolume {
   // Compiles the shader and sizes the output for soup.worst_case_vertices(), clamped to
   // GL_MAX_SHADER_STORAGE_BLOCK_SIZE (build() then reports an overflow). `soup` must outlive
   // this object. Throws GlError with the driver's log.
-  explicit ComputeShadowVolume(const ComputeVolumeSoup& soup);
+  explicit ComputeShadowVolume(const ComputeVolumeSoup& soup, SignMode sign = SignMode::exact);
 
   // Runs the edge, triangle and finish dispatches for `light` and puts the barriers the draw
   // and the readbacks need. Throws std::invalid_argument on a light that is not finite with

@@ -36,7 +36,8 @@ using compute_pass::upload;
 
 }  // namespace
 
-GeometryShaderShadowVolume::GeometryShaderShadowVolume(const ComputeVolumeSoup& soup, const EdgeTable& table)
+GeometryShaderShadowVolume::GeometryShaderShadowVolume(const ComputeVolumeSoup& soup, const EdgeTable& table,
+                                                       SignMode sign)
     : soup_(&soup),
       records_(Buffer::create()),
       command_(Buffer::create()),
@@ -71,7 +72,8 @@ GeometryShaderShadowVolume::GeometryShaderShadowVolume(const ComputeVolumeSoup& 
   const Shader vertex =
       compile_shader(GL_VERTEX_SHADER, shaders::geometry_shader_volume_vert, "geometry_shader_volume.vert.glsl");
   const Shader geometry =
-      compile_shader(GL_GEOMETRY_SHADER, shaders::geometry_shader_volume_geom, "geometry_shader_volume.geom.glsl");
+      compile_shader(GL_GEOMETRY_SHADER, shaders::geometry_shader_volume_geom, "geometry_shader_volume.geom.glsl",
+                     sign_mode_defines(sign));
   program_ = link_program({&vertex, &geometry}, "geometry_shader_volume");
   const Shader finish = compile_shader(GL_COMPUTE_SHADER, shaders::geometry_shader_volume_finish_comp,
                                        "geometry_shader_volume_finish.comp.glsl");

@@ -25,6 +25,7 @@
 #include "core/light.h"
 #include "gpu/compute_volume.h"
 #include "gpu/gl_object.h"
+#include "gpu/sign_mode.h"
 #include "gpu/stencil_shadow_renderer.h"
 #include "scene/edge_table.h"
 
@@ -42,7 +43,7 @@ class GeometryShaderShadowVolume {
   // triangle), clamped to kMaxCaptureBytes. `soup` must outlive this object (its vertices and
   // triangles are read). Throws std::invalid_argument on counts past 32 bits, GlError with the
   // driver's log.
-  GeometryShaderShadowVolume(const ComputeVolumeSoup& soup, const EdgeTable& table);
+  GeometryShaderShadowVolume(const ComputeVolumeSoup& soup, const EdgeTable& table, SignMode sign = SignMode::exact);
 
   // One transform-feedback draw of records and triangles, the finish dispatch, the barriers
   // the draw and the readbacks need. Throws std::invalid_argument on a light that is not

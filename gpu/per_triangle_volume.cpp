@@ -29,6 +29,12 @@ constexpr GLuint kTrianglePass = 0, kFinishPass = 1;
 
 // A point light's V(t): front cap, 3 quads as 6 triangles, back cap (Milet 2014 §2.1).
 constexpr std::uint64_t kVerticesPerTriangle = 24;
+// Room for the wide far edges (gpu/shaders/far_split.glsl), which add triangles to a V(t)
+// whose far edges span more than a right angle (the light close to the triangle, between an
+// edge's ends): one V(t) in kSplitHeadroom may grow by up to 87 more triangles at once;
+// beyond that the overflow is reported (VolumeCapacityError), never drawn open.
+constexpr std::uint64_t kSplitHeadroom = 8;
+constexpr std::uint64_t kSplitExtraVertices = 3 * 87;
 using compute_pass::Command;
 using compute_pass::kVertexBytes;
 
@@ -39,14 +45,15 @@ std::vector<T> read_buffer(GLuint buffer, std::size_t offset_items, std::size_t 
 
 }  // namespace
 
-PerTriangleShadowVolume::PerTriangleShadowVolume(const ComputeVolumeSoup& soup)
+PerTriangleShadowVolume::PerTriangleShadowVolume(const ComputeVolumeSoup& soup, SignMode sign)
     : soup_(&soup),
       signs_(Buffer::create()),
       command_(Buffer::create()),
       volume_(Buffer::create()),
       vertex_array_(VertexArray::create()) {
   const Shader shader =
-      compile_shader(GL_COMPUTE_SHADER, shaders::per_triangle_volume_comp, "per_triangle_volume.comp.glsl");
+      compile_shader(GL_COMPUTE_SHADER, shaders::per_triangle_volume_comp, "per_triangle_volume.comp.glsl",
+                     sign_mode_defines(sign));
   program_ = link_program({&shader}, "per_triangle_volume");
 
   // A window is as much as one storage block addresses, rounded down to the binding offset
@@ -62,7 +69,10 @@ PerTriangleShadowVolume::PerTriangleShadowVolume(const ComputeVolumeSoup& soup)
   // clamped count still ends on a whole V(t).
   std::uint64_t limit = std::min<std::uint64_t>(kWindows * window_vertices_, std::numeric_limits<GLint>::max());
   limit = std::min<std::uint64_t>(limit, std::numeric_limits<GLuint>::max() - kVerticesPerTriangle);
-  capacity_ = std::min(kVerticesPerTriangle * soup.triangle_count(), limit / kVerticesPerTriangle * kVerticesPerTriangle);
+  const std::uint64_t triangles = soup.triangle_count();
+  const std::uint64_t wanted =
+      kVerticesPerTriangle * triangles + kSplitExtraVertices * ((triangles + kSplitHeadroom - 1) / kSplitHeadroom);
+  capacity_ = std::min(wanted, limit / kVerticesPerTriangle * kVerticesPerTriangle);
   volume_bytes_ = std::max<std::uint64_t>(capacity_, 1) * kVertexBytes;
 
   glNamedBufferStorage(signs_.name(),

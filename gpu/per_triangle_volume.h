@@ -19,6 +19,7 @@
 #include "core/light.h"
 #include "gpu/compute_volume.h"
 #include "gpu/gl_object.h"
+#include "gpu/sign_mode.h"
 #include "gpu/stencil_shadow_renderer.h"
 
 namespace shadowcert::gpu {
@@ -29,7 +30,7 @@ class PerTriangleShadowVolume {
   // clamped to what four storage windows address (llvmpipe: 4 x 128 MiB = 32M vertices).
   // `soup` must outlive this object (only its vertices and triangles are read). Throws
   // GlError with the driver's log.
-  explicit PerTriangleShadowVolume(const ComputeVolumeSoup& soup);
+  explicit PerTriangleShadowVolume(const ComputeVolumeSoup& soup, SignMode sign = SignMode::exact);
 
   // Runs the triangle and finish dispatches and puts the barriers the draw and readbacks
   // need. Throws std::invalid_argument on a light that is not finite with w in {0, 1} or a

@@ -42,12 +42,12 @@ class BuiltVolumeOf final : public ShadowMethodRenderer::BuiltVolume {
 
 std::unique_ptr<ShadowMethodRenderer::BuiltVolume> make_built_volume(ShadowMethod method,
                                                                      const ComputeVolumeSoup& soup,
-                                                                     const EdgeTable& table) {
+                                                                     const EdgeTable& table, SignMode sign) {
   switch (method) {
-    case ShadowMethod::cs: return std::make_unique<BuiltVolumeOf<ComputeShadowVolume>>(soup);
-    case ShadowMethod::gs: return std::make_unique<BuiltVolumeOf<GeometryShaderShadowVolume>>(soup, table);
-    case ShadowMethod::ts: return std::make_unique<BuiltVolumeOf<TessellationShadowVolume>>(soup, table);
-    case ShadowMethod::pertri: return std::make_unique<BuiltVolumeOf<PerTriangleShadowVolume>>(soup);
+    case ShadowMethod::cs: return std::make_unique<BuiltVolumeOf<ComputeShadowVolume>>(soup, sign);
+    case ShadowMethod::gs: return std::make_unique<BuiltVolumeOf<GeometryShaderShadowVolume>>(soup, table, sign);
+    case ShadowMethod::ts: return std::make_unique<BuiltVolumeOf<TessellationShadowVolume>>(soup, table, sign);
+    case ShadowMethod::pertri: return std::make_unique<BuiltVolumeOf<PerTriangleShadowVolume>>(soup, sign);
     case ShadowMethod::cpu:
     case ShadowMethod::shadowmap: break;
   }
@@ -132,9 +132,16 @@ ShadowMethodRenderer::ShadowMethodRenderer(ShadowMethod method, const ShadowMeth
                                   " needs the canonical soup and its edge table");
     gpu_soup_ = std::make_unique<ComputeVolumeSoup>(*scene.canonical, *scene.table);
     for (const Light& light : lights_) {
-      built_volumes_.push_back(make_built_volume(method, *gpu_soup_, *scene.table));
+      built_volumes_.push_back(make_built_volume(method, *gpu_soup_, *scene.table, options.sign));
       light_volumes_.push_back({light, nullptr, built_volumes_.back()->draw()});
     }
+  }
+  if (!options.light_stencil.empty()) {
+    if (options.light_stencil.size() != lights_.size())
+      throw std::invalid_argument("ShadowMethodRenderer: light_stencil needs one stencil method per light (" +
+                                  std::to_string(options.light_stencil.size()) + " for " +
+                                  std::to_string(lights_.size()) + " lights)");
+    for (std::size_t i = 0; i < lights_.size(); ++i) light_volumes_[i].stencil = options.light_stencil[i];
   }
   stencil_renderer_.emplace();
 }

@@ -38,6 +38,7 @@
 #include "gpu/gpu_stage_timer.h"
 #include "gpu/offscreen_target.h"
 #include "gpu/shadow_map_renderer.h"
+#include "gpu/sign_mode.h"
 #include "gpu/stencil_shadow_renderer.h"
 #include "scene/edge_table.h"
 
@@ -81,6 +82,10 @@ struct ShadowMethodScene {
 
 struct ShadowMethodOptions {
   StencilMethod stencil = StencilMethod::zfail;  // volume methods
+  // Volume methods: one stencil method per light, in the lights' order, overriding `stencil`
+  // (--stencil auto: z-pass where pipeline/stencil_choice.h proves it); empty: `stencil` for all.
+  std::vector<StencilMethod> light_stencil;
+  SignMode sign = SignMode::exact;  // cs, gs, ts, pertri: how s(t) is taken (gpu/sign_mode.h)
   // shadowmap only (gpu/shadow_map_renderer.h): map side in texels, constant and slope bias.
   std::uint32_t shadow_map_size = kDefaultShadowMapSize;
   float shadow_map_bias = kDefaultShadowMapBias;

@@ -139,10 +139,14 @@ StencilShadowFrame StencilShadowRenderer::render(const OffscreenTarget& target, 
     glClear(GL_STENCIL_BUFFER_BIT);
     glEnable(GL_STENCIL_TEST);
     glStencilFunc(GL_ALWAYS, 0, 0xFF);
-    if (options.method == StencilMethod::zfail) {
+    if (lv.stencil.value_or(options.method) == StencilMethod::zfail) {
       glStencilOpSeparate(GL_BACK, GL_KEEP, GL_INCR_WRAP, GL_KEEP);
       glStencilOpSeparate(GL_FRONT, GL_KEEP, GL_DECR_WRAP, GL_KEEP);
     } else {
+      // z-pass. The caps are drawn as well and never count here (GL_LESS fails for them): a
+      // front cap lies on a receiver at the visible point's depth or behind it, a back cap at
+      // depth 1. A cap between the eye and the near plane (depth-clamped to 0) would count;
+      // a z-pass proven by exact/zpass_proof.h has no face there.
       glStencilOpSeparate(GL_FRONT, GL_KEEP, GL_KEEP, GL_INCR_WRAP);
       glStencilOpSeparate(GL_BACK, GL_KEEP, GL_KEEP, GL_DECR_WRAP);
     }

@@ -11,11 +11,20 @@
 //     because caps close the volume at the occluder and at infinity.
 //   z-pass: front faces +1 and back faces -1 where it PASSES (faces between eye and P);
 //     wrong when the eye itself is inside a volume (the count is then off by the eye's own).
+//     Caps are drawn under z-pass too and never count there: a front cap lies on a scene
+//     triangle, which the depth pre-pass drew, so it is at the visible point's depth or behind
+//     it (GL_LESS fails), unless it lies between the eye and the near plane, which a proven
+//     z-pass excludes (exact/zpass_proof.h); back caps are at infinity (depth 1, never less).
+// The method is chosen per light (LightVolume::stencil, else StencilShadowOptions::method), so
+// one frame can count proven lights with z-pass and the others with z-fail
+// (pipeline/stencil_choice.h, `--stencil auto`).
 // Caps at infinity: the projection's far plane is at infinity and GL_DEPTH_CLAMP is on for
 // the volume pass, so nothing is clipped there; no polygon offset is used: every pass runs
 // the same invariant vertex shader, so a cap and the triangle it lies on get equal depths.
 #include <array>
+#include <optional>
 #include <span>
+#include <string_view>
 #include <vector>
 
 #include "core/camera.h"
@@ -54,6 +63,11 @@ class ShadedSoupMesh {
 
 enum class StencilMethod { zfail, zpass };
 
+// "zfail" or "zpass" (the CLI's --stencil values, the JSON's).
+[[nodiscard]] constexpr std::string_view stencil_method_name(StencilMethod method) {
+  return method == StencilMethod::zpass ? "zpass" : "zfail";
+}
+
 // A volume the GPU built itself (gpu/compute_volume.h): a vertex array of vec4 triangles
 // (attribute 0) drawn by glDrawArraysIndirect(GL_TRIANGLES) from `command`, a
 // DrawArraysIndirectCommand whose count only the GPU knows.
@@ -62,15 +76,17 @@ struct IndirectVolumeDraw {
   GLuint command = 0;
 };
 
-// A light and the volume its shadows are counted with: `volume`, or else `indirect`.
+// A light and the volume its shadows are counted with: `volume`, or else `indirect`; counted
+// with `stencil` when set, else with StencilShadowOptions::method.
 struct LightVolume {
   Light light;
   const ShadowVolumeMesh* volume = nullptr;
   IndirectVolumeDraw indirect{};
+  std::optional<StencilMethod> stencil{};
 };
 
 struct StencilShadowOptions {
-  StencilMethod method = StencilMethod::zfail;
+  StencilMethod method = StencilMethod::zfail;  // every light without its own LightVolume::stencil
   std::array<float, 4> background{0.0f, 0.0f, 0.0f, 0.0f};  // alpha 0 marks uncovered pixels
   std::array<float, 3> ambient{0.15f, 0.15f, 0.15f};
   // Each light's colour; several lights share 1 so that the sum stays in range.

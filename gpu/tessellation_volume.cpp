@@ -33,7 +33,8 @@ using compute_pass::upload;
 
 }  // namespace
 
-TessellationShadowVolume::TessellationShadowVolume(const ComputeVolumeSoup& soup, const EdgeTable& table)
+TessellationShadowVolume::TessellationShadowVolume(const ComputeVolumeSoup& soup, const EdgeTable& table,
+                                                   SignMode sign)
     : soup_(&soup),
       records_(Buffer::create()),
       command_(Buffer::create()),
@@ -89,11 +90,13 @@ TessellationShadowVolume::TessellationShadowVolume(const ComputeVolumeSoup& soup
   const Shader vertex =
       compile_shader(GL_VERTEX_SHADER, shaders::tessellation_volume_vert, "tessellation_volume.vert.glsl");
   const Shader control =
-      compile_shader(GL_TESS_CONTROL_SHADER, shaders::tessellation_volume_tesc, "tessellation_volume.tesc.glsl");
+      compile_shader(GL_TESS_CONTROL_SHADER, shaders::tessellation_volume_tesc, "tessellation_volume.tesc.glsl",
+                     sign_mode_defines(sign));
   const Shader evaluation =
       compile_shader(GL_TESS_EVALUATION_SHADER, shaders::tessellation_volume_tese, "tessellation_volume.tese.glsl");
   const Shader geometry =
-      compile_shader(GL_GEOMETRY_SHADER, shaders::tessellation_volume_geom, "tessellation_volume.geom.glsl");
+      compile_shader(GL_GEOMETRY_SHADER, shaders::tessellation_volume_geom, "tessellation_volume.geom.glsl",
+                     sign_mode_defines(sign));
   program_ = link_program({&vertex, &control, &evaluation, &geometry}, "tessellation_volume");
   const Shader finish = compile_shader(GL_COMPUTE_SHADER, shaders::geometry_shader_volume_finish_comp,
                                        "geometry_shader_volume_finish.comp.glsl");

@@ -21,6 +21,7 @@
 #include "core/light.h"
 #include "gpu/compute_volume.h"
 #include "gpu/gl_object.h"
+#include "gpu/sign_mode.h"
 #include "gpu/stencil_shadow_renderer.h"
 #include "scene/edge_table.h"
 
@@ -38,7 +39,7 @@ class TessellationShadowVolume {
   // and triangle records from `table` (the table `soup` was made from) and sizes the capture as
   // gs does. `soup` must outlive this object. Throws std::invalid_argument on counts past 32
   // bits, GlError with the driver's log.
-  TessellationShadowVolume(const ComputeVolumeSoup& soup, const EdgeTable& table);
+  TessellationShadowVolume(const ComputeVolumeSoup& soup, const EdgeTable& table, SignMode sign = SignMode::exact);
 
   // One transform-feedback patch draw, the finish dispatch, the barriers. Throws
   // std::invalid_argument on a light that is not finite with w in {0, 1} or (0, 0, 0, 0).

@@ -116,10 +116,19 @@ SceneComparison compare_scene(const Scene& scene, const std::vector<gpu::ShadowM
   const MethodInputs inputs = prepare_method_inputs(merged, scene.lights, methods);
   const std::vector<gpu::ShadedSoupPart> parts = shaded_parts(scene);
   const gpu::OffscreenTarget target(scene.camera.width, scene.camera.height);
+  if (std::any_of(methods.begin(), methods.end(), gpu::draws_volume)) {
+    const StencilChoice choice = options.stencil_auto ? StencilChoice::automatic
+                                 : options.method_options.stencil == gpu::StencilMethod::zpass ? StencilChoice::zpass
+                                                                                                : StencilChoice::zfail;
+    result.stencil = choose_stencil(choice, inputs, scene.lights, scene.camera);
+  }
   for (gpu::ShadowMethod method : methods) {
     MethodRun run{method, {}};
     for (std::size_t k = 0; k < scene.lights.size(); ++k) {
-      gpu::ShadowMethodRenderer renderer(method, light_scene(inputs, parts, scene.lights, k), options.method_options);
+      gpu::ShadowMethodOptions method_options = options.method_options;
+      method_options.light_stencil.clear();
+      if (!result.stencil.empty()) method_options.light_stencil.assign(1, result.stencil[k].method);
+      gpu::ShadowMethodRenderer renderer(method, light_scene(inputs, parts, scene.lights, k), method_options);
       run.lights.push_back(compare_light(renderer, result.exact, k, target, scene.camera, options.timed_frames));
     }
     result.runs.push_back(std::move(run));

@@ -24,6 +24,7 @@
 #include "gpu/egl_context.h"
 #include "gpu/offscreen_target.h"
 #include "gpu/shadow_method_renderer.h"
+#include "pipeline/stencil_choice.h"
 
 namespace shadowcert {
 
@@ -55,6 +56,10 @@ struct MethodRun {
 
 struct SceneComparisonOptions {
   gpu::ShadowMethodOptions method_options;  // z-fail or z-pass, shadow map size
+  // `--stencil auto`: each light counted with z-pass where pipeline/stencil_choice.h proves it
+  // at the scene's camera, else z-fail; method_options.stencil is then not read. Either way
+  // method_options.light_stencil is not read (each light is rendered alone).
+  bool stencil_auto = false;
   // Frames drawn without readback after the compared one, for LightRun::gl_ms (one frame
   // alone would mostly time llvmpipe's first-use compilation); 0: none.
   std::size_t timed_frames = 0;
@@ -65,6 +70,9 @@ struct SceneComparison {
   ExactImage exact;  // the reference, marked by the float-rounded scene's image
   double rounded_seconds = 0.0;  // the float-rounded scene's exact image
   std::vector<MethodRun> runs;   // one per method, in the given order
+  // Per light, the stencil method every volume method counted it with, and with stencil_auto
+  // the proof that chose it (pipeline/stencil_choice.h); empty when no method draws a volume.
+  std::vector<LightStencil> stencil;
 
   [[nodiscard]] bool passed() const;  // no run failed
 };

@@ -44,16 +44,22 @@ const uint kNoRoom = 0xFFFFFFFFu;
 
 #include "reference_edge.glsl"
 
+// Where volume_triangle writes next (set after each reservation).
+uint volume_cursor = 0u;
+
+void volume_triangle(vec4 a, vec4 b, vec4 c) {
+  volume[volume_cursor] = a;
+  volume[volume_cursor + 1u] = b;
+  volume[volume_cursor + 2u] = c;
+  volume_cursor += 3u;
+}
+
+#include "far_split.glsl"
+
 // Reserves n vertices; kNoRoom when they do not fit (the count still records the request).
 uint reserve(uint n) {
   const uint base = atomicAdd(requested, n);
   return (n <= capacity && base <= capacity - n) ? base : kNoRoom;
-}
-
-void emit(uint at, vec4 a, vec4 b, vec4 c) {
-  volume[at] = a;
-  volume[at + 1u] = b;
-  volume[at + 2u] = c;
 }
 
 void edge_pass(uint e) {
@@ -66,20 +72,16 @@ void edge_pass(uint e) {
   signs[e] = m;
   if (m == 0) return;
   // m copies of (u, v, v_inf, u_inf), i.e. |m| copies of (p, q, q_inf, p_inf) with p, q
-  // swapped when m < 0; a directional light's quad is the triangle (p, q, inf).
+  // swapped when m < 0 (far_split.glsl: a directional light's quad is the triangle (p, q, inf),
+  // a wide far edge is split).
   const vec4 p = vertices[m > 0 ? u : v];
   const vec4 q = vertices[m > 0 ? v : u];
-  const vec4 p_inf = far_vertex(p);
-  const vec4 q_inf = far_vertex(q);
   const uint copies = uint(abs(m));
-  const uint per_copy = light.w == 0.0 ? 3u : 6u;
+  const uint per_copy = 3u * side_quad_triangle_count(p, q);
   const uint base = reserve(copies * per_copy);
   if (base == kNoRoom) return;
-  for (uint k = 0u; k < copies; ++k) {
-    const uint at = base + k * per_copy;
-    emit(at, p, q, q_inf);
-    if (per_copy == 6u) emit(at + 3u, p, q_inf, p_inf);
-  }
+  volume_cursor = base;
+  for (uint k = 0u; k < copies; ++k) side_quad_triangles(p, q);
 }
 
 void triangle_pass(uint t) {
@@ -93,11 +95,11 @@ void triangle_pass(uint t) {
   const vec4 f0 = vertices[a];
   const vec4 f1 = vertices[s > 0 ? b : c];
   const vec4 f2 = vertices[s > 0 ? c : b];
-  const bool point = light.w != 0.0;
-  const uint base = reserve(point ? 6u : 3u);
+  const uint base = reserve(3u + 3u * back_cap_triangle_count(f0, f1, f2));
   if (base == kNoRoom) return;
-  emit(base, f0, f1, f2);
-  if (point) emit(base + 3u, far_vertex(f0), far_vertex(f2), far_vertex(f1));
+  volume_cursor = base;
+  volume_triangle(f0, f1, f2);
+  back_cap_triangles(f0, f1, f2);
 }
 
 void main() {

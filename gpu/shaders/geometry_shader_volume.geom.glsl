@@ -15,8 +15,9 @@
 // index, core/light_side_formula.h's order, `precise`, parity): the volumes of `cs` and `gs`
 // are made of the same signs, equal to exact/'s float32 refedge.
 layout(points) in;
-// |m| <= kOppositesPerRecord quads of two 3-vertex strips each; caps need 6.
-layout(triangle_strip, max_vertices = 24) out;
+// |m| <= kOppositesPerRecord quads of at most 9 triangles each (far_split.glsl: two, or a fan
+// over a far edge split into 8), 3-vertex strips each: 108; caps need at most 3 + 72.
+layout(triangle_strip, max_vertices = 108) out;
 
 const uint kOppositesPerRecord = 4u;  // == kOppositesPerRecord in gpu/geometry_shader_volume.cpp
 const uint kRecordWords = 4u + kOppositesPerRecord;  // u, v, count, unused, opposites

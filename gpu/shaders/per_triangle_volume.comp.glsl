@@ -52,11 +52,17 @@ void store(uint at, vec4 x) {
   }
 }
 
-void emit(uint at, vec4 a, vec4 b, vec4 c) {
-  store(at, a);
-  store(at + 1u, b);
-  store(at + 2u, c);
+// Where volume_triangle writes next (set after each reservation).
+uint volume_cursor = 0u;
+
+void volume_triangle(vec4 a, vec4 b, vec4 c) {
+  store(volume_cursor, a);
+  store(volume_cursor + 1u, b);
+  store(volume_cursor + 2u, c);
+  volume_cursor += 3u;
 }
+
+#include "far_split.glsl"
 
 void triangle_pass(uint t) {
   const uint a = triangle_index[3u * t];
@@ -74,40 +80,51 @@ void triangle_pass(uint t) {
   for (int k = 0; k < 3; ++k) p[k] = vertices[id[k]];
   vec4 f[3];
   for (int k = 0; k < 3; ++k) f[k] = far_vertex(p[k]);
-  // Point light: front cap, 3 quads (6 triangles), back cap = 24 vertices. Directional: all
-  // far vertices are (-l, 0), so a quad is the one triangle (v, u, inf) and the back cap
-  // collapses to a point: front cap + 3 triangles = 12 vertices.
+  // Point light: front cap, 3 quads (2 triangles each, more where a far edge is wide:
+  // far_split.glsl), back cap (one triangle, or a fan) = 24 vertices unless split.
+  // Directional: all far vertices are (-l, 0), so a quad is the one triangle (v, u, inf) and
+  // the back cap collapses to a point: front cap + 3 triangles = 12 vertices.
   const bool point = light.w != 0.0;
-  const uint n = point ? 24u : 12u;
+  vec4 between[7];
+  int splits[3];
+  uint n = 3u + 3u * back_cap_triangle_count(p[0], p[1], p[2]);
+  for (int k = 0; k < 3; ++k) {
+    const vec4 pu = p[k];
+    const vec4 pv = p[(k + 1) % 3];
+    splits[k] = point && far_edge_is_wide(pu, pv) ? far_between(pu, pv, between) : 0;
+    n += point ? 6u + 3u * uint(splits[k]) : 3u;
+  }
   const uint base = atomicAdd(requested, n);
   if (n > capacity || base > capacity - n) return;  // overflow: reported through `requested`
-  uint at = base;
-  emit(at, p[0], p[1], p[2]);
-  at += 3u;
+  volume_cursor = base;
+  volume_triangle(p[0], p[1], p[2]);
   for (int k = 0; k < 3; ++k) {
     const int u = k;
     const int v = (k + 1) % 3;
-    // Quad (v, u, u_inf, v_inf) split on the diagonal from the edge's lower canonical
-    // index to the other end's far vertex, whatever the orientation: the neighbour across an
-    // interior edge then emits the very same two triangles reversed, so the pair cancels
-    // pixel for pixel. Split by orientation instead (first to third vertex, as cs and cpu
-    // split a chain quad), the two halves of a rounded, not quite planar quad disagree near
-    // the edge with the depth of the lit surface and leave shadow acne along every edge
-    // (measured on sphere_grid_1m.json: 8189 more shadowed pixels than cpu).
+    // Quad (v, u, u_inf, v_inf) fanned from the edge's lower canonical index, whatever the
+    // orientation: the neighbour across an interior edge then emits the very same triangles
+    // reversed, so the pair cancels pixel for pixel. Split by orientation instead (first to
+    // third vertex, as cs and cpu split a chain quad), the two halves of a rounded, not quite
+    // planar quad disagree near the edge with the depth of the lit surface and leave shadow
+    // acne along every edge (measured on sphere_grid_1m.json: 8189 more shadowed pixels than
+    // cpu). A wide far edge (far_split.glsl) puts its far vertices between f_u and f_v.
     if (!point) {
-      emit(at, p[v], p[u], f[u]);
-      at += 3u;
-    } else if (id[v] < id[u]) {
-      emit(at, p[v], p[u], f[u]);
-      emit(at + 3u, p[v], f[u], f[v]);
-      at += 6u;
-    } else {
-      emit(at, p[u], f[u], f[v]);
-      emit(at + 3u, p[u], f[v], p[v]);
-      at += 6u;
+      volume_triangle(p[v], p[u], f[u]);
+      continue;
     }
+    const int m = splits[k] > 0 ? far_between(p[u], p[v], between) : 0;
+    const bool from_v = id[v] < id[u];
+    const vec4 apex = from_v ? p[v] : p[u];
+    if (from_v) volume_triangle(p[v], p[u], f[u]);
+    vec4 previous = f[u];
+    for (int i = 0; i < m; ++i) {
+      volume_triangle(apex, previous, between[i]);
+      previous = between[i];
+    }
+    volume_triangle(apex, previous, f[v]);
+    if (!from_v) volume_triangle(p[u], f[v], p[v]);
   }
-  if (point) emit(at, f[0], f[2], f[1]);
+  back_cap_triangles(p[0], p[1], p[2]);
 }
 
 void main() {

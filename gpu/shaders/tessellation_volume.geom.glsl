@@ -4,7 +4,9 @@
 // sign(m), or a triangle's caps, emitted as gs emits them (volume_capture.glsl's side_quad and
 // triangle_caps, with reference_edge.glsl's signs).
 layout(lines) in;
-layout(triangle_strip, max_vertices = 6) out;
+// One quad copy: at most 9 triangles (far_split.glsl); caps: the front cap and a back cap fanned
+// into at most 24 triangles. 3-vertex strips each.
+layout(triangle_strip, max_vertices = 75) out;
 
 const uint kTriangleKind = 1u;
 

@@ -14,41 +14,31 @@ void put(vec4 x) {
   EmitVertex();
 }
 
-// One copy of the side quad (p, q, q_inf, p_inf), where (p, q) is the edge (u, v) oriented by
-// sign(m): two 3-vertex strips (p, q, q_inf), (p, q_inf, p_inf), exactly the cs and cpu
-// triangles vertex for vertex. One 4-vertex strip would capture (q, q_inf, p) for the first,
-// which llvmpipe's near/depth clipping of w = 0 vertices rasterises differently on boundary
-// pixels (hundreds on default.json), so the counts would no longer match. A directional
-// light's quad is the triangle (p, q, inf).
-void side_quad(vec4 p, vec4 q) {
-  put(p);
-  put(q);
-  put(far_vertex(q));
+// A triangle of the volume, as one 3-vertex strip: exactly the cs and cpu triangles vertex for
+// vertex. (One 4-vertex strip per quad would capture (q, q_inf, p) for the first half, which
+// llvmpipe's near/depth clipping of w = 0 vertices rasterises differently on boundary pixels,
+// hundreds on default.json, so the counts would no longer match.)
+void volume_triangle(vec4 a, vec4 b, vec4 c) {
+  put(a);
+  put(b);
+  put(c);
   EndPrimitive();
-  if (light.w != 0.0) {
-    put(p);
-    put(far_vertex(q));
-    put(far_vertex(p));
-    EndPrimitive();
-  }
 }
 
+#include "far_split.glsl"
+
+// One copy of the side quad (p, q, q_inf, p_inf), where (p, q) is the edge (u, v) oriented by
+// sign(m) (far_split.glsl: split where its far edge is wide).
+void side_quad(vec4 p, vec4 q) { side_quad_triangles(p, q); }
+
 // Where s(t) != 0 (reference_edge.glsl's triangle_side): the front cap t' (normal towards the
-// light) and, for a point light, the back cap (t' at infinity, reversed).
+// light) and, for a point light, the back cap (t' at infinity, reversed; far_split.glsl).
 void triangle_caps(uint a, uint b, uint c) {
   const int s = triangle_side(a, b, c);
   if (s == 0) return;  // in the light's plane, or a repeated index: casts nothing
   const vec4 f0 = vertices[a];
   const vec4 f1 = vertices[s > 0 ? b : c];
   const vec4 f2 = vertices[s > 0 ? c : b];
-  put(f0);
-  put(f1);
-  put(f2);
-  EndPrimitive();
-  if (light.w != 0.0) {
-    put(far_vertex(f0));
-    put(far_vertex(f2));
-    put(far_vertex(f1));
-    EndPrimitive();
-  }
+  volume_triangle(f0, f1, f2);
+  back_cap_triangles(f0, f1, f2);
 }

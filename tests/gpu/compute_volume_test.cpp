@@ -1,7 +1,8 @@
 // The `cs` method (gpu/compute_volume.h) on llvmpipe or any EGL device:
 //  1. its multiplicities and cap signs, read back from the GPU, equal exact/'s
-//     refedge_multiplicities(..., Precision::float32) bit for bit (the shader mirrors
-//     core/light_side_formula.h with `precise`; Milet 2014 §2.2), on the default scene soup, a
+//     glsign_multiplicities (exact signs of the float inputs, the default) and, under
+//     SignMode::float32, refedge_multiplicities(..., Precision::float32) bit for bit (the shader
+//     mirrors core/light_side_formula.h with `precise`; Milet 2014 §2.2), on the default scene soup, a
 //     closed UV sphere and a fan of 100 triangles on one edge, point and directional lights;
 //  2. the emitted triangles form a closed chain (docs/definitions.md#counts): welded bitwise, every directed
 //     edge is balanced by its reverse;
@@ -49,7 +50,7 @@ NamedSoups test_soups() {
 // --gtest_filter=ComputeVolumeTest.*
 class ComputeVolumeTest : public GlTest {};
 
-TEST_F(ComputeVolumeTest, MultiplicitiesAndCapSignsEqualCpuRefedgeFloat32) {
+TEST_F(ComputeVolumeTest, FloatSigns_MultiplicitiesAndCapSignsEqualCpuRefedgeFloat32) {
   for_each_build<ComputeShadowVolume>(
       test_soups(), {kPointLight, kDirectionalLight},
       [](const ComputeShadowVolume& volume, const Prepared& p, const Light& light) {
@@ -57,6 +58,17 @@ TEST_F(ComputeVolumeTest, MultiplicitiesAndCapSignsEqualCpuRefedgeFloat32) {
         EXPECT_EQ(volume.read_multiplicities(), cpu.multiplicity);
         EXPECT_EQ(volume.read_triangle_signs(), triangle_signs(cpu));
         EXPECT_LE(volume.read_requested_vertices(), volume.capacity_vertices());
+      },
+      SignMode::float32);
+}
+
+TEST_F(ComputeVolumeTest, ExactSigns_MultiplicitiesAndCapSignsEqualGlsign) {
+  for_each_build<ComputeShadowVolume>(
+      test_soups(), {kPointLight, kDirectionalLight},
+      [](const ComputeShadowVolume& volume, const Prepared& p, const Light& light) {
+        const EdgeMultiplicities cpu = glsign_multiplicities(p.canonical.soup, p.table, light);
+        EXPECT_EQ(volume.read_multiplicities(), cpu.multiplicity);
+        EXPECT_EQ(volume.read_triangle_signs(), triangle_signs(cpu));
       });
 }
 
@@ -72,8 +84,7 @@ TEST_F(ComputeVolumeTest, HalfFanEdgeReachesMultiplicityK) {
   std::int32_t largest = 0;
   for (std::int32_t m : volume.read_multiplicities()) largest = std::max(largest, std::abs(m));
   EXPECT_EQ(largest, static_cast<std::int32_t>(kBlades));
-  EXPECT_EQ(volume.read_multiplicities(),
-            refedge_multiplicities(p.canonical.soup, p.table, light, Precision::float32).multiplicity);
+  EXPECT_EQ(volume.read_multiplicities(), glsign_multiplicities(p.canonical.soup, p.table, light).multiplicity);
   EXPECT_TRUE(unbalanced_edges(volume.read_triangles()).empty());
 }
 

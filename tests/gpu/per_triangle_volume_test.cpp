@@ -50,13 +50,23 @@ NamedSoups test_soups() {
 // --gtest_filter=PerTriangleVolumeTest.*
 class PerTriangleVolumeTest : public GlTest {};
 
-TEST_F(PerTriangleVolumeTest, PerTriangleSignsEqualCpuRefedgeFloat32) {
+TEST_F(PerTriangleVolumeTest, FloatSigns_PerTriangleSignsEqualCpuRefedgeFloat32) {
   for_each_build<PerTriangleShadowVolume>(
       test_soups(), {kPointLight, kDirectionalLight},
       [](const PerTriangleShadowVolume& volume, const Prepared& p, const Light& light) {
         const EdgeMultiplicities cpu = refedge_multiplicities(p.canonical.soup, p.table, light, Precision::float32);
         EXPECT_EQ(volume.read_triangle_signs(), triangle_signs(cpu));
         EXPECT_LE(volume.read_requested_vertices(), volume.capacity_vertices());
+      },
+      SignMode::float32);
+}
+
+TEST_F(PerTriangleVolumeTest, ExactSigns_PerTriangleSignsEqualGlsign) {
+  for_each_build<PerTriangleShadowVolume>(
+      test_soups(), {kPointLight, kDirectionalLight},
+      [](const PerTriangleShadowVolume& volume, const Prepared& p, const Light& light) {
+        EXPECT_EQ(volume.read_triangle_signs(),
+                  triangle_signs(glsign_multiplicities(p.canonical.soup, p.table, light)));
       });
 }
 
@@ -67,8 +77,12 @@ TEST_F(PerTriangleVolumeTest, CapturedPerTriangleVolumesAreClosed) {
         const std::vector<VolumeTriangle> triangles = expect_drawn_closed(volume);
         std::size_t casting = 0;
         for (std::int32_t s : volume.read_triangle_signs()) casting += s != 0;
-        // 8 triangles per casting triangle for a point light, 4 for a directional one.
-        EXPECT_EQ(triangles.size(), casting * (light.directional() ? 4u : 8u));
+        // 8 triangles per casting triangle for a point light (more where a far edge is wide,
+        // gpu/shaders/far_split.glsl), 4 for a directional one.
+        if (light.directional())
+          EXPECT_EQ(triangles.size(), casting * 4u);
+        else
+          EXPECT_GE(triangles.size(), casting * 8u);
       });
 }
 

@@ -202,5 +202,44 @@ TEST_F(ShadowMethodRendererTest, UndefinedLights_RejectedByEveryGpuBuild) {
   }
 }
 
+// ShadowMethodOptions::light_stencil: one frame, each light counted its own way (--stencil auto,
+// pipeline/stencil_choice.h). The eye under the open box is inside the first light's volume,
+// where z-pass and z-fail differ: the first light's counts follow its own method, and the frame
+// is the one StencilShadowRenderer draws with those LightVolume::stencil.
+TEST_F(ShadowMethodRendererTest, PerLightStencil_EachLightCountedItsOwnWayInOneFrame) {
+  PreparedScene in = default_inputs({Light{{-2.0, 6.0, 1.0, 1.0}}});
+  in.scene.camera.eye = {-0.2, 0.4, -1.2};
+  in.scene.camera.target = {0.5, 0.2, 4.0};
+  const OffscreenTarget target(kWidth, kHeight);
+  constexpr StencilMethod zpass = StencilMethod::zpass, zfail = StencilMethod::zfail;
+  for (ShadowMethod method : {ShadowMethod::cpu, ShadowMethod::cs}) {
+    SCOPED_TRACE(std::string(shadow_method_name(method)));
+    const auto frame = [&](std::vector<StencilMethod> per_light) {
+      ShadowMethodOptions options;
+      options.light_stencil = std::move(per_light);
+      ShadowMethodRenderer renderer(method, in.method_scene(), options);
+      return renderer.render(target, in.scene.camera);
+    };
+    const StencilShadowFrame all_zpass = frame({zpass, zpass}), all_zfail = frame({zfail, zfail});
+    const StencilShadowFrame mixed = frame({zpass, zfail}), reversed = frame({zfail, zpass});
+    ASSERT_NE(all_zpass.first_stencil.pixels, all_zfail.first_stencil.pixels);
+    EXPECT_EQ(mixed.first_stencil.pixels, all_zpass.first_stencil.pixels);
+    EXPECT_EQ(reversed.first_stencil.pixels, all_zfail.first_stencil.pixels);
+    if (method == ShadowMethod::cpu) {
+      StencilShadowOptions by_hand;
+      for (float& c : by_hand.light_colour) c /= 2.0f;
+      const ShadowVolumeMesh cpu0(in.cpu_volumes[0]), cpu1(in.cpu_volumes[1]);
+      const std::vector<LightVolume> lights{{in.scene.lights[0], &cpu0, {}, zpass},
+                                            {in.scene.lights[1], &cpu1, {}, zfail}};
+      const StencilShadowFrame expected =
+          StencilShadowRenderer().render(target, ShadedSoupMesh(in.parts), in.scene.camera, lights, by_hand);
+      EXPECT_EQ(mixed.colour.pixels, expected.colour.pixels);
+    }
+  }
+  ShadowMethodOptions wrong_size;
+  wrong_size.light_stencil = {zpass};
+  EXPECT_THROW(ShadowMethodRenderer(ShadowMethod::cpu, in.method_scene(), wrong_size), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace shadowcert::gpu

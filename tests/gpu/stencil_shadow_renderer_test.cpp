@@ -10,6 +10,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <stdexcept>
 #include <utility>
 
@@ -60,7 +61,9 @@ HomogeneousMesh triangle_volume(const Light& light) {
   return g;
 }
 
-StencilShadowFrame render(const Camera& camera, const Light& light, StencilMethod method, int copies = 1) {
+// `light_stencil`, when set, is the light's own method (LightVolume::stencil), over `method`.
+StencilShadowFrame render(const Camera& camera, const Light& light, StencilMethod method, int copies = 1,
+                          std::optional<StencilMethod> light_stencil = std::nullopt) {
   HomogeneousMesh g = triangle_volume(light);
   const std::size_t faces = g.triangles.size();
   for (int c = 1; c < copies; ++c)
@@ -70,7 +73,7 @@ StencilShadowFrame render(const Camera& camera, const Light& light, StencilMetho
   const ShadedSoupMesh receivers(soup);
   const StencilShadowRenderer renderer;
   const OffscreenTarget target(camera.width, camera.height);
-  const std::array<LightVolume, 1> lights{{{light, &volume}}};
+  const std::array<LightVolume, 1> lights{{{light, &volume, {}, light_stencil}}};
   return renderer.render(target, receivers, camera, lights, {.method = method});
 }
 
@@ -89,12 +92,10 @@ TEST_F(StencilShadowRendererTest, PointLightShadowOnTheFloorZFailAndZPass) {
   }
 }
 
-// The eye between occluder and floor, inside V(t): looking down at shadowed floor. z-fail
-// counts the faces behind P (the volume's exit below the floor) and gets 1; z-pass sees no face between the
-// eye and P and gets 0, the textbook failure z-fail exists to avoid.
-TEST_F(StencilShadowRendererTest, EyeInsideTheVolumeZFailCountsRightZPassDoesNot) {
-  // Light at (0, 3, 0): the volume below the occluder widens by (3 - y) / 2 from the y axis.
-  constexpr Light kOverheadLight{{0.0, 3.0, 0.0, 1.0}};
+// The eye between occluder and floor, inside V(t), looking down at shadowed floor.
+// Light at (0, 3, 0): the volume below the occluder widens by (3 - y) / 2 from the y axis.
+constexpr Light kOverheadLight{{0.0, 3.0, 0.0, 1.0}};
+Camera camera_inside_the_volume() {
   Camera camera;
   camera.eye = {0.0, 0.6, 0.0};     // inside: at y = 0.6 the volume's section at z = 0 spans x in [-0.6, 0.6]
   camera.target = {0.0, 0.0, -0.3}; // floor shadow at z = -0.3 spans x in [-0.9, 0.9]
@@ -102,12 +103,31 @@ TEST_F(StencilShadowRendererTest, EyeInsideTheVolumeZFailCountsRightZPassDoesNot
   camera.fov_y_degrees = 30.0;
   camera.width = 32;
   camera.height = 32;
+  return camera;
+}
+
+// z-fail counts the faces behind P (the volume's exit below the floor) and gets 1; z-pass sees
+// no face between the eye and P and gets 0, the textbook failure z-fail exists to avoid.
+TEST_F(StencilShadowRendererTest, EyeInsideTheVolumeZFailCountsRightZPassDoesNot) {
+  const Camera camera = camera_inside_the_volume();
   const Pixel centre{16, 16};
   const StencilShadowFrame zfail = render(camera, kOverheadLight, StencilMethod::zfail);
   EXPECT_EQ(stencil_at(zfail, centre), 1);
   EXPECT_EQ(*zfail.first_lit_mask.at(centre.x, centre.row), 0);
   const StencilShadowFrame zpass = render(camera, kOverheadLight, StencilMethod::zpass);
   EXPECT_EQ(stencil_at(zpass, centre), 0) << "z-pass misses the volume the eye is inside";
+}
+
+// LightVolume::stencil overrides StencilShadowOptions::method for its light, both ways, so a
+// frame can count each light its own way (pipeline/stencil_choice.h's --stencil auto).
+TEST_F(StencilShadowRendererTest, LightsOwnStencilMethod_OverridesTheOptions) {
+  const Camera camera = camera_inside_the_volume();
+  const Pixel centre{16, 16};
+  EXPECT_EQ(stencil_at(render(camera, kOverheadLight, StencilMethod::zpass, 1, StencilMethod::zfail), centre), 1);
+  EXPECT_EQ(stencil_at(render(camera, kOverheadLight, StencilMethod::zfail, 1, StencilMethod::zpass), centre), 0);
+  EXPECT_EQ(stencil_at(render(camera, kOverheadLight, StencilMethod::zpass, 1, StencilMethod::zpass), centre), 0);
+  EXPECT_EQ(stencil_method_name(StencilMethod::zfail), "zfail");
+  EXPECT_EQ(stencil_method_name(StencilMethod::zpass), "zpass");
 }
 
 // Directional light (triangle_over_floor.h's kDirectionalSideLight): side faces meet the one

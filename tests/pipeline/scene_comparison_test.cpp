@@ -9,7 +9,11 @@
 //     input (exact/cpu_volume.h);
 //  2. planted faults in cpu's volume (a side quad dropped, a cap reversed) are caught as open
 //     volumes and as hard errors;
-//  3. the shadow map, a baseline, shows hard errors at low resolution and fewer as it grows.
+//  3. the shadow map, a baseline, shows hard errors at low resolution and fewer as it grows;
+//  4. --stencil auto (pipeline/stencil_choice.h): no hard error on data/scenes/ and with the
+//     camera inside a volume, z-pass picked on the plain scene and z-fail there, and where
+//     z-pass is proven (every hard scene's proven lights too) its stencil equals z-fail's on
+//     every pixel.
 // Sizes are small: llvmpipe draws every method of every scene here.
 #include <gtest/gtest.h>
 
@@ -27,6 +31,7 @@
 #include "gpu/shadow_method_renderer.h"
 #include "io/soup_file.h"
 #include "pipeline/scene_comparison.h"
+#include "pipeline/stencil_choice.h"
 #include "reference/exact_image.h"
 #include "reference/pixel_comparison.h"
 #include "support/gl_test_support.h"
@@ -194,6 +199,106 @@ TEST_F(SceneComparisonTest, ShadowMap_HardErrorsShrinkAsItsResolutionGrows) {
   EXPECT_GT(errors.front(), 20u) << "a 16x16 map misses shadow boundaries by whole texels";
   for (std::size_t i = 1; i < errors.size(); ++i) EXPECT_LE(errors[i], errors[i - 1]) << "size step " << i;
   EXPECT_LT(errors.back(), errors.front() / 4);
+}
+
+// ---- --stencil auto: z-pass where it is proven (pipeline/stencil_choice.h) ----------------------
+
+Scene scene_file(const std::string& relative) {
+  return load_scene(std::filesystem::path(SHADOWCERT_SOURCE_DIR) / relative,
+                    [](const std::filesystem::path& f) { return read_soup(f); });
+}
+
+// The scenes of data/scenes/ but the 1M-triangle sphere grid (too slow for llvmpipe's every
+// method here; docs/gpu.md measures it), the camera inside a volume, and the light inside a
+// closed caster (everything outside it counts 1: its first light must not get z-pass).
+std::vector<std::string> auto_stencil_scenes() {
+  std::vector<std::string> files;
+  for (const auto& entry : std::filesystem::directory_iterator(std::filesystem::path(SHADOWCERT_SOURCE_DIR) / "data" / "scenes"))
+    if (entry.path().extension() == ".json" && entry.path().stem() != "sphere_grid_1m")
+      files.push_back("data/scenes/" + entry.path().filename().string());
+  std::sort(files.begin(), files.end());
+  files.push_back("data/scenes/hard/camera_inside_volume.json");
+  files.push_back("data/scenes/hard/light_inside_closed_caster.json");
+  return files;
+}
+
+class AutoStencilDiff : public GlTest, public ::testing::WithParamInterface<std::string> {};
+
+TEST_P(AutoStencilDiff, RobustMethodsWithAutoStencil_HaveNoHardErrorAndClosedVolumes) {
+  Scene scene = scene_file(GetParam());
+  scene.camera.width = kWidth;
+  scene.camera.height = kHeight;
+  SceneComparisonOptions options;
+  options.stencil_auto = true;
+  const SceneComparison c = compare_scene(scene, {kRobustMethods.begin(), kRobustMethods.end()}, options);
+  ASSERT_EQ(c.stencil.size(), scene.lights.size());
+  for (const LightStencil& s : c.stencil) EXPECT_TRUE(s.proof);
+  for (const MethodRun& run : c.runs) {
+    SCOPED_TRACE(std::string(shadow_method_name(run.method)));
+    EXPECT_EQ(run.closed(), true);
+    EXPECT_EQ(run.sum(&PixelComparison::hard_errors), 0u);
+    EXPECT_GT(run.sum(&PixelComparison::agree), std::uint64_t{kWidth} * kHeight / 3 * scene.lights.size());
+  }
+  EXPECT_TRUE(c.passed());
+}
+
+std::string scene_test_name(const ::testing::TestParamInfo<std::string>& file) {
+  std::string name = std::filesystem::path(file.param).stem().string();
+  std::replace_if(name.begin(), name.end(), [](char c) { return !std::isalnum(static_cast<unsigned char>(c)); }, '_');
+  return name;
+}
+
+INSTANTIATE_TEST_SUITE_P(BundledScenes, AutoStencilDiff, ::testing::ValuesIn(auto_stencil_scenes()), scene_test_name);
+
+TEST_F(SceneComparisonTest, AutoStencil_ZPassOnThePlainSceneZFailWhereTheCameraIsInAVolume) {
+  const auto methods_of = [](const std::string& file) {
+    Scene scene = scene_file(file);
+    scene.camera.width = 32;
+    scene.camera.height = 24;
+    SceneComparisonOptions options;
+    options.stencil_auto = true;
+    std::vector<StencilMethod> methods;
+    for (const LightStencil& s : compare_scene(scene, {ShadowMethod::cpu}, options).stencil) methods.push_back(s.method);
+    return methods;
+  };
+  EXPECT_EQ(methods_of("data/scenes/default.json"), std::vector<StencilMethod>{StencilMethod::zpass});
+  EXPECT_EQ(methods_of("data/scenes/hard/camera_inside_volume.json"),
+            (std::vector<StencilMethod>{StencilMethod::zfail, StencilMethod::zfail}));
+  EXPECT_EQ(methods_of("data/scenes/hard/light_inside_closed_caster.json"),
+            (std::vector<StencilMethod>{StencilMethod::zfail, StencilMethod::zpass}));
+}
+
+// Where z-pass is proven, the eye's winding number is 0, so on every pixel (covered or not) the
+// faces in front of the depth buffer count what those behind it count: the two stencil images of
+// a closed volume are the same, bit for bit. Every proven light of data/scenes/ (but the 1M grid)
+// and data/scenes/hard/, every robust method.
+TEST_F(SceneComparisonTest, ProvenZPass_SameStencilAsZFailOnEveryPixel) {
+  std::vector<std::string> files = auto_stencil_scenes();
+  for (const std::string& hard : hard_scenes()) files.push_back("data/scenes/hard/" + hard + ".json");
+  for (const std::string& file : files) {
+    SCOPED_TRACE(file);
+    Scene scene = scene_file(file);
+    scene.camera.width = kWidth;
+    scene.camera.height = kHeight;
+    const PreparedScene in(std::move(scene));
+    const std::vector<LightStencil> choice =
+        choose_stencil(StencilChoice::automatic, in.prepared, in.scene.lights, in.scene.camera);
+    const OffscreenTarget target(kWidth, kHeight);
+    for (std::size_t k = 0; k < choice.size(); ++k) {
+      if (choice[k].method != StencilMethod::zpass) continue;
+      for (ShadowMethod method : kRobustMethods) {
+        SCOPED_TRACE(std::string(shadow_method_name(method)) + ", light " + std::to_string(k));
+        std::array<std::vector<std::uint8_t>, 2> stencil;
+        for (StencilMethod s : {StencilMethod::zfail, StencilMethod::zpass}) {
+          ShadowMethodOptions options;
+          options.stencil = s;
+          ShadowMethodRenderer renderer(method, in.light_scene(k), options);
+          stencil[s == StencilMethod::zpass] = renderer.render(target, in.scene.camera).first_stencil.pixels;
+        }
+        EXPECT_EQ(stencil[0], stencil[1]);
+      }
+    }
+  }
 }
 
 }  // namespace

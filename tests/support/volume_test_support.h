@@ -197,15 +197,16 @@ using NamedSoups = std::vector<std::pair<std::string, Soup>>;
 // built for each light in turn; `check(volume, prepared, light)` runs after each build inside
 // a SCOPED_TRACE naming the soup and the light's kind.
 template <class Volume, class Check>
-void for_each_build(const NamedSoups& soups, std::initializer_list<Light> lights, Check check) {
+void for_each_build(const NamedSoups& soups, std::initializer_list<Light> lights, Check check,
+                    SignMode sign = SignMode::exact) {
   for (const auto& [name, soup] : soups) {
     const Prepared p = prepare(soup);
     const ComputeVolumeSoup gpu_soup(p.canonical.soup, p.table);
     Volume volume = [&] {
-      if constexpr (std::is_constructible_v<Volume, const ComputeVolumeSoup&, const EdgeTable&>) {
-        return Volume(gpu_soup, p.table);
+      if constexpr (std::is_constructible_v<Volume, const ComputeVolumeSoup&, const EdgeTable&, SignMode>) {
+        return Volume(gpu_soup, p.table, sign);
       } else {
-        return Volume(gpu_soup);
+        return Volume(gpu_soup, sign);
       }
     }();
     for (const Light& light : lights) {
