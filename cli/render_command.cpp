@@ -17,6 +17,7 @@
 #include "pipeline/mesh_palette.h"
 #include "io/output_file.h"
 #include "io/scene_input.h"
+#include "core/eye_frame.h"
 #include "core/input_error.h"
 #include "io/volume_file.h"
 #include "gpu/egl_context.h"
@@ -143,6 +144,9 @@ int run_render(const RenderOptions& options) {
   Scene scene = load_scene_or_mesh(options.input);
   if (scene.lights.empty()) throw InputError(options.input, "the scene has no light");
   apply_image_size(options.size, scene.camera);
+  // GL is given the scene in its eye's frame (core/eye_frame.h; docs/diff.md): every position
+  // minus the eye in double, rounded once to float on upload.
+  scene = eye_relative_scene(scene);
   const Soup merged = merged_soup(scene);
   if (merged.triangles.empty()) throw InputError(options.input, "no triangle to render");
 

@@ -1,5 +1,7 @@
 #include "exact/edge_multiplicity.h"
 
+#include "core/float_rounding.h"
+
 #include <cmath>
 #include <optional>
 #include <stdexcept>
@@ -292,15 +294,9 @@ EdgeMultiplicities exact_multiplicities(const Soup& canonical, const EdgeTable& 
 
 EdgeMultiplicities glsign_multiplicities(const Soup& canonical, const EdgeTable& table, const Light& light) {
   require_valid("glsign_multiplicities", canonical, table, light);
-  const auto to_float = [](double x) { return static_cast<double>(static_cast<float>(x)); };
-  Soup rounded = canonical;
-  for (Vec3& v : rounded.vertices)
-    for (double& x : v) x = to_float(x);
-  Light rounded_light = light;
-  for (double& x : rounded_light.position) x = to_float(x);
   // Rounding may merge two vertices' positions, never their indices: the table still fits.
-  return multiplicities("glsign_multiplicities", MultiplicityMethod::exact, rounded, table, rounded_light,
-                        Precision::float64);
+  return multiplicities("glsign_multiplicities", MultiplicityMethod::exact, float_rounded(canonical), table,
+                        float_rounded(light), Precision::float64);
 }
 
 EdgeMultiplicities kim_multiplicities(const Soup& canonical, const EdgeTable& table, const Light& light,

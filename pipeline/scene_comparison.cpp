@@ -13,6 +13,7 @@
 #include "pipeline/mesh_palette.h"
 #include "pipeline/method_inputs.h"
 #include "reference/input_rounding.h"
+#include "core/eye_frame.h"
 #include "scene/merged_soup.h"
 
 namespace shadowcert {
@@ -113,23 +114,26 @@ SceneComparison compare_scene(const Scene& scene, const std::vector<gpu::ShadowM
 
   SceneComparison result;
   result.exact = reference_image_of(merged, scene, options.progress, &result.rounded_seconds);
-  const MethodInputs inputs = prepare_method_inputs(merged, scene.lights, methods);
-  const std::vector<gpu::ShadedSoupPart> parts = shaded_parts(scene);
+  // The GL methods draw the scene in its eye's frame (core/eye_frame.h), which the reference's
+  // float-rounded image models.
+  const Scene drawn = eye_relative_scene(scene);
+  const MethodInputs inputs = prepare_method_inputs(merged_soup(drawn), drawn.lights, methods);
+  const std::vector<gpu::ShadedSoupPart> parts = shaded_parts(drawn);
   const gpu::OffscreenTarget target(scene.camera.width, scene.camera.height);
   if (std::any_of(methods.begin(), methods.end(), gpu::draws_volume)) {
     const StencilChoice choice = options.stencil_auto ? StencilChoice::automatic
                                  : options.method_options.stencil == gpu::StencilMethod::zpass ? StencilChoice::zpass
                                                                                                 : StencilChoice::zfail;
-    result.stencil = choose_stencil(choice, inputs, scene.lights, scene.camera);
+    result.stencil = choose_stencil(choice, inputs, drawn.lights, drawn.camera);
   }
   for (gpu::ShadowMethod method : methods) {
     MethodRun run{method, {}};
-    for (std::size_t k = 0; k < scene.lights.size(); ++k) {
+    for (std::size_t k = 0; k < drawn.lights.size(); ++k) {
       gpu::ShadowMethodOptions method_options = options.method_options;
       method_options.light_stencil.clear();
       if (!result.stencil.empty()) method_options.light_stencil.assign(1, result.stencil[k].method);
-      gpu::ShadowMethodRenderer renderer(method, light_scene(inputs, parts, scene.lights, k), method_options);
-      run.lights.push_back(compare_light(renderer, result.exact, k, target, scene.camera, options.timed_frames));
+      gpu::ShadowMethodRenderer renderer(method, light_scene(inputs, parts, drawn.lights, k), method_options);
+      run.lights.push_back(compare_light(renderer, result.exact, k, target, drawn.camera, options.timed_frames));
     }
     result.runs.push_back(std::move(run));
   }

@@ -1,5 +1,7 @@
 #include "reference/input_rounding.h"
 
+#include "core/eye_frame.h"
+
 #include <stdexcept>
 #include <vector>
 
@@ -20,9 +22,12 @@ void mark_input_rounding(ExactImage& exact, const ExactImage& rounded) {
 ExactImage exact_image_of_float_input(const Soup& soup, std::span<const Light> lights, const Camera& camera,
                                       const ExactImageOptions& options, double* rounded_seconds) {
   ExactImage exact = exact_image(soup, lights, camera, options);
+  // What GL receives (core/eye_frame.h): every position minus the eye, rounded once to float.
+  const Vec3& eye = camera.eye;
   std::vector<Light> rounded_lights;
-  for (const Light& light : lights) rounded_lights.push_back(float_rounded(light));
-  const ExactImage rounded = exact_image(float_rounded(soup), rounded_lights, camera, options);
+  for (const Light& light : lights) rounded_lights.push_back(float_rounded(relative_to(light, eye)));
+  const ExactImage rounded =
+      exact_image(float_rounded(relative_to(soup, eye)), rounded_lights, relative_to(camera, eye), options);
   mark_input_rounding(exact, rounded);
   if (rounded_seconds != nullptr) *rounded_seconds = rounded.stats.seconds;
   return exact;

@@ -22,7 +22,8 @@ namespace shadowcert {
 void mark_input_rounding(ExactImage& exact, const ExactImage& rounded);
 
 // The diff's reference: the exact image of the scene as given (its stats are this image's),
-// marked by that of the float-rounded scene (same camera and options). `rounded_seconds`, when
+// marked by that of the scene as GL receives it (same pixels and options): moved into the eye's
+// frame and rounded once to float (core/eye_frame.h, core/float_rounding.h). `rounded_seconds`, when
 // given, receives the second image's time.
 [[nodiscard]] ExactImage exact_image_of_float_input(const Soup& soup, std::span<const Light> lights,
                                                     const Camera& camera, const ExactImageOptions& options,

@@ -445,7 +445,7 @@ TEST(CliFuzz, GlFailure_ShrunkToASceneThatDiffReplays) {
   const fs::path dir = temp_dir() / "gl_campaign_failure";
   const fs::path json = dir / "gl.json";
   // Float signs: the light within rounding of a plane still fails them (exact signs do not).
-  const RunResult r = run_cli("fuzz --gl --sign float --seed 1 --cases 20 --triangles 30 --methods exact --gl-methods cs "
+  const RunResult r = run_cli("fuzz --gl --sign float --seed 2 --cases 20 --triangles 30 --methods exact --gl-methods cs "
                               "--max-reproducers 1 --out " + (dir / "out").string() + " --json " + json.string());
   if (render_unavailable(r)) GTEST_SKIP() << r.output;
   ASSERT_EQ(r.exit_code, 1) << r.output;
@@ -455,7 +455,7 @@ TEST(CliFuzz, GlFailure_ShrunkToASceneThatDiffReplays) {
   ASSERT_EQ(j["reproducers"].size(), 1u) << r.output;
   const nlohmann::json& rep = j["reproducers"][0];
   EXPECT_EQ(rep["run"], "gl-cs");
-  EXPECT_EQ(rep["case"], 19);
+  EXPECT_EQ(rep["case"], 15);
   EXPECT_EQ(rep["failure"], "hard_errors");
   EXPECT_EQ(rep["replayed"], true);
   EXPECT_LT(rep["triangles"].get<int>(), rep["original_triangles"].get<int>());
@@ -468,6 +468,20 @@ TEST(CliFuzz, GlFailure_ShrunkToASceneThatDiffReplays) {
   const nlohmann::json d = read_json(diffed);
   EXPECT_GT(d["methods"]["cs"]["hard_errors"].get<int>(), 0);
   EXPECT_EQ(d["methods"]["cs"]["closed"], true);
+}
+
+// The same cases with the default exact signs: none fails (docs/gpu.md "Exact signs").
+TEST(CliFuzz, CasesThatFailFloatSigns_PassWithExactSigns) {
+  const fs::path json = temp_dir() / "gl_campaign_exact.json";
+  const RunResult r = run_cli("fuzz --gl --seed 2 --cases 20 --triangles 30 --methods exact --gl-methods cs,pertri "
+                              "--max-reproducers 0 --out " + (temp_dir() / "unused").string() + " --json " +
+                              json.string());
+  if (render_unavailable(r)) GTEST_SKIP() << r.output;
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const nlohmann::json j = read_json(json);
+  EXPECT_EQ(j["gl"]["sign"], "exact");
+  EXPECT_EQ(j["methods"]["gl-cs"]["failures"], 0);
+  EXPECT_EQ(j["methods"]["gl-pertri"]["failures"], 0);
 }
 
 TEST(CliFuzz, RegressionReproducer_CertifyReplaysItsRecordedCommand) {
