@@ -9,7 +9,12 @@
 //   render_bench --benchmark_filter=render/pertri/      # one method
 //   render_bench --triangles=1000000,2000000,4000000 --resolution=1920x1080   # the NVIDIA run
 //
-// One benchmark per (triangles, method), named render/METHOD/TRIANGLES and run in size order.
+// One benchmark per (triangles, method), named render/METHOD/TRIANGLES and run in size order;
+// cs, gs, ts and pertri run twice, with their default exact signs and as METHOD-float with
+// `--sign float` (gpu/sign_mode.h), so that the exact signs' cost is a ratio of one run. Their
+// exact rows count sign_fallback_pct: the share of triangles whose sign the float filter could
+// not decide (gpu/light_side_probe.h on the grid's sorted triples, the evaluations the volume
+// shaders make).
 // Each iteration is one frame (volumes rebuilt for the GPU methods, no readback, glFinish),
 // timed on the wall clock (manual time: the Time column is the mean ms per frame). Counters,
 // medians over the iterations, in ms: each stage of the method (volume, depth, stencil, lit;
@@ -42,6 +47,7 @@
 #include "gpu/egl_context.h"
 #include "gpu/frame_timing.h"
 #include "gpu/gl_environment_error.h"
+#include "gpu/light_side_probe.h"
 #include "gpu/offscreen_target.h"
 #include "gpu/shadow_method_renderer.h"
 #include "pipeline/method_inputs.h"
@@ -139,12 +145,35 @@ void prepare_cpu_volumes(GridScene& s) {
   if (s.inputs.cpu_volumes.empty()) add_cpu_volumes(s.inputs, s.lights);
 }
 
-void run_method(benchmark::State& state, gpu::ShadowMethod method, std::uint64_t triangles, const Settings& settings,
-                gpu::StageSync sync) {
+// The percentage of the canonical soup's triangles (repeated indices excepted) whose sorted
+// triple the exact signs' float filter leaves to the integer stage, for `light`.
+double sign_fallback_percent(const Soup& canonical, const Light& light) {
+  std::vector<gpu::Vec3f> points;
+  points.reserve(3 * canonical.triangles.size());
+  for (const auto& t : canonical.triangles) {
+    std::array<std::uint32_t, 3> sorted = t;
+    std::sort(sorted.begin(), sorted.end());
+    if (sorted[0] == sorted[1] || sorted[1] == sorted[2]) continue;
+    for (std::uint32_t i : sorted) {
+      const Vec3& v = canonical.vertices[i];
+      points.push_back({static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2])});
+    }
+  }
+  const auto& l = light.position;
+  const std::vector<gpu::LightSideSample> samples = gpu::LightSideProbe{}.evaluate(
+      points, {static_cast<float>(l[0]), static_cast<float>(l[1]), static_cast<float>(l[2]), static_cast<float>(l[3])});
+  const auto fallbacks = std::count_if(samples.begin(), samples.end(), [](const auto& x) { return x.fallback; });
+  return samples.empty() ? 0.0 : 100.0 * static_cast<double>(fallbacks) / static_cast<double>(samples.size());
+}
+
+void run_method(benchmark::State& state, gpu::ShadowMethod method, gpu::SignMode sign, std::uint64_t triangles,
+                const Settings& settings, gpu::StageSync sync) {
   GridScene& s = grid_scene(triangles, settings);
   const std::array<gpu::ShadedSoupPart, 1> receivers{gpu::ShadedSoupPart{&s.soup}};
   if (method == gpu::ShadowMethod::cpu) prepare_cpu_volumes(s);
-  gpu::ShadowMethodRenderer renderer(method, method_scene(s.inputs, receivers, s.lights));
+  gpu::ShadowMethodOptions options;
+  options.sign = sign;
+  gpu::ShadowMethodRenderer renderer(method, method_scene(s.inputs, receivers, s.lights), options);
   const gpu::OffscreenTarget target(s.camera.width, s.camera.height);
   (void)renderer.render_frames(target, s.camera, 1);  // warm-up: shader variants
   renderer.check_capacity();
@@ -165,6 +194,8 @@ void run_method(benchmark::State& state, gpu::ShadowMethod method, std::uint64_t
   state.counters["gpu_frame_ms"] = t.frame_gpu.median_ms;
   state.counters["tris"] = static_cast<double>(s.soup.triangles.size());
   state.counters["vol_tris"] = static_cast<double>(volume_triangles);
+  if (gpu::builds_volume_on_gpu(method) && sign == gpu::SignMode::exact)
+    state.counters["sign_fallback_pct"] = sign_fallback_percent(s.inputs.canonical.soup, s.lights.front());
 }
 
 // Parses and removes this program's own flags (Google Benchmark rejects flags it does not know).
@@ -235,18 +266,23 @@ int main(int argc, char** argv) {
       const benchmark::IterationCount frames = triangles > kLargeScene ? kLargeFrames
                                                : triangles > kMidScene ? kMidFrames
                                                                        : kSmallFrames;
-      benchmark::RegisterBenchmark(
-          fmt::format("render/{}/{}", gpu::shadow_method_name(method), triangles).c_str(),
-          [method, triangles, &settings, sync](benchmark::State& state) {
-            try {
-              run_method(state, method, triangles, settings, sync);
-            } catch (const std::exception& e) {  // e.g. a volume past its buffers: that row only
-              state.SkipWithError(e.what());
-            }
-          })
-          ->Iterations(frames)
-          ->UseManualTime()
-          ->Unit(benchmark::kMillisecond);
+      for (gpu::SignMode sign : {gpu::SignMode::exact, gpu::SignMode::float32}) {
+        if (sign == gpu::SignMode::float32 && !gpu::builds_volume_on_gpu(method)) continue;
+        const std::string name = sign == gpu::SignMode::exact
+                                     ? fmt::format("render/{}/{}", gpu::shadow_method_name(method), triangles)
+                                     : fmt::format("render/{}-float/{}", gpu::shadow_method_name(method), triangles);
+        benchmark::RegisterBenchmark(name.c_str(),
+                                     [method, sign, triangles, &settings, sync](benchmark::State& state) {
+                                       try {
+                                         run_method(state, method, sign, triangles, settings, sync);
+                                       } catch (const std::exception& e) {  // e.g. a volume past its buffers
+                                         state.SkipWithError(e.what());
+                                       }
+                                     })
+            ->Iterations(frames)
+            ->UseManualTime()
+            ->Unit(benchmark::kMillisecond);
+      }
     }
   }
   benchmark::RunSpecifiedBenchmarks();

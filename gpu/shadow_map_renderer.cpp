@@ -192,7 +192,7 @@ StencilShadowFrame ShadowMapRenderer::render(const OffscreenTarget& target, cons
   glBindVertexArray(receivers.vertex_array());
   {
     const ScopedStage stage(options.timer, RenderStage::depth);
-    glDrawArrays(GL_TRIANGLES, 0, receivers.vertex_count());
+    glDrawArrays(GL_TRIANGLES, 0, receivers.single_order_vertex_count());
   }
 
   for (std::size_t i = 0; i < lights.size(); ++i) {
@@ -211,7 +211,7 @@ StencilShadowFrame ShadowMapRenderer::render(const OffscreenTarget& target, cons
     glProgramUniformMatrix4fv(depth, kDepthLightToClipLocation, 1, GL_FALSE, glm::value_ptr(to_light_clip));
     glEnable(GL_POLYGON_OFFSET_FILL);
     glPolygonOffset(options.slope_scale, 0.0f);
-    glDrawArrays(GL_TRIANGLES, 0, receivers.vertex_count());
+    glDrawArrays(GL_TRIANGLES, 0, receivers.single_order_vertex_count());
     glDisable(GL_POLYGON_OFFSET_FILL);
     stage.reset();
 
@@ -236,7 +236,7 @@ StencilShadowFrame ShadowMapRenderer::render(const OffscreenTarget& target, cons
     glProgramUniform1f(scene, kLambertWeightLocation, 1.0f);
     glProgramUniform4f(scene, kColourLocation, options.light_colour[0], options.light_colour[1],
                        options.light_colour[2], 1.0f);
-    glDrawArrays(GL_TRIANGLES, 0, receivers.vertex_count());
+    glDrawArrays(GL_TRIANGLES, 0, receivers.single_order_vertex_count());
     glDisable(GL_BLEND);
     glBindTextureUnit(kShadowMapUnit, 0);
     stage.reset();

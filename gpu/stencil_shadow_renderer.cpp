@@ -70,6 +70,21 @@ ShadedSoupMesh::ShadedSoupMesh(std::span<const ShadedSoupPart> parts)
       }
     }
   }
+  // Every triangle a second time with its last two corners swapped: the order a front cap t'
+  // has where s(t) = -1 (docs/definitions.md#counts). The rasteriser interpolates depth from
+  // the vertices in their order, and (a, b, c) and (a, c, b) round apart by a unit here and
+  // there; the depth pre-pass keeps the nearer of the two, so a cap on its own visible triangle,
+  // in either order, is never nearer than the stored depth and always counts as behind it
+  // (GL_LESS fails). With one order only, the plane where the two roundings cross shaded a line
+  // across the caster (tests/regressions/gl/own_cap_depth_line.json: 16 hard pixels at
+  // 256x192). The lit pass draws both copies too; its stencil op lets only the first through.
+  const std::size_t forward = vertices.size();
+  vertices.reserve(2 * forward);
+  for (std::size_t i = 0; i < forward; i += 3) {
+    vertices.push_back(vertices[i]);
+    vertices.push_back(vertices[i + 2]);
+    vertices.push_back(vertices[i + 1]);
+  }
   if (vertices.size() > static_cast<std::size_t>(std::numeric_limits<GLsizei>::max())) {
     throw std::invalid_argument("ShadedSoupMesh: too many triangles for one draw call");
   }
@@ -173,7 +188,9 @@ StencilShadowFrame StencilShadowRenderer::render(const OffscreenTarget& target, 
     // 3. Lit pass: this light's Lambert term where the count is 0, on the visible surface only.
     stage.emplace(options.timer, RenderStage::lit);
     glStencilFunc(GL_EQUAL, 0, 0xFF);
-    glStencilOpSeparate(GL_FRONT_AND_BACK, GL_KEEP, GL_KEEP, GL_KEEP);
+    // A pixel lit once: its count becomes 1 and the receivers' second copy (ShadedSoupMesh)
+    // fails the test. The next light clears the stencil first.
+    glStencilOpSeparate(GL_FRONT_AND_BACK, GL_KEEP, GL_KEEP, GL_INCR);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glDepthFunc(GL_EQUAL);
     glEnable(GL_BLEND);

@@ -53,7 +53,11 @@ class ShadedSoupMesh {
   explicit ShadedSoupMesh(const Soup& soup);
 
   [[nodiscard]] GLuint vertex_array() const { return vertex_array_.name(); }
+  // Every triangle twice, (a, b, c) then (a, c, b) (stencil_shadow_renderer.cpp says why): what
+  // the stencil method's depth and lit passes draw.
   [[nodiscard]] GLsizei vertex_count() const { return vertex_count_; }
+  // The first copy alone, (a, b, c) per triangle: for passes that need each triangle once.
+  [[nodiscard]] GLsizei single_order_vertex_count() const { return vertex_count_ / 2; }
 
  private:
   Buffer vertices_;

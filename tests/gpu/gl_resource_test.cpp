@@ -48,12 +48,13 @@ constexpr int kCycles = 100;
 // the driver's caches (compiled shaders, llvmpipe's thread and allocator pools).
 constexpr int kWarmUpCycles = 10;
 // Resident-set growth allowed over the 90 measured cycles. It absorbs allocator fragmentation
-// and driver bookkeeping (measured on llvmpipe: 0 to 1 MiB, printed per method). Keeping
+// and driver bookkeeping (measured on llvmpipe: 0 to 3 MiB per method alone, up to 4.6 MiB for gs
+// under a parallel ctest, since the exact-sign and far-split shader code compiles larger; printed per method). Keeping
 // every cycle's renderer alive instead (a deliberate leak, tried once) grew it by 60 MiB (cpu),
 // 117 MiB (cs), 182 MiB (ts), 257 MiB (pertri) and 338 MiB (gs) over the same cycles, so a
 // leak of the method's buffers cannot hide under the bound; the name checks catch any GL
 // object that outlives its owner, however small.
-constexpr long kMaxRssGrowthBytes = 4L << 20;
+constexpr long kMaxRssGrowthBytes = 8L << 20;
 
 long resident_bytes() {
   std::ifstream statm("/proc/self/statm");
