@@ -8,6 +8,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "core/near_plane.h"
 #include "io/output_file.h"
 #include "io/scene_input.h"
 #include "io/soup_file.h"
@@ -102,6 +103,7 @@ Scene campaign_view_scene(const CampaignView& view) {
   scene.meshes = {{"soup", view.soup}, {"floor", view.floor}};
   scene.lights = {view.light};
   scene.camera = view.camera;
+  scene.camera = camera_fitted_to(scene);  // a snapped soup at 2^17 needs a far near plane
   return scene;
 }
 

@@ -30,9 +30,11 @@ glm::dmat4 view_matrix(const Camera& camera) {
 
 // GLM's infinitePerspective (right-handed, clip z in [-w, w]) with the frame's half extents:
 // view-space x / -z = half_width maps to NDC x = 1, as pixel_ray assumes.
-glm::dmat4 projection_matrix(const Camera& camera, double z_near) {
+glm::dmat4 projection_matrix(const Camera& camera) {
   const CameraFrame f = camera_frame(camera, "projection_matrix");
-  if (!(z_near > 0.0)) throw std::invalid_argument("projection_matrix: z_near must be > 0");
+  const double z_near = camera.near_plane;
+  if (!(z_near > 0.0) || !std::isfinite(z_near))
+    throw std::invalid_argument("projection_matrix: the camera's near plane must be finite and > 0");
   glm::dmat4 m(0.0);
   m[0][0] = 1.0 / f.half_width;
   m[1][1] = 1.0 / f.half_height;

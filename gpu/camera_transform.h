@@ -15,15 +15,12 @@
 
 namespace shadowcert::gpu {
 
-// The near plane when a caller gives none. The far plane is at infinity, so that the
-// shadow-volume back caps (points at infinity, w = 0) are never clipped (z-fail).
-// Depth precision only matters near the camera; scenes with tiny features pass their own.
-inline constexpr double kDefaultNearPlane = 0.01;
-
 // Throws std::invalid_argument naming the function for a degenerate camera (eye == target,
 // up parallel to the view direction, fov outside (0, 180), empty image).
 [[nodiscard]] glm::dmat4 view_matrix(const Camera& camera);
-[[nodiscard]] glm::dmat4 projection_matrix(const Camera& camera, double z_near = kDefaultNearPlane);
+// The projection's near plane is camera.near_plane (core/near_plane.h fits it to a scene); its
+// far plane is at infinity, so that back caps (w = 0) are never clipped.
+[[nodiscard]] glm::dmat4 projection_matrix(const Camera& camera);
 
 // Where a world point lands in image coordinates (x right, y DOWN, pixel (i, r)'s centre at
 // (i + 0.5, r + 0.5)); for tests. The point must be in front of the camera.

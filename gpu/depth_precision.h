@@ -22,8 +22,8 @@ inline constexpr double kDepthQuantum = 1.0 / 16777216.0;  // 2^-24
 inline constexpr double kDepthBandFactor = 16.0;
 
 // The half-width, in view depth, of the band around a visible point at view depth
-// `view_depth` (> 0), for the projection's near plane `z_near`.
-[[nodiscard]] constexpr double depth_band(double view_depth, double z_near = kDefaultNearPlane) {
+// `view_depth` (> 0), for the projection's near plane `z_near` (Camera::near_plane).
+[[nodiscard]] constexpr double depth_band(double view_depth, double z_near) {
   return kDepthBandFactor * view_depth * view_depth / z_near * kDepthQuantum;
 }
 

@@ -4,6 +4,7 @@
 #include <cctype>
 #include <string>
 
+#include "core/near_plane.h"
 #include "io/soup_file.h"
 #include "scene/scene_file.h"
 
@@ -17,6 +18,7 @@ Scene load_scene_or_mesh(const std::filesystem::path& input) {
   Scene scene;
   scene.meshes.push_back({input.string(), read_soup(input)});
   scene.lights.emplace_back();
+  scene.camera = camera_fitted_to(scene);
   return scene;
 }
 

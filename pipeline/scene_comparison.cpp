@@ -19,10 +19,11 @@
 namespace shadowcert {
 namespace {
 
-// The exact image's options: the GL depth band, and with `progress` a bar on stderr.
-ExactImageOptions exact_options(bool progress) {
+// The exact image's options: the GL depth band of `camera`'s near plane, and with `progress` a
+// bar on stderr.
+ExactImageOptions exact_options(const Camera& camera, bool progress) {
   ExactImageOptions options;
-  options.depth_band = [](double view_depth) { return gpu::depth_band(view_depth); };
+  options.depth_band = [near = camera.near_plane](double view_depth) { return gpu::depth_band(view_depth, near); };
   if (!progress) return options;
   options.progress = [](std::string_view stage, std::uint64_t done, std::uint64_t total) {
     constexpr int kBarWidth = 32;
@@ -48,7 +49,7 @@ std::vector<std::uint8_t> coverage(const gpu::RgbaImage& colour) {
 // in float: where that rounding changes the exact answer, the pixel is ambiguous
 // (reference/input_rounding.h), so the scene is imaged twice.
 ExactImage reference_image_of(const Soup& merged, const Scene& scene, bool progress, double* rounded_seconds) {
-  return exact_image_of_float_input(merged, scene.lights, scene.camera, exact_options(progress), rounded_seconds);
+  return exact_image_of_float_input(merged, scene.lights, scene.camera, exact_options(scene.camera, progress), rounded_seconds);
 }
 
 }  // namespace

@@ -38,7 +38,7 @@ NearTip gl_near_tip(const Camera& camera, double magnitude) {
   // The GL tip is {eye + t (forward + a right + b up) : t in [0, near], |a| <= hw, |b| <= hh};
   // from the apex eye - back * forward, parameter t' = t + back + dt, a point within d of it
   // (per axis) has t' in [back - d, near + back + d] and |a'| <= hw (since back - d >= d / hw).
-  const double near = (gpu::kDefaultNearPlane + back + d) * grow;
+  const double near = (camera.near_plane + back + d) * grow;
   const double hw = f.half_width * grow;
   const double hh = f.half_height * grow;
   NearTip tip;

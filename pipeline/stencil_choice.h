@@ -54,7 +54,7 @@ struct NearTip {
   std::array<Vec3, 4> corners{};   // the enlarged near rectangle, in cyclic order
 };
 
-// GL's near-plane tip of `camera` (gpu/camera_transform.h: near plane kDefaultNearPlane, the
+// GL's near-plane tip of `camera` (gpu/camera_transform.h: near plane camera.near_plane, the
 // frame of core/pixel_ray.h), enlarged: the apex moved back along the view direction by
 // s = d (1 + 1 / min(half_width, half_height)) with d = kNearTipFloatMargin * magnitude, the
 // near distance grown by s + d, then everything by kNearTipRelativeMargin. Every point within d

@@ -12,6 +12,7 @@
 
 #include "core/camera.h"
 #include "core/input_error.h"
+#include "core/near_plane.h"
 #include "core/vector3.h"
 #include "scene/affine_transform.h"
 #include "scene/detail/generator_params.h"
@@ -195,8 +196,9 @@ std::uint32_t read_image_side(const JsonField& field) {
   return static_cast<std::uint32_t>(side);
 }
 
-Camera read_camera(const JsonField& field) {
-  field.require_keys_within({"eye", "target", "up", "fov_y_deg", "size"});
+// The camera, and whether it gives its near plane ("near"; else parse_scene fits one).
+Camera read_camera(const JsonField& field, bool& has_near) {
+  field.require_keys_within({"eye", "target", "up", "fov_y_deg", "size", "near"});
   Camera camera;
   camera.eye = vec3_or(field, "eye", camera.eye);
   camera.target = vec3_or(field, "target", camera.target);
@@ -213,6 +215,13 @@ Camera read_camera(const JsonField& field) {
                                           : size->json().type_name()));
     camera.width = read_image_side(size->element(0));
     camera.height = read_image_side(size->element(1));
+  }
+  has_near = false;
+  if (const auto near = field.member("near")) {
+    camera.near_plane = near->number();
+    if (!(camera.near_plane > 0.0) || !std::isfinite(camera.near_plane))
+      near->fail("must be a finite distance > 0, got " + near->json().dump());
+    has_near = true;
   }
   if (camera.eye == camera.target) field.fail("eye and target must be different points");
   const Vec3 view{camera.target[0] - camera.eye[0], camera.target[1] - camera.eye[1],
@@ -247,7 +256,9 @@ Scene parse_scene(std::string_view json_text, const std::string& file_name, cons
   } else {
     scene.lights.push_back(default_light(scene.meshes, root));
   }
-  if (const auto camera = root.member("camera")) scene.camera = read_camera(*camera);
+  bool has_near = false;
+  if (const auto camera = root.member("camera")) scene.camera = read_camera(*camera, has_near);
+  if (!has_near) scene.camera = camera_fitted_to(scene);
   return scene;
 }
 

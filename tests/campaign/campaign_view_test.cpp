@@ -19,8 +19,9 @@ using namespace shadowcert;
 constexpr std::uint64_t kSeed = 20240612;
 constexpr std::uint64_t kCases = 400;
 constexpr std::uint32_t kTriangles = 40;
-// gpu/camera_transform.h's kDefaultNearPlane: what the GL methods clip at (gpu/ is not linked).
-constexpr double kNearPlane = 0.01;
+// The near plane of a unit scene (core/camera.h); a fitted one (core/near_plane.h) is at most
+// half the distance to the nearest triangle, so a vertex beyond this one is never clipped.
+constexpr double kNearPlane = kDefaultNearPlane;
 
 double reframed(double x, const SoupFrame& frame) { return std::ldexp(x, frame.scale_exponent) + frame.offset; }
 

@@ -20,6 +20,7 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -27,6 +28,7 @@
 #include <vector>
 
 #include "core/homogeneous_mesh.h"
+#include "core/near_plane.h"
 #include "gpu/offscreen_target.h"
 #include "gpu/shadow_method_renderer.h"
 #include "io/soup_file.h"
@@ -165,6 +167,84 @@ std::string test_name(const ::testing::TestParamInfo<std::string>& scene) {
 INSTANTIATE_TEST_SUITE_P(EveryHardScene, HardSceneDiff, ::testing::ValuesIn(hard_scenes()), test_name);
 
 TEST(HardSceneList, IsNotEmpty) { EXPECT_GE(hard_scenes().size(), 10u); }
+
+// ---- real meshes over a floor ------------------------------------------------------------------
+
+// The real meshes of ../shared/data/ (its README), each lit over a floor as a user would view it:
+// the mesh's vertex box, centre c and half-diagonal r; a floor quad 3 r square just under it; a
+// point light up and to the side (c + r (1.5, 3, 1)); the camera at c + r (2.4, 1.6, 3.2) looking
+// at c. The scene's near plane is fitted (core/near_plane.h), as the scene reader fits it.
+Scene shared_mesh_scene(const Soup& mesh, const std::string& name, std::uint32_t width, std::uint32_t height) {
+  Vec3 lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
+  for (const Triangle& t : mesh.triangles)
+    for (std::uint32_t v : t)
+      for (std::size_t k = 0; k < 3; ++k) {
+        lo[k] = std::min(lo[k], mesh.vertices[v][k]);
+        hi[k] = std::max(hi[k], mesh.vertices[v][k]);
+      }
+  const Vec3 c{0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]), 0.5 * (lo[2] + hi[2])};
+  const double r = 0.5 * std::sqrt(dot(difference(hi, lo), difference(hi, lo)));
+  const auto at = [&](double x, double y, double z) { return Vec3{c[0] + r * x, c[1] + r * y, c[2] + r * z}; };
+  Soup floor;
+  const double y = lo[1] - 0.01 * r;
+  floor.vertices = {{c[0] - 3 * r, y, c[2] - 3 * r}, {c[0] - 3 * r, y, c[2] + 3 * r}, {c[0] + 3 * r, y, c[2] + 3 * r},
+                    {c[0] + 3 * r, y, c[2] - 3 * r}};
+  floor.triangles = {{0, 1, 2}, {0, 2, 3}};
+  Scene scene;
+  scene.meshes = {{name, mesh}, {"floor", floor}};
+  const Vec3 light = at(1.5, 3.0, 1.0);
+  scene.lights = {Light{{light[0], light[1], light[2], 1.0}}};
+  scene.camera.eye = at(2.4, 1.6, 3.2);
+  scene.camera.target = c;
+  scene.camera.width = width;
+  scene.camera.height = height;
+  scene.camera = camera_fitted_to(scene);
+  return scene;
+}
+
+std::vector<std::string> shared_meshes() {
+  return {"edge_cases/trimesh_shared.STL",       "edge_cases/trimesh_multibody.stl",
+          "edge_cases/manifold_openscad-nonmanifold-crash.obj", "edge_cases/trimesh_featuretype.STL",
+          "edge_cases/teapot.obj",               "soups/beetle.obj",
+          "soups/trimesh_chair_model.obj",       "soups/trimesh_bunny.ply",
+          "soups/trimesh_cycloidal.ply",         "soups/stanford-bunny.obj",
+          "soups/ogre.obj",                      "closed_manifold/thingi10k_65004.stl",
+          "closed_manifold/spot.obj",            "closed_manifold/thingi10k_908460.stl",
+          "closed_manifold/nefertiti.obj",       "closed_defective/horse.ply",
+          "closed_defective/beast.obj",          "closed_defective/manifold_self_intersectA.obj"};
+}
+
+void expect_shared_mesh_exact(const std::string& mesh, std::uint32_t width, std::uint32_t height) {
+  const std::filesystem::path file = std::filesystem::path(SHADOWCERT_SHARED_DATA) / mesh;
+  if (!std::filesystem::exists(file)) GTEST_SKIP() << file << " is not here (../shared/data/ is a dev checkout's)";
+  const Scene scene = shared_mesh_scene(read_soup(file), mesh, width, height);
+  const SceneComparison c = compare_scene(scene, std::vector<ShadowMethod>(kRobustMethods.begin(), kRobustMethods.end()), {});
+  // Not vacuous: the mesh shades part of the floor or itself (n > 0 at some visible pixels).
+  const std::vector<std::uint32_t>& counts = c.exact.lights.front().counts;
+  const auto shaded = std::count_if(counts.begin(), counts.end(), [](std::uint32_t n) {
+    return n != 0 && n != kNoHit && n != kUndefinedCount;
+  });
+  EXPECT_GT(shaded, std::int64_t{width} * height / 100);
+  for (const MethodRun& run : c.runs) {
+    SCOPED_TRACE(mesh + ", " + std::string(shadow_method_name(run.method)) + " at " + std::to_string(width) + "x" +
+                 std::to_string(height));
+    EXPECT_EQ(run.closed(), true);
+    EXPECT_EQ(run.sum(&PixelComparison::hard_errors), 0u);
+    EXPECT_GT(run.sum(&PixelComparison::agree), std::uint64_t{width} * height / 4);  // not vacuous
+  }
+}
+
+class SharedMeshDiff : public GlTest, public ::testing::WithParamInterface<std::string> {};
+
+TEST_P(SharedMeshDiff, OverAFloorAt256x192_RobustMethodsHaveNoHardError) { expect_shared_mesh_exact(GetParam(), 256, 192); }
+
+// The same at 1024x768: minutes on llvmpipe for the large meshes, so run on demand
+// (--gtest_also_run_disabled_tests --gtest_filter='*SharedMeshDiff*'; docs/diff.md).
+TEST_P(SharedMeshDiff, DISABLED_OverAFloorAt1024x768_RobustMethodsHaveNoHardError) {
+  expect_shared_mesh_exact(GetParam(), 1024, 768);
+}
+
+INSTANTIATE_TEST_SUITE_P(SharedData, SharedMeshDiff, ::testing::ValuesIn(shared_meshes()), test_name);
 
 // ---- planted faults ---------------------------------------------------------------------------
 

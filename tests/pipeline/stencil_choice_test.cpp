@@ -67,7 +67,7 @@ TEST(GlNearTip, HoldsTheEyeAndGlsNearRectangle_AndProjectsOutsideTheViewport) {
     const Soup casters = merged_soup(scene);
     const NearTip tip = gl_near_tip(scene.camera, scene_magnitude(casters, scene.lights, scene.camera));
     const CameraFrame f = camera_frame(scene.camera);
-    const double n = gpu::kDefaultNearPlane;
+    const double n = scene.camera.near_plane;
     EXPECT_TRUE(in_tip(tip, f.eye));
     for (double a : {-1.0, 0.0, 1.0})
       for (double b : {-1.0, 0.0, 1.0}) {

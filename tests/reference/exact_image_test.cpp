@@ -303,6 +303,22 @@ TEST(ExactImage, FeaturesBetweenTheCornerRays_MakeTheirPixelsAmbiguous) {
   EXPECT_EQ(light.ambiguity[pixel(image, 2, 2)], 0);
 }
 
+// The same tiny triangle (moved off pixel (2, 0)'s centre ray) with no floor: every ray of
+// every pixel sees nothing, yet GL may draw the triangle over (2, 0)'s centre, which passes
+// within a rounding of its edge (fuzz --gl seed 202 case 1706: 0.001 px, a vertex inside a
+// sky pixel). The eye pyramid of a pixel whose rays all miss runs to a plane beyond the scene.
+TEST(ExactImage, TriangleBetweenTheRaysOfAnEmptyPixel_MakesItAmbiguous) {
+  const Soup soup = test_support::soup_of({{0.42, 2.0, -0.42}, {0.43, 2.0, -0.42}, {0.42, 2.0, -0.43}}, {{0, 1, 2}});
+  const std::vector<Light> lights{point_light(0.4, 10.0, -0.4)};
+  const ExactImage image = exact_image(soup, lights, top_down_camera());
+  for (std::size_t p = 0; p < image.hit_triangles.size(); ++p) EXPECT_EQ(image.hit_triangles[p], kNoHit) << p;
+  const ExactLightImage& light = image.lights.at(0);
+  EXPECT_EQ(light.ambiguity[pixel(image, 2, 0)], kFootprintTriangles);
+  for (std::uint32_t r = 0; r < image.height; ++r)
+    for (std::uint32_t i = 0; i < image.width; ++i)
+      if (i != 2 || r != 0) EXPECT_EQ(light.ambiguity[pixel(image, i, r)], 0) << i << ", " << r;
+}
+
 // With a depth band (ExactImageOptions::depth_band), surfaces and volume faces that pass within
 // it of P make the pixel ambiguous; without one they do not.
 TEST(ExactImage, DepthBand_MarksNearlyCoincidentSurfacesAndGrazingVolumeFaces) {

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/input_error.h"
+#include "core/near_plane.h"
 
 using shadowcert::InputError;
 using shadowcert::Scene;
@@ -196,6 +197,21 @@ TEST(ParseScene, Camera_AllFields) {
   EXPECT_EQ(s.camera.height, 480u);
 }
 
+TEST(ParseScene, CameraNear_GivenIsKept) {
+  const Scene s = parse(R"({"camera": {"eye": [0, 0, 9], "near": 0.25}})");
+  EXPECT_EQ(s.camera.near_plane, 0.25);
+}
+
+// Without "near" the camera's near plane is fitted to the meshes (core/near_plane.h): a scene
+// 1e6 away gets a near plane that keeps it off the cleared depth.
+TEST(ParseScene, CameraWithoutNear_IsFittedToTheMeshes) {
+  const Scene unit = parse(R"({"meshes": [{"generator": "uv_sphere"}]})");
+  EXPECT_EQ(unit.camera.near_plane, shadowcert::kDefaultNearPlane);
+  const Scene far = parse(R"({"meshes": [{"generator": "uv_sphere"}], "camera": {"eye": [0, 0, 1e6]}})");
+  EXPECT_GE(far.camera.near_plane, 1e6 / shadowcert::kFarOverNear);
+  EXPECT_LE(far.camera.near_plane, 0.5 * 1e6);
+}
+
 TEST(ParseScene, SyntaxError_ReportsLineOfTheError) {
   try {
     (void)parse("{\n\n  \"meshes\": [,]\n}\n");
@@ -279,6 +295,7 @@ TEST(LoadScene, BadScenes_ErrorNamesFileKeyAndProblem) {
       {"neither_file_nor_generator.json", "meshes[0]: needs a 'file' or a 'generator'", 0},
       {"camera_size_zero.json", "camera.size[1]: the image size must be at least 1 pixel", 0},
       {"camera_fov.json", "camera.fov_y_deg: must be in (0, 180) degrees, got 180", 0},
+      {"camera_near.json", "camera.near: must be a finite distance > 0, got -0.5", 0},
       {"eye_equals_target.json", "camera: eye and target must be different points", 0},
       {"unknown_generator.json", "meshes[0].generator: unknown generator 'sphere'", 0},
       {"negative_integer.json", "meshes[0].params.stacks: expected an unsigned integer, got -3", 0},
