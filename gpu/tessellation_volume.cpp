@@ -5,6 +5,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 #include "gpu/detail/compute_pass.h"
 #include "gpu/embedded_shaders.h"
@@ -17,10 +18,18 @@ namespace {
 
 // Binding points and uniform locations fixed by layout() in the ts shaders.
 constexpr GLuint kVerticesBinding = 0;
+constexpr GLuint kDeferredBinding = 1;       // control and finish shaders
 constexpr GLuint kCaptureBinding = 0;        // transform feedback buffer
-constexpr GLuint kFinishCommandBinding = 0;  // the finish shader's Command (gs's)
+constexpr GLuint kFinishCommandBinding = 2;  // tessellation_volume_finish.comp.glsl
+constexpr GLuint kFinishRecordsBinding = 3;
+constexpr GLuint kFinishVolumeBinding = 4;
 constexpr GLint kLightLocation = 0;
-constexpr GLint kFinishCapacityLocation = 0;
+constexpr GLint kFinishLightLocation = 0;
+constexpr GLint kFinishCapacityLocation = 1;
+
+// The control shader's float filter alone where signs are exact (its records the filter cannot
+// decide go to the finish pass, which has the exact stage): tessellation_volume.tesc.glsl says why.
+constexpr std::string_view kFilterOnlyDefine = "#define SHADOWCERT_SIGN_FILTER_ONLY 1\n";
 
 constexpr std::uint32_t kTriangleKind = 1;
 constexpr std::uint32_t kRecordWords = 4 + kTessellationOppositesPerRecord;  // u, v, count, kind, opposites
@@ -37,6 +46,7 @@ TessellationShadowVolume::TessellationShadowVolume(const ComputeVolumeSoup& soup
                                                    SignMode sign)
     : soup_(&soup),
       records_(Buffer::create()),
+      deferred_(Buffer::create()),
       command_(Buffer::create()),
       volume_(Buffer::create()),
       patches_(VertexArray::create()),
@@ -91,16 +101,20 @@ TessellationShadowVolume::TessellationShadowVolume(const ComputeVolumeSoup& soup
       compile_shader(GL_VERTEX_SHADER, shaders::tessellation_volume_vert, "tessellation_volume.vert.glsl");
   const Shader control =
       compile_shader(GL_TESS_CONTROL_SHADER, shaders::tessellation_volume_tesc, "tessellation_volume.tesc.glsl",
-                     sign_mode_defines(sign));
+                     sign == SignMode::exact ? kFilterOnlyDefine : sign_mode_defines(sign));
   const Shader evaluation =
       compile_shader(GL_TESS_EVALUATION_SHADER, shaders::tessellation_volume_tese, "tessellation_volume.tese.glsl");
   const Shader geometry =
       compile_shader(GL_GEOMETRY_SHADER, shaders::tessellation_volume_geom, "tessellation_volume.geom.glsl",
                      sign_mode_defines(sign));
   program_ = link_program({&vertex, &control, &evaluation, &geometry}, "tessellation_volume");
-  const Shader finish = compile_shader(GL_COMPUTE_SHADER, shaders::geometry_shader_volume_finish_comp,
-                                       "geometry_shader_volume_finish.comp.glsl");
-  finish_ = link_program({&finish}, "geometry_shader_volume_finish");
+  const Shader finish = compile_shader(GL_COMPUTE_SHADER, shaders::tessellation_volume_finish_comp,
+                                       "tessellation_volume_finish.comp.glsl", sign_mode_defines(sign));
+  finish_ = link_program({&finish}, "tessellation_volume_finish");
+  // Deferred: a count, then at most one entry per edge record.
+  const std::vector<std::uint32_t> no_deferred(std::size_t{1} + record_count_, 0u);
+  glNamedBufferStorage(deferred_.name(), static_cast<GLsizeiptr>(no_deferred.size() * sizeof(std::uint32_t)),
+                       no_deferred.data(), GL_DYNAMIC_STORAGE_BIT);
 
   std::uint64_t limit = kMaxCaptureBytes / kVertexBytes;
   limit = std::min<std::uint64_t>(limit, std::numeric_limits<GLint>::max());
@@ -118,11 +132,15 @@ TessellationShadowVolume::TessellationShadowVolume(const ComputeVolumeSoup& soup
 void TessellationShadowVolume::build(const Light& light) {
   const GLuint program = program_.name();
   compute_pass::set_light_uniform(program, kLightLocation, light, "TessellationShadowVolume::build");
+  compute_pass::set_light_uniform(finish_.name(), kFinishLightLocation, light, "TessellationShadowVolume::build");
   glProgramUniform1ui(finish_.name(), kFinishCapacityLocation, static_cast<GLuint>(capacity_));
 
   const Command reset{};
   glNamedBufferSubData(command_.name(), 0, sizeof reset, &reset);
+  const std::uint32_t no_deferred = 0;
+  glNamedBufferSubData(deferred_.name(), 0, sizeof no_deferred, &no_deferred);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kVerticesBinding, soup_->vertices_.name());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kDeferredBinding, deferred_.name());
   glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, kCaptureBinding, volume_.name());
 
   GLint previous_framebuffer = 0;
@@ -153,12 +171,24 @@ void TessellationShadowVolume::build(const Light& light) {
   glGetQueryBufferObjectuiv(generated_.name(), command_.name(), GL_QUERY_RESULT,
                             static_cast<GLintptr>(offsetof(Command, requested)));
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kFinishCommandBinding, command_.name());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kFinishRecordsBinding, records_.name());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kFinishVolumeBinding, volume_.name());
+  // The control shader's Deferred writes and the captured triangles, before the finish reads
+  // and appends to them.
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TRANSFORM_FEEDBACK_BARRIER_BIT);
   glUseProgram(finish_.name());
   glDispatchCompute(1, 1, 1);
-  glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+  glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT |
+                  GL_SHADER_STORAGE_BARRIER_BIT);
   glUseProgram(0);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kVerticesBinding, 0);
+  for (GLuint binding : {kVerticesBinding, kDeferredBinding, kFinishCommandBinding, kFinishRecordsBinding,
+                         kFinishVolumeBinding})
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, 0);
   check_gl_errors("TessellationShadowVolume::build");
+}
+
+std::uint32_t TessellationShadowVolume::read_deferred_records() const {
+  return compute_pass::read_buffer<std::uint32_t>(deferred_.name(), 0, 1, "TessellationShadowVolume readback").front();
 }
 
 std::uint64_t TessellationShadowVolume::read_requested_vertices() const {

@@ -9,7 +9,9 @@
 // refedge evaluation, copied operation for operation, and asks for |m| isolines (none when
 // m = 0); the geometry shader makes each line one copy of the side quad oriented by sign(m),
 // and a triangle record's line its caps (gs's cap code). Captured by transform feedback and
-// drawn through the same GPU-filled draw command as gs.
+// drawn through the same GPU-filled draw command as gs. With exact signs the control shader
+// runs the float filter only and defers a record it cannot decide to the finish pass
+// (tessellation_volume_finish.comp.glsl), which evaluates it exactly and appends its quads.
 //
 //   ComputeVolumeSoup soup(canonical.soup, table);            // once per scene (cs uploads)
 //   TessellationShadowVolume volume(soup, table);             // records, capture buffer
@@ -51,12 +53,15 @@ class TessellationShadowVolume {
 
   // Readbacks (they synchronise with the GPU; for tests, diagnostics and --capture).
   [[nodiscard]] std::uint64_t read_requested_vertices() const;
+  // Edge records the control shader's filter left to the finish pass's exact stage in the last
+  // build (0 with float signs).
+  [[nodiscard]] std::uint32_t read_deferred_records() const;
   [[nodiscard]] std::vector<VolumeTriangle> read_triangles() const;
 
  private:
   const ComputeVolumeSoup* soup_;
   Program program_, finish_;
-  Buffer records_, command_, volume_;
+  Buffer records_, deferred_, command_, volume_;
   VertexArray patches_;       // attribute 0: the record words
   VertexArray vertex_array_;  // the captured volume as attribute 0
   Query generated_;

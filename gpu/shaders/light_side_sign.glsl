@@ -17,7 +17,9 @@
 //      two's-complement fixed-point accumulator whose lowest bit is 2^-447 (three times the
 //      smallest float exponent), so every product lands on it exactly and no sum overflows.
 // With SHADOWCERT_FLOAT_SIGNS defined (the `--sign float` method), the sign is the float
-// value's alone: Milet 2014's refedge, equal to exact/'s float32 refedge bit for bit.
+// value's alone: Milet 2014's refedge, equal to exact/'s float32 refedge bit for bit. With
+// SHADOWCERT_SIGN_FILTER_ONLY, stage 1 alone, 0 where it cannot decide (ts's control shader,
+// which defers those records to a compute pass with stage 2).
 #include "light_side_formula.glsl"
 
 #ifndef SHADOWCERT_FLOAT_SIGNS
@@ -55,6 +57,21 @@ int filtered_light_side(vec3 a, vec3 b, vec3 c) {
   if (-value > bound) return -1;
   return 0;
 }
+
+#ifdef SHADOWCERT_SIGN_FILTER_ONLY
+
+// The filter alone (ts's control shader, tessellation_volume.tesc.glsl): 0 where it cannot
+// decide, which sets light_side_undecided; the caller then defers the decision to a shader
+// that has the exact stage.
+bool light_side_undecided = false;
+
+int light_side_sign(vec3 a, vec3 b, vec3 c) {
+  const int filtered = filtered_light_side(a, b, c);
+  if (filtered == 0) light_side_undecided = true;
+  return filtered;
+}
+
+#else
 
 // The exact stage. 27 limbs of 32 bits, little-endian; bit 0 weighs 2^-447. Every access to
 // the accumulator has a constant index (the limb loop is written out by a macro): a local
@@ -143,6 +160,8 @@ int light_side_sign(vec3 a, vec3 b, vec3 c) {
   light_side_used_fallback = true;
   return exact_light_side(a, b, c);
 }
+
+#endif  // SHADOWCERT_SIGN_FILTER_ONLY
 
 #else
 

@@ -10,7 +10,11 @@
 //           gs's caps.
 // The signs are reference_edge.glsl's, as in cs and gs (sort by canonical index,
 // core/light_side_formula.h's order, `precise`, parity): the volumes of cs, gs and ts are made
-// of the same signs.
+// of the same signs. With exact signs this stage runs light_side_sign.glsl's float filter only
+// (SHADOWCERT_SIGN_FILTER_ONLY): a record with an opposite the filter cannot decide draws
+// nothing here and is appended to Deferred, whose records tessellation_volume_finish.comp.glsl
+// evaluates exactly and appends to the capture. The exact stage in this shader, never run on
+// the sphere grid, still cost ts 2.4x its float time on llvmpipe (docs/gpu.md, "Exact signs").
 layout(vertices = 1) out;
 
 const uint kOppositesPerRecord = 16u;  // == kTessellationOppositesPerRecord (tessellation_volume.h)
@@ -20,6 +24,14 @@ const uint kTriangleKind = 1u;
 layout(std430, binding = 0) readonly buffer Vertices { vec4 vertices[]; };  // w = 1, float
 
 layout(location = 0) uniform vec4 light;  // (l, w), rounded once to float
+
+#ifdef SHADOWCERT_SIGN_FILTER_ONLY
+// The edge records (patch numbers) left to the finish shader's exact stage.
+layout(std430, binding = 1) coherent buffer Deferred {
+  uint deferred_count;
+  uint deferred_records[];
+};
+#endif
 
 flat in uint record_word[];
 // x, y, z: u, v (edge) or a, b, c (triangle); w: kind. multiplicity: m (edge), unused (triangle).
@@ -41,6 +53,12 @@ void main() {
     for (uint i = 0u; i < count; ++i) {
       m -= opposite_side(u, v, record_word[4u + i]);
     }
+#ifdef SHADOWCERT_SIGN_FILTER_ONLY
+    if (light_side_undecided) {  // the finish shader draws this record's quads
+      deferred_records[atomicAdd(deferred_count, 1u)] = uint(gl_PrimitiveID);
+      m = 0;
+    }
+#endif
     multiplicity = m;
     lines = float(abs(m));  // 0 discards the patch
   }
