@@ -34,6 +34,7 @@ layout(std430, binding = 1) coherent buffer Deferred {
 #endif
 
 flat in uint record_word[];
+flat in uint word_index[];  // of each record word in the draw (gl_VertexID)
 // x, y, z: u, v (edge) or a, b, c (triangle); w: kind. multiplicity: m (edge), unused (triangle).
 patch out uvec4 item;
 patch out int multiplicity;
@@ -55,7 +56,9 @@ void main() {
     }
 #ifdef SHADOWCERT_SIGN_FILTER_ONLY
     if (light_side_undecided) {  // the finish shader draws this record's quads
-      deferred_records[atomicAdd(deferred_count, 1u)] = uint(gl_PrimitiveID);
+      // The record by its first word's index: gl_PrimitiveID restarts with each batch llvmpipe
+      // splits a large draw into (446 open volumes in fuzz --gl --seed 303 when it was used).
+      deferred_records[atomicAdd(deferred_count, 1u)] = word_index[0] / kRecordWords;
       m = 0;
     }
 #endif

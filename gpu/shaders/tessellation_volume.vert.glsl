@@ -4,7 +4,9 @@
 // to the tessellation control shader as it is (Milet 2014, Figure 4: the patch is indices).
 layout(location = 0) in uint word;
 flat out uint record_word;
+flat out uint word_index;  // gl_VertexID: which record the patch is (deferral names it by this)
 
 void main() {
   record_word = word;
+  word_index = uint(gl_VertexID);
 }

@@ -229,6 +229,28 @@ TEST_F(LightSideProbeTest, HardCases_GpuSignsEqualGlsign) {
   EXPECT_GT(deferred, 0u);  // lights on planes and lines: ts's exact pass ran
 }
 
+// A 40 x 40 integer grid in the plane x + y + z = 0 lit from one float ulp (2^-18) off it:
+// every triangle's sign is nonzero exactly, but the float filter decides none (its bound is
+// about 2^-21 x 40), so ts defers every edge record of a draw of
+// about 8,000 patches to its exact pass, which must find the right records (named by
+// gl_PrimitiveID, they were another batch's on llvmpipe: tests/regressions/gl/
+// ts_deferred_record_index.json).
+TEST_F(LightSideProbeTest, LargeDrawWithEveryRecordDeferred_TsChainEqualsCs) {
+  constexpr std::uint32_t kSide = 40;
+  Soup grid;
+  for (std::uint32_t z = 0; z <= kSide; ++z)
+    for (std::uint32_t x = 0; x <= kSide; ++x) grid.vertices.push_back({double(x), -double(x + z), double(z)});
+  const auto at = [&](std::uint32_t x, std::uint32_t z) { return z * (kSide + 1) + x; };
+  for (std::uint32_t z = 0; z < kSide; ++z)
+    for (std::uint32_t x = 0; x < kSide; ++x) {
+      grid.triangles.push_back({at(x, z), at(x, z + 1), at(x + 1, z)});
+      grid.triangles.push_back({at(x + 1, z), at(x, z + 1), at(x + 1, z + 1)});
+    }
+  const Light light{{20.5, -40.75 + std::ldexp(1.0, -18), 20.25, 1.0}};
+  const std::uint32_t deferred = expect_gpu_signs_equal_glsign(grid, light);
+  EXPECT_GT(deferred, 4000u);
+}
+
 TEST_F(LightSideProbeTest, CampaignCasesOfEveryPlacement_GpuSignsEqualGlsign) {
   const std::uint64_t seed = 4242;
   std::cout << "campaign seed " << seed << "\n";
