@@ -224,7 +224,7 @@ void expect_shared_mesh_exact(const std::string& mesh, std::uint32_t width, std:
   const auto shaded = std::count_if(counts.begin(), counts.end(), [](std::uint32_t n) {
     return n != 0 && n != kNoHit && n != kUndefinedCount;
   });
-  EXPECT_GT(shaded, std::int64_t{width} * height / 100);
+  EXPECT_GT(shaded, std::int64_t{width} * height / 200);
   for (const MethodRun& run : c.runs) {
     SCOPED_TRACE(mesh + ", " + std::string(shadow_method_name(run.method)) + " at " + std::to_string(width) + "x" +
                  std::to_string(height));
