@@ -64,6 +64,8 @@ const std::set<std::string> kCheckedScenes{"bow_tie_vertices",
                                            "scale_1e-3",
                                            "scale_1e-6",
                                            "scale_1e2",
+                                           "scale_1e3",
+                                           "scale_1e6",
                                            "slivers_and_zero_area",
                                            "t_junctions_and_cracks"};
 
@@ -335,10 +337,12 @@ void expect_scaled(const std::string& name, double scale) {
   EXPECT_LE(extent, 100 * scale);
 }
 
-TEST(HardScenes, Scales_GeometryAt1eMinus6_1eMinus3_1e2) {
+TEST(HardScenes, Scales_GeometryAt1eMinus6_1eMinus3_1e2_1e3_1e6) {
   expect_scaled("scale_1e-6", 1e-6);
   expect_scaled("scale_1e-3", 1e-3);
   expect_scaled("scale_1e2", 1e2);
+  expect_scaled("scale_1e3", 1e3);
+  expect_scaled("scale_1e6", 1e6);
 }
 
 TEST(HardScenes, TJunctionsAndCracks_AVertexInsideAnEdgeAndAGapOf1eMinus3) {
