@@ -8,7 +8,8 @@ Reads the allowed arrows between modules from the top CMakeLists.txt (the
   2. a header under M/detail/ is included only by M's own files and by tests/M/;
   3. every project header that is included exists (no stale path after a move);
   4. CGAL is included only from .cpp files of io/, exact/ and reference/ (a TU with CGAL costs
-     about 10 s to compile, so no header may carry it), and GL only from gpu/.
+     about 10 s to compile, so no header may carry it), OpenMesh only from .cpp files of
+     contour/, and GL only from gpu/.
 Prints one line per violation (file:line: what) and exits 1 if there is any.
 Usage: layering_test.py SOURCE_DIR
 """
@@ -45,6 +46,8 @@ def main(root: pathlib.Path) -> int:
             if quote == "<":
                 if target.startswith("CGAL/") and (owner not in CGAL_MODULES or path.suffix != ".cpp"):
                     problems.append(f"{where}: <{target}> outside the .cpp files of {sorted(CGAL_MODULES)}")
+                if target.startswith("OpenMesh/") and (owner != "contour" or path.suffix != ".cpp"):
+                    problems.append(f"{where}: <{target}> outside the .cpp files of contour/")
                 if target.startswith(GL_HEADERS) and owner not in ("gpu", "tests", "bench"):
                     problems.append(f"{where}: <{target}> outside gpu/")
                 continue

@@ -14,7 +14,7 @@ cd "$(dirname "$0")/.."
 # Debian 12 package names (build tools and every library the CMake project finds).
 PACKAGES=(
   ca-certificates cmake ninja-build g++ pkg-config python3
-  libcgal-dev libgmp-dev libmpfr-dev libboost-dev libtbb-dev
+  libcgal-dev libgmp-dev libmpfr-dev libboost-dev libtbb-dev libopenmesh-dev
   nlohmann-json3-dev libcli11-dev libfmt-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libegl-dev libepoxy-dev libpng-dev libglm-dev libgl1-mesa-dri libegl-mesa0
