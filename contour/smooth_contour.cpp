@@ -80,6 +80,7 @@ std::vector<SmoothContour> smooth_contour(const SmoothCaster& caster, const std:
     for (const SilhouettePoint& s : loop.points) moved.push_back(displaced(caster, s));
     const std::size_t n = moved.size();
     for (std::size_t i = 0; i < n; ++i) {
+      contour.loop_points.push_back(contour.points.size());
       contour.points.push_back(moved[i]);
       if (i + 1 < n || loop.closed) subdivide(moved[i], moved[(i + 1) % n], epsilon, 0, contour.points);
     }

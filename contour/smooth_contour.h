@@ -32,6 +32,9 @@ struct ContourPoint {
 
 struct SmoothContour {
   std::vector<ContourPoint> points;  // a closed contour does not repeat its first point
+  // loop_points[i]: where loop point i (displaced) is in `points`; the points its subdivision
+  // added lie between loop_points[i] and loop_points[i + 1] (or the end, for a closed loop's last).
+  std::vector<std::size_t> loop_points;
   bool closed = false;
 };
 

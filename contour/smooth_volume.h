@@ -1,0 +1,57 @@
+#pragma once
+// The shadow volume of a smooth caster (Mattausch et al. 2012 §4; docs/smooth-silhouettes.md),
+// closed by construction, as the homogeneous triangles every GL method draws and exact/
+// certifies (core/homogeneous_mesh.h):
+//   X = the front cap: each triangle's lit part (the whole triangle for `discrete`; cut along
+//       its accurate segment otherwise, with every partner point of the smooth contour on the
+//       cut as a vertex, so that no T-junction opens it), plus for `smooth` the gap strip of
+//       quads (p'_k+1, p'_k, p_k, p_k+1) between the accurate silhouette p' and the smooth
+//       contour p;
+//   every edge of X's boundary (the smooth contour, the lit part's border edges, the strip's
+//       ends on a border) extruded to infinity: the edge a -> b gives (b, a, a_inf, b_inf), a
+//       triangle (b, a, inf) for a directional light;
+//   X at infinity, reversed (the back cap; none for a directional light, whose far points are
+//       one point).
+// The boundary of the extrusion cancels X's and the back cap's, so the volume is closed for any
+// X: the certificate (exact/volume_closure.h) holds whatever the loops look like. X's
+// triangles face the light: the caster's triangles are taken to be oriented like its corner
+// normals (outwards).
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "contour/silhouette_loop.h"
+#include "contour/smooth_caster.h"
+#include "contour/smooth_contour.h"
+#include "core/homogeneous_mesh.h"
+#include "core/light.h"
+
+namespace shadowcert {
+
+enum class SilhouetteMethod { discrete, accurate, smooth };
+
+// The default approximation error of the smooth contour, in world units (the paper's 0.01 for
+// casters of unit size).
+inline constexpr double kDefaultContourEpsilon = 0.01;
+
+struct SmoothVolumeOptions {
+  SilhouetteMethod method = SilhouetteMethod::smooth;
+  double epsilon = kDefaultContourEpsilon;  // smooth only: > 0
+};
+
+struct SmoothVolume {
+  HomogeneousMesh mesh;
+  std::vector<SilhouetteLoop> loops;     // discrete or accurate loops the volume was built on
+  std::vector<SmoothContour> contours;   // smooth only
+  std::size_t cap_triangles = 0;         // X's triangles (front cap and gap strip)
+  std::size_t side_triangles = 0;
+};
+
+// `lit_triangles`: discrete only, one flag per caster triangle, nonzero where it faces the light
+// (decided by the caller, e.g. exactly). Throws std::invalid_argument("smooth_shadow_volume:
+// ...") on an undefined light, a bad epsilon or, for discrete, flags of the wrong size.
+[[nodiscard]] SmoothVolume smooth_shadow_volume(const SmoothCaster& caster, const Light& light,
+                                                const SmoothVolumeOptions& options = {},
+                                                std::span<const std::uint8_t> lit_triangles = {});
+
+}  // namespace shadowcert

@@ -1,0 +1,176 @@
+// contour/smooth_volume.h: the shadow volumes of discrete, accurate and smooth silhouettes are
+// closed, certified exactly (exact/volume_closure.h) for random point and directional lights on
+// closed, open and creased casters; the smooth one carries its gap strip and contour.
+#include "contour/smooth_volume.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+#include <random>
+
+#include "core/vector3.h"
+#include "exact/volume_closure.h"
+#include "scene/procedural_mesh.h"
+
+namespace {
+
+using namespace shadowcert;
+
+SmoothCaster caster_of(const Soup& soup, const SmoothCasterOptions& options = {}) {
+  SmoothCasterResult r = smooth_caster(soup, options);
+  if (!r.caster) throw std::runtime_error(r.qualification.summary());
+  return *r.caster;
+}
+
+std::vector<std::uint8_t> lit_faces(const SmoothCaster& c, const Light& light) {
+  std::vector<std::uint8_t> lit(c.triangles.size());
+  const auto& l = light.position;
+  for (std::size_t t = 0; t < lit.size(); ++t) {
+    const Vec3& a = c.vertices[c.triangles[t][0]];
+    const Vec3 n = cross(difference(c.vertices[c.triangles[t][1]], a), difference(c.vertices[c.triangles[t][2]], a));
+    lit[t] = dot(n, Vec3{l[0] - l[3] * a[0], l[1] - l[3] * a[1], l[2] - l[3] * a[2]}) > 0.0;
+  }
+  return lit;
+}
+
+Soup open_hemisphere() {
+  const Soup sphere = uv_sphere({0, 0, 0}, 1.0, 16, 8);
+  Soup half = sphere;
+  half.triangles.clear();
+  for (const Triangle& t : sphere.triangles)
+    if (sphere.vertices[t[0]][2] + sphere.vertices[t[1]][2] + sphere.vertices[t[2]][2] > 0.0) half.triangles.push_back(t);
+  return half;
+}
+
+struct NamedCaster {
+  const char* name;
+  SmoothCaster caster;
+};
+
+std::vector<NamedCaster> casters() {
+  return {{"uv sphere 12x6", caster_of(uv_sphere({0, 0, 0}, 1.0, 12, 6))},
+          {"torus", caster_of(torus({0, 0, 0}, 1.0, 0.4, 16, 8))},
+          {"open hemisphere", caster_of(open_hemisphere())},
+          {"box (every edge a crease)", caster_of(box({-0.5, -0.5, -0.5}, {0.5, 0.5, 0.5}))},
+          {"icosphere, computed normals", caster_of(icosphere({0, 0, 0}, 1.0, 1), {.use_file_normals = false})}};
+}
+
+// A point light 1.5 to 5 radii from the origin, or a directional light, from `random`.
+Light random_light(std::mt19937_64& random, bool directional) {
+  std::normal_distribution<double> normal;
+  Vec3 d{normal(random), normal(random), normal(random)};
+  d = normalized(d);
+  if (directional) return Light{{d[0], d[1], d[2], 0.0}};
+  const double r = std::uniform_real_distribution<double>(1.5, 5.0)(random);
+  return Light{{r * d[0], r * d[1], r * d[2], 1.0}};
+}
+
+bool closed_caster(const SmoothCaster& c) {
+  for (const auto& t : c.across)
+    for (std::uint32_t a : t)
+      if (a == kBorder) return false;
+  return true;
+}
+
+void expect_closed(const SmoothVolume& v, const std::string& what) {
+  const VolumeClosure closure = certify_volume_closure(v.mesh);
+  EXPECT_TRUE(closure.certificate.closed) << what;
+}
+
+TEST(SmoothShadowVolume, ThousandRandomLightsPerCaster_EveryMethodIsClosed) {
+  const std::uint64_t seed = 20261202;
+  std::cout << "seed " << seed << "\n";
+  std::mt19937_64 random(seed);
+  for (const NamedCaster& c : casters()) {
+    for (int i = 0; i < 1000; ++i) {
+      const Light light = random_light(random, i % 2 == 1);
+      const std::string what = std::string(c.name) + ", light " + std::to_string(i);
+      const SmoothVolume smooth = smooth_shadow_volume(c.caster, light, {.method = SilhouetteMethod::smooth});
+      expect_closed(smooth, what + ", smooth");
+      if (closed_caster(c.caster)) {
+        // X's boundary is the contour alone: one side quad (a triangle for a directional light)
+        // per contour segment, no T-junction left open.
+        std::size_t segments = 0;
+        for (const SmoothContour& contour : smooth.contours) segments += contour.points.size();
+        EXPECT_EQ(smooth.side_triangles, (light.directional() ? 1 : 2) * segments) << what;
+      }
+      if (i % 10 == 0) {
+        expect_closed(smooth_shadow_volume(c.caster, light, {.method = SilhouetteMethod::accurate}), what + ", accurate");
+        expect_closed(smooth_shadow_volume(c.caster, light, {.method = SilhouetteMethod::discrete},
+                                           lit_faces(c.caster, light)),
+                      what + ", discrete");
+      }
+      if (::testing::Test::HasFailure()) return;
+    }
+  }
+}
+
+TEST(SmoothShadowVolume, SmoothSphere_HasItsStripContourAndBackCap) {
+  const SmoothCaster c = caster_of(uv_sphere({0, 0, 0}, 1.0, 12, 6));
+  const Light light{{0.3, 0.2, 4.0, 1.0}};
+  const SmoothVolume smooth = smooth_shadow_volume(c, light, {.method = SilhouetteMethod::smooth, .epsilon = 0.003});
+  const SmoothVolume accurate = smooth_shadow_volume(c, light, {.method = SilhouetteMethod::accurate});
+  ASSERT_EQ(smooth.contours.size(), 1u);
+  ASSERT_EQ(smooth.loops.size(), 1u);
+  // The contour has more points than the loop; each contour segment adds two strip triangles,
+  // and X's boundary is exactly the contour (no T-junction left open: every partner point is a
+  // vertex of its front-cap piece), one side quad of two triangles per segment.
+  const std::size_t extra = smooth.contours[0].points.size() - smooth.loops[0].points.size();
+  EXPECT_GT(extra, 0u);
+  EXPECT_GE(smooth.cap_triangles, accurate.cap_triangles + 2 * smooth.contours[0].points.size());
+  EXPECT_EQ(smooth.side_triangles, 2 * smooth.contours[0].points.size());
+  EXPECT_EQ(accurate.side_triangles, 2 * accurate.loops[0].points.size());
+  // Point light: back cap = X at infinity, so the mesh has X twice plus the sides.
+  EXPECT_EQ(smooth.mesh.triangles.size(), 2 * smooth.cap_triangles + smooth.side_triangles);
+  for (const auto& v : smooth.mesh.vertices) EXPECT_TRUE(v[3] == 0.0f || v[3] == 1.0f);
+}
+
+// Two smooth halves of a sphere meeting at a crease (the equator's normals bent apart): the
+// silhouette crosses it along crease pieces, whose partner points must be vertices of the lit
+// side's front cap too, so X's boundary is still exactly the contour.
+TEST(SmoothShadowVolume, CreaseCrossings_LeaveNoTJunction) {
+  Soup sphere = uv_sphere({0, 0, 0}, 1.0, 24, 12);
+  const std::size_t n = sphere.vertices.size();
+  std::vector<std::uint32_t> twin(n, 0);
+  for (std::size_t v = 0; v < n; ++v)
+    if (sphere.vertices[v][1] == 0.0) {
+      sphere.normals[v] = {float(sphere.vertices[v][0]), 0.3f, float(sphere.vertices[v][2])};
+      twin[v] = static_cast<std::uint32_t>(sphere.vertices.size());
+      sphere.vertices.push_back(sphere.vertices[v]);
+      sphere.normals.push_back({float(sphere.vertices[v][0]), -0.3f, float(sphere.vertices[v][2])});
+    }
+  for (Triangle& t : sphere.triangles)
+    if (sphere.vertices[t[0]][1] + sphere.vertices[t[1]][1] + sphere.vertices[t[2]][1] < 0.0)
+      for (std::uint32_t& v : t)
+        if (v < n && sphere.vertices[v][1] == 0.0) v = twin[v];
+  const SmoothCaster c = caster_of(sphere);
+  for (const Light& light : {Light{{1.0, 0.05, 0.3, 0.0}}, Light{{3.0, 0.2, 1.0, 1.0}}}) {
+    const SmoothVolume v = smooth_shadow_volume(c, light, {.method = SilhouetteMethod::smooth, .epsilon = 0.003});
+    ASSERT_EQ(v.contours.size(), 1u);
+    const std::size_t per_edge = light.directional() ? 1 : 2;
+    EXPECT_EQ(v.side_triangles, per_edge * v.contours[0].points.size());
+    expect_closed(v, "crease sphere");
+  }
+}
+
+TEST(SmoothShadowVolume, DirectionalLight_HasNoBackCapAndOneFarPoint) {
+  const SmoothCaster c = caster_of(uv_sphere({0, 0, 0}, 1.0, 12, 6));
+  const SmoothVolume v = smooth_shadow_volume(c, Light{{0.2, 1.0, 0.1, 0.0}});
+  EXPECT_EQ(v.mesh.triangles.size(), v.cap_triangles + v.side_triangles);
+  std::size_t far = 0;
+  for (const auto& p : v.mesh.vertices) far += p[3] == 0.0f;
+  EXPECT_EQ(far, 1u);
+  expect_closed(v, "directional");
+}
+
+TEST(SmoothShadowVolume, BadArguments_ThrowNamingTheFunction) {
+  const SmoothCaster c = caster_of(uv_sphere({0, 0, 0}, 1.0, 8, 4));
+  const Light light{{0.0, 0.0, 3.0, 1.0}};
+  EXPECT_THROW((void)smooth_shadow_volume(c, light, {.method = SilhouetteMethod::smooth, .epsilon = 0.0}),
+               std::invalid_argument);
+  EXPECT_THROW((void)smooth_shadow_volume(c, light, {.method = SilhouetteMethod::discrete}), std::invalid_argument);
+  EXPECT_THROW((void)smooth_shadow_volume(c, Light{{0.0, 0.0, 0.0, 0.0}}), std::invalid_argument);
+}
+
+}  // namespace
