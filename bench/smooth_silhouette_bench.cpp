@@ -54,13 +54,13 @@ std::vector<Vec3> projected(const std::vector<Vec3>& points, const Light& light)
   return out;
 }
 
-std::vector<std::uint8_t> lit_faces(const SmoothCaster& c, const Light& light) {
-  std::vector<std::uint8_t> lit(c.triangles.size());
+std::vector<Sign> face_sides(const SmoothCaster& c, const Light& light) {
+  std::vector<Sign> lit(c.triangles.size());
   const auto& l = light.position;
   for (std::size_t t = 0; t < lit.size(); ++t) {
     const Vec3& a = c.vertices[c.triangles[t][0]];
     const Vec3 n = cross(difference(c.vertices[c.triangles[t][1]], a), difference(c.vertices[c.triangles[t][2]], a));
-    lit[t] = dot(n, Vec3{l[0] - l[3] * a[0], l[1] - l[3] * a[1], l[2] - l[3] * a[2]}) > 0.0;
+    lit[t] = sign_of(dot(n, Vec3{l[0] - l[3] * a[0], l[1] - l[3] * a[1], l[2] - l[3] * a[2]}));
   }
   return lit;
 }
@@ -72,7 +72,7 @@ void run_error(benchmark::State& state, Shape shape, Light light, SilhouetteMeth
     return;
   }
   const SmoothCaster& caster = *r.caster;
-  const std::vector<std::uint8_t> lit = lit_faces(caster, light);
+  const std::vector<Sign> lit = face_sides(caster, light);
   const SmoothVolumeOptions options{method, epsilon};
   SmoothVolume volume;
   for (auto _ : state) {

@@ -15,6 +15,7 @@
 #include "cli/diff_report.h"
 #include "cli/exit_code.h"
 #include "cli/option_values.h"
+#include "cli/silhouette_output.h"
 #include "cli/stencil_output.h"
 #include "io/output_file.h"
 #include "pipeline/scene_comparison.h"
@@ -47,6 +48,8 @@ struct DiffOptions {
   std::string report;
   std::optional<int> device;
   long long shadowmap_size = gpu::kDefaultShadowMapSize;
+  double epsilon = kDefaultContourEpsilon;                   // smooth
+  double crease_angle = kDefaultCreaseAngleDegrees;          // discrete, accurate, smooth
 };
 
 // The method's lit mask, gated by coverage (the frame's alpha).
@@ -173,6 +176,7 @@ int run_diff(const DiffOptions& options) {
   comparison_options.method_options.shadow_map_size = static_cast<std::uint32_t>(options.shadowmap_size);
   comparison_options.method_options.sign = *gpu::parse_sign_mode(options.sign);  // CLI11 checked the name
   comparison_options.timed_frames = kTimedFrames;
+  comparison_options.silhouette = {options.epsilon, options.crease_angle};
   // A progress bar only on a terminal: logs and pipes get no carriage returns.
   comparison_options.progress = isatty(fileno(stderr)) != 0;
   const SceneComparison comparison = compare_scene(scene, methods, comparison_options);
@@ -234,6 +238,8 @@ int run_diff(const DiffOptions& options) {
       {"methods", nlohmann::json::object()},
       {"passed", passed}};
   for (const MethodRun& run : runs) summary["methods"][std::string(gpu::shadow_method_name(run.method))] = method_json(run, options);
+  for (const SilhouetteVolumes& s : comparison.silhouettes)
+    summary["methods"][std::string(gpu::shadow_method_name(s.method))]["casters"] = silhouette_casters_json(s);
   if (!options.out.empty()) write_json_file(std::filesystem::path(options.out) / "summary.json", summary);
   if (!options.json_file.empty()) write_json_file(options.json_file, summary);
 
@@ -276,6 +282,7 @@ int run_diff(const DiffOptions& options) {
   fmt::print("{}: {} triangles, {} light(s), {}x{}, {} on {}\n", options.input, merged.triangles.size(), light_count,
              scene.camera.width, scene.camera.height, stencil, context.renderer());
   print_stencil(comparison.stencil);
+  for (const SilhouetteVolumes& s : comparison.silhouettes) print_silhouette_casters(s);
   fmt::print("  exact image: {:.2f} s (tree {:.2f}, hits {:.2f}, footprints {:.2f}, counts {:.2f}), float-rounded "
              "scene {:.2f} s; ambiguous pixels {}\n",
              exact.stats.seconds, exact.stats.tree_seconds, exact.stats.hit_seconds, exact.stats.footprint_seconds,
@@ -287,7 +294,10 @@ int run_diff(const DiffOptions& options) {
     fmt::print("  {:<10} {:>11} {:>10} {:>10} {:>7} {:>9.2f}{}\n", gpu::shadow_method_name(run.method),
                run.sum(&PixelComparison::hard_errors), run.sum(&PixelComparison::ambiguous),
                run.sum(&PixelComparison::agree), closed ? (*closed ? "yes" : "NO") : "-", run.gl_ms(),
-               robust(run.method) ? (run.failed() ? "  FAILED" : "") : "  (baseline)");
+               run.failed() ? "  FAILED"
+               : robust(run.method) ? ""
+               : run.method == gpu::ShadowMethod::shadowmap ? "  (baseline)"
+                                                           : "  (smooth surface: its error)");
   }
   fmt::print("  {}\n", passed ? "passed: no robust method has a hard error or an open volume"
                               : "FAILED: a robust method has a hard error or an open volume");
@@ -302,10 +312,20 @@ void add_diff_command(CLI::App& app, int& exit_code) {
       "diff",
       "Certify GL shadow methods against the exact image (docs/definitions.md#pixel-protocol): per method and light, hard errors, "
       "ambiguous and agreeing pixels, and the exact closure of each volume method's captured volume. Exit 1 "
-      "when a robust method (cpu, cs, gs, ts, pertri) has a hard error or an open volume");
+      "when a robust method (cpu, cs, gs, ts, pertri, discrete) has a hard error or any volume is open");
   cmd->add_option("input", options->input, "Mesh file (.obj .off .ply .stl) or scene (.json)")->required();
   cmd->add_option("--methods", options->methods,
-                  "Comma-separated methods to compare: cpu, cs, gs, ts, pertri, shadowmap (default: all)");
+                  "Comma-separated methods to compare: cpu, cs, gs, ts, pertri, shadowmap, and the smooth-silhouette "
+                  "methods discrete, accurate, smooth (docs/smooth-silhouettes.md; default: all, the first six)");
+  cmd->add_option("--epsilon", options->epsilon,
+                  "smooth: how far the smooth contour may stay from the surface the normals describe, world units")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--crease-angle", options->crease_angle,
+                  "discrete, accurate, smooth: dihedral angle in degrees above which an edge keeps each side's normals "
+                  "(computed normals only)")
+      ->check(CLI::Range(0.0, 180.0))
+      ->capture_default_str();
   cmd->add_option("--stencil", options->stencil,
                   "Stencil counting of the volume methods: zfail (default; faces behind the visible point), zpass "
                   "(faces in front of it) or auto (per light, zpass where it is proven exactly for this camera, "

@@ -13,6 +13,7 @@
 
 #include "cli/exit_code.h"
 #include "cli/option_values.h"
+#include "cli/silhouette_output.h"
 #include "cli/stencil_output.h"
 #include "pipeline/mesh_palette.h"
 #include "io/output_file.h"
@@ -61,6 +62,8 @@ struct RenderOptions {
   float shadowmap_slope = gpu::kDefaultShadowMapSlope;
   bool timing = false;  // GPU stage times (gpu/gpu_stage_timer.h) over `frames` frames
   std::size_t frames = kDefaultTimingFrames;
+  double epsilon = kDefaultContourEpsilon;           // smooth
+  double crease_angle = kDefaultCreaseAngleDegrees;  // discrete, accurate, smooth
 };
 
 using Clock = std::chrono::steady_clock;
@@ -155,14 +158,23 @@ int run_render(const RenderOptions& options) {
   // (docs/definitions.md#counts) of the float-rounded input, as homogeneous floats.
   auto stage = Clock::now();
   const std::array methods{method};
-  const MethodInputs inputs = prepare_method_inputs(merged, scene.lights, methods);
+  MethodInputs inputs = prepare_method_inputs(merged, scene.lights, methods);
+  // discrete, accurate, smooth: each qualifying mesh's smooth-silhouette volume, the robust
+  // chain of the others (pipeline/silhouette_volumes.h), drawn as cpu's volumes are.
+  std::optional<SilhouetteVolumes> silhouette;
+  if (!gpu::builds_volume_on_gpu(method) && method != gpu::ShadowMethod::cpu && gpu::draws_volume(method)) {
+    silhouette = silhouette_volumes(scene.meshes, scene.lights, method, {options.epsilon, options.crease_angle});
+    inputs.cpu_volumes = silhouette->per_light;
+  }
   const double chain_seconds = seconds_since(stage);
 
   // Each light's stencil method (pipeline/stencil_choice.h); auto proves z-pass per light at
   // the camera, exactly, on the float-rounded casters.
   stage = Clock::now();
   std::vector<LightStencil> stencils;
-  if (!shadowmap) stencils = choose_stencil(stencil_choice, inputs, scene.lights, scene.camera);
+  // The z-pass proof is about the exact chain: a smooth-silhouette volume is counted with z-fail.
+  if (!shadowmap) stencils = choose_stencil(silhouette ? StencilChoice::zfail : stencil_choice, inputs, scene.lights,
+                                            scene.camera);
   const double proof_seconds = seconds_since(stage);
 
   const gpu::EglContext context = gpu::open_gl_context("render", options.device);
@@ -233,6 +245,7 @@ int run_render(const RenderOptions& options) {
                scene.lights.size(), scene.camera.width, scene.camera.height, options.method, stencil,
                context.renderer());
     print_stencil(stencils);
+    if (silhouette) print_silhouette_casters(*silhouette);
     fmt::print("  volume triangles (first light) {}\n", volume_triangles);
   }
   fmt::print("  first light: {} lit, {} shadowed receiver pixels\n", lit, shadowed);
@@ -262,6 +275,7 @@ int run_render(const RenderOptions& options) {
       report["stage_seconds"] = {
           {"chains", chain_seconds}, {"upload", upload_seconds}, {"first_frame", first_frame_seconds}};
       if (stencil_choice == StencilChoice::automatic) report["stage_seconds"]["zpass_proof"] = proof_seconds;
+      if (silhouette) report["casters"] = silhouette_casters_json(*silhouette);
     }
     if (timing) report["timing"] = timing_json(*timing);
     write_json_file(options.json_file, report);
@@ -287,7 +301,18 @@ void add_render_command(CLI::App& app, int& exit_code) {
                   "multiplicities, captured by transform feedback, rebuilt every frame; "
                   "gpu/geometry_shader_volume.h) or ts (tessellation over edge-record patches, the same "
                   "multiplicities and capture; gpu/tessellation_volume.h). shadowmap (no volume: a depth map "
-                  "from each light, --shadowmap-size/-bias/-slope; gpu/shadow_map_renderer.h)")
+                  "from each light, --shadowmap-size/-bias/-slope; gpu/shadow_map_renderer.h). discrete, accurate, "
+                  "smooth: smooth-silhouette volumes of every mesh that is an oriented 2-manifold (the others by "
+                  "the robust chain, named in the output; docs/smooth-silhouettes.md)")
+      ->capture_default_str();
+  cmd->add_option("--epsilon", options->epsilon,
+                  "smooth: how far the smooth contour may stay from the surface the normals describe, world units")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--crease-angle", options->crease_angle,
+                  "discrete, accurate, smooth: dihedral angle in degrees above which an edge keeps each side's normals "
+                  "(computed normals only)")
+      ->check(CLI::Range(0.0, 180.0))
       ->capture_default_str();
   cmd->add_option("--stencil", options->stencil,
                   "Stencil counting of the volume methods: zfail (default; faces behind the visible point, right "

@@ -38,8 +38,23 @@ struct Triangles {
   }
 };
 
-// Partner points to put between two consecutive boundary points of one triangle's lit part.
-using Insertions = std::map<std::tuple<std::uint32_t, PointKey, PointKey>, std::vector<Vec3>>;
+// Partner points to put between two boundary points of the lit and unlit parts, by the pair of
+// keys (in order) that the piece runs between: from -> to, the points in that order.
+struct Insertion {
+  PointKey from;
+  std::vector<Vec3> points;
+};
+using Insertions = std::map<std::pair<PointKey, PointKey>, Insertion>;
+
+// The partners between consecutive polygon points a -> b (reversed when the piece runs b -> a).
+const std::vector<Vec3>* partners_between(const Insertions& insertions, const PointKey& a, const PointKey& b,
+                                          std::vector<Vec3>& reversed) {
+  const auto it = insertions.find(a < b ? std::pair{a, b} : std::pair{b, a});
+  if (it == insertions.end()) return nullptr;
+  if (it->second.from == a) return &it->second.points;
+  reversed.assign(it->second.points.rbegin(), it->second.points.rend());
+  return &reversed;
+}
 
 std::size_t corner_index(const Triangle& t, std::uint32_t v) {
   for (std::size_t k = 0; k < 3; ++k)
@@ -47,24 +62,26 @@ std::size_t corner_index(const Triangle& t, std::uint32_t v) {
   throw std::logic_error("smooth_shadow_volume: a vertex is not on its triangle");
 }
 
-// Triangle t's lit part as a polygon (keys and points, counter-clockwise in t's order): its lit
-// corners, its own accurate points and, on a crease, the other side's point where it falls
-// inside t's lit part of the edge (a vertex of a crease piece).
-std::vector<std::pair<PointKey, Vec3>> lit_polygon(const SmoothCaster& c, std::span<const std::array<double, 3>> f,
-                                                   std::uint32_t t) {
+// Triangle t's lit part (`want_lit`) or unlit part as a polygon (keys and points,
+// counter-clockwise in t's order): its corners of that state, its own accurate points and, on a
+// crease, the other side's point where it falls inside that part of the edge (a vertex of a
+// crease piece).
+std::vector<std::pair<PointKey, Vec3>> part_polygon(const SmoothCaster& c, std::span<const std::array<double, 3>> f,
+                                                    std::uint32_t t, bool want_lit) {
   std::vector<std::pair<PointKey, Vec3>> polygon;
   const Triangle& tri = c.triangles[t];
   for (std::size_t k = 0; k < 3; ++k) {
     const std::uint32_t a = tri[k], b = tri[(k + 1) % 3];
     const bool lit_a = detail::lit(f[t][k]), lit_b = detail::lit(f[t][(k + 1) % 3]);
-    if (lit_a) polygon.emplace_back(detail::vertex_key(a), c.vertices[a]);
-    // Parameter s from a to b of the cut points on this edge inside t's lit part.
+    const bool in_a = lit_a == want_lit, in_b = lit_b == want_lit;
+    if (in_a) polygon.emplace_back(detail::vertex_key(a), c.vertices[a]);
+    // Parameter s from a to b of the cut points on this edge inside the part.
     std::vector<std::tuple<double, PointKey, Vec3>> cuts;
-    double lo = lit_a ? 0.0 : 1.0, hi = lit_b ? 1.0 : 0.0;  // t's lit interval [lo, hi]
+    double lo = in_a ? 0.0 : 1.0, hi = in_b ? 1.0 : 0.0;  // the part's interval [lo, hi] of the edge
     if (lit_a != lit_b) {
       const auto [key, p] = detail::edge_point(c, f, t, k);
       const double s = p.edge_from == a ? p.u : 1.0 - p.u;
-      (lit_a ? hi : lo) = key.kind == PointKey::vertex ? (key.a == a ? 0.0 : 1.0) : s;
+      (in_a ? hi : lo) = key.kind == PointKey::vertex ? (key.a == a ? 0.0 : 1.0) : s;
       if (key.kind != PointKey::vertex) cuts.emplace_back(s, key, p.position);
     }
     const std::uint32_t other = c.across[t][k];
@@ -86,14 +103,16 @@ std::vector<std::pair<PointKey, Vec3>> lit_polygon(const SmoothCaster& c, std::s
 }  // namespace
 
 SmoothVolume smooth_shadow_volume(const SmoothCaster& caster, const Light& light, const SmoothVolumeOptions& options,
-                                  std::span<const std::uint8_t> lit_triangles) {
+                                  std::span<const Sign> sides) {
   require_defined(light, "smooth_shadow_volume");
   const bool smooth = options.method == SilhouetteMethod::smooth;
   const bool discrete = options.method == SilhouetteMethod::discrete;
   if (smooth && !(options.epsilon > 0.0 && std::isfinite(options.epsilon)))
     throw std::invalid_argument("smooth_shadow_volume: epsilon must be finite and > 0");
-  if (discrete && lit_triangles.size() != caster.triangles.size())
-    throw std::invalid_argument("smooth_shadow_volume: discrete needs one lit flag per caster triangle");
+  if (discrete && sides.size() != caster.triangles.size())
+    throw std::invalid_argument("smooth_shadow_volume: discrete needs one light side per caster triangle");
+  std::vector<std::uint8_t> lit_triangles;
+  for (Sign side : sides) lit_triangles.push_back(side == Sign::positive);
 
   SmoothVolume volume;
   const std::vector<std::array<double, 3>> f = discrete ? std::vector<std::array<double, 3>>{}
@@ -114,32 +133,45 @@ SmoothVolume smooth_shadow_volume(const SmoothCaster& caster, const Light& light
       if (piece.triangle == kBorder) continue;  // a crease point's zero-length piece
       const std::size_t first = contour.loop_points[i] + 1;
       const std::size_t last = i + 1 < contour.loop_points.size() ? contour.loop_points[i + 1] : contour.points.size();
-      std::vector<Vec3>& between = insertions[{piece.triangle, piece.from, piece.to}];
-      for (std::size_t k = first; k < last; ++k) between.push_back(contour.points[k].partner);
+      Insertion& between = insertions[piece.from < piece.to ? std::pair{piece.from, piece.to}
+                                                            : std::pair{piece.to, piece.from}];
+      between.from = piece.from;
+      for (std::size_t k = first; k < last; ++k) between.points.push_back(contour.points[k].partner);
     }
   }
 
   VertexTable vertices;
-  Triangles x;  // front cap and gap strip
+  Triangles x;  // the lit part, the unlit part reversed, the gap strip twice
   for (std::uint32_t t = 0; t < caster.triangles.size(); ++t) {
+    const Triangle& tri = caster.triangles[t];
     if (discrete) {
-      if (lit_triangles[t] == 0) continue;
-      const Triangle& tri = caster.triangles[t];
-      x.add(vertices.finite(caster.vertices[tri[0]]), vertices.finite(caster.vertices[tri[1]]),
-            vertices.finite(caster.vertices[tri[2]]));
+      if (sides[t] == Sign::zero) continue;  // in the light's plane: casts nothing
+      const std::uint32_t a = vertices.finite(caster.vertices[tri[0]]), b = vertices.finite(caster.vertices[tri[1]]),
+                          c = vertices.finite(caster.vertices[tri[2]]);
+      if (sides[t] == Sign::positive) x.add(a, b, c);
+      else x.add(a, c, b);
       continue;
     }
-    const std::vector<std::pair<PointKey, Vec3>> polygon = lit_polygon(caster, f, t);
-    std::vector<std::uint32_t> ring;
-    for (std::size_t i = 0; i < polygon.size(); ++i) {
-      ring.push_back(vertices.finite(polygon[i].second));
-      const auto it = insertions.find({t, polygon[i].first, polygon[(i + 1) % polygon.size()].first});
-      if (it != insertions.end())
-        for (const Vec3& p : it->second) ring.push_back(vertices.finite(p));
+    // The light in the plane the corner normals describe at every corner (a floor with the light
+    // in its plane): as the exact side 0, the triangle casts nothing.
+    if (f[t][0] == 0.0 && f[t][1] == 0.0 && f[t][2] == 0.0) continue;
+    for (const bool want_lit : {true, false}) {
+      const std::vector<std::pair<PointKey, Vec3>> polygon = part_polygon(caster, f, t, want_lit);
+      std::vector<std::uint32_t> ring;
+      std::vector<Vec3> reversed;
+      for (std::size_t i = 0; i < polygon.size(); ++i) {
+        ring.push_back(vertices.finite(polygon[i].second));
+        if (const std::vector<Vec3>* between =
+                partners_between(insertions, polygon[i].first, polygon[(i + 1) % polygon.size()].first, reversed))
+          for (const Vec3& p : *between) ring.push_back(vertices.finite(p));
+      }
+      ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
+      while (ring.size() > 1 && ring.front() == ring.back()) ring.pop_back();
+      for (std::size_t i = 1; i + 1 < ring.size(); ++i) {
+        if (want_lit) x.add(ring[0], ring[i], ring[i + 1]);
+        else x.add(ring[0], ring[i + 1], ring[i]);  // reversed: it faces the light
+      }
     }
-    ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
-    while (ring.size() > 1 && ring.front() == ring.back()) ring.pop_back();
-    for (std::size_t i = 1; i + 1 < ring.size(); ++i) x.add(ring[0], ring[i], ring[i + 1]);
   }
   for (const SmoothContour& contour : volume.contours) {
     const std::size_t n = contour.points.size();
@@ -148,8 +180,10 @@ SmoothVolume smooth_shadow_volume(const SmoothCaster& caster, const Light& light
       const ContourPoint& q = contour.points[(i + 1) % n];
       const std::uint32_t p0 = vertices.finite(p.partner), q0 = vertices.finite(q.partner);
       const std::uint32_t p1 = vertices.finite(p.position), q1 = vertices.finite(q.position);
-      x.add(q0, p0, p1);
-      x.add(q0, p1, q1);
+      for (int copy = 0; copy < 2; ++copy) {  // once for the lit part, once for the unlit one
+        x.add(q0, p0, p1);
+        x.add(q0, p1, q1);
+      }
     }
   }
   volume.cap_triangles = x.list.size();

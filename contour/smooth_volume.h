@@ -2,11 +2,15 @@
 // The shadow volume of a smooth caster (Mattausch et al. 2012 §4; docs/smooth-silhouettes.md),
 // closed by construction, as the homogeneous triangles every GL method draws and exact/
 // certifies (core/homogeneous_mesh.h):
-//   X = the front cap: each triangle's lit part (the whole triangle for `discrete`; cut along
-//       its accurate segment otherwise, with every partner point of the smooth contour on the
-//       cut as a vertex, so that no T-junction opens it), plus for `smooth` the gap strip of
-//       quads (p'_k+1, p'_k, p_k, p_k+1) between the accurate silhouette p' and the smooth
-//       contour p;
+//   X = the caps: each triangle's lit part as it is, and its unlit part reversed (both then face
+//       the light), the whole triangle for `discrete`, cut along the accurate segment otherwise,
+//       with every partner point of the smooth contour on the cut as a vertex, so that no
+//       T-junction opens it; plus for `smooth` the gap strip of quads (p'_k+1, p'_k, p_k, p_k+1)
+//       between the accurate silhouette p' and the smooth contour p, once for each part. The
+//       unlit part casts too because an open caster's unlit side can face the light through its
+//       borders, and a light inside a closed caster sees only unlit faces; on a closed caster
+//       lit from outside both parts cast the same shadow, so every shadowed point counts 2, as
+//       the exact chain counts a ray that crosses two triangles (docs/definitions.md#counts);
 //   every edge of X's boundary (the smooth contour, the lit part's border edges, the strip's
 //       ends on a border) extruded to infinity: the edge a -> b gives (b, a, a_inf, b_inf), a
 //       triangle (b, a, inf) for a directional light;
@@ -25,6 +29,7 @@
 #include "contour/smooth_contour.h"
 #include "core/homogeneous_mesh.h"
 #include "core/light.h"
+#include "core/sign.h"
 
 namespace shadowcert {
 
@@ -47,11 +52,12 @@ struct SmoothVolume {
   std::size_t side_triangles = 0;
 };
 
-// `lit_triangles`: discrete only, one flag per caster triangle, nonzero where it faces the light
-// (decided by the caller, e.g. exactly). Throws std::invalid_argument("smooth_shadow_volume:
-// ...") on an undefined light, a bad epsilon or, for discrete, flags of the wrong size.
+// `sides`: discrete only, one light side per caster triangle (positive: it faces the light;
+// zero: the light is in its plane and it casts nothing), decided by the caller, e.g. exactly
+// with exact/light_orientation.h. Throws std::invalid_argument("smooth_shadow_volume: ...") on
+// an undefined light, a bad epsilon or, for discrete, sides of the wrong size.
 [[nodiscard]] SmoothVolume smooth_shadow_volume(const SmoothCaster& caster, const Light& light,
                                                 const SmoothVolumeOptions& options = {},
-                                                std::span<const std::uint8_t> lit_triangles = {});
+                                                std::span<const Sign> sides = {});
 
 }  // namespace shadowcert

@@ -49,7 +49,10 @@ std::unique_ptr<ShadowMethodRenderer::BuiltVolume> make_built_volume(ShadowMetho
     case ShadowMethod::ts: return std::make_unique<BuiltVolumeOf<TessellationShadowVolume>>(soup, table, sign);
     case ShadowMethod::pertri: return std::make_unique<BuiltVolumeOf<PerTriangleShadowVolume>>(soup, sign);
     case ShadowMethod::cpu:
-    case ShadowMethod::shadowmap: break;
+    case ShadowMethod::shadowmap:
+    case ShadowMethod::discrete:
+    case ShadowMethod::accurate:
+    case ShadowMethod::smooth: break;
   }
   throw std::logic_error("make_built_volume: " + std::string(shadow_method_name(method)) +
                          " builds no volume on the GPU");
@@ -86,12 +89,17 @@ std::string_view shadow_method_name(ShadowMethod method) {
     case ShadowMethod::ts: return "ts";
     case ShadowMethod::pertri: return "pertri";
     case ShadowMethod::shadowmap: return "shadowmap";
+    case ShadowMethod::discrete: return "discrete";
+    case ShadowMethod::accurate: return "accurate";
+    case ShadowMethod::smooth: return "smooth";
   }
   throw std::invalid_argument("shadow_method_name: unknown method " + std::to_string(static_cast<int>(method)));
 }
 
 std::optional<ShadowMethod> parse_shadow_method(std::string_view name) {
   for (ShadowMethod m : kShadowMethods)
+    if (shadow_method_name(m) == name) return m;
+  for (ShadowMethod m : kSilhouetteMethods)
     if (shadow_method_name(m) == name) return m;
   return std::nullopt;
 }
@@ -116,9 +124,10 @@ ShadowMethodRenderer::ShadowMethodRenderer(ShadowMethod method, const ShadowMeth
     shadow_map_renderer_.emplace(options.shadow_map_size);
     return;
   }
-  if (method == ShadowMethod::cpu) {
+  if (draws_given_volume(method)) {
     if (scene.cpu_volumes.size() != lights_.size())
-      throw std::invalid_argument("ShadowMethodRenderer: cpu needs one volume per light (" +
+      throw std::invalid_argument("ShadowMethodRenderer: " + std::string(shadow_method_name(method)) +
+                                  " needs one volume per light (" +
                                   std::to_string(scene.cpu_volumes.size()) + " for " +
                                   std::to_string(lights_.size()) + " lights)");
     cpu_meshes_ = scene.cpu_volumes;

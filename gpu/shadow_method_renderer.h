@@ -10,6 +10,9 @@
 //   ts         tessellation over edge-record patches (gpu/tessellation_volume.h)
 //   pertri     every triangle's own closed volume (gpu/per_triangle_volume.h)
 //   shadowmap  no volume: one depth map per light (gpu/shadow_map_renderer.h)
+//   discrete, accurate, smooth
+//              smooth-silhouette volumes (docs/smooth-silhouettes.md), built by the caller
+//              (pipeline/ with contour/) and drawn as cpu's are
 //
 // The GPU-built volumes (cs, gs, ts, pertri) are rebuilt in every frame, as for a moving
 // light, so a frame's time includes their build (stage `volume`); cpu's are built once by
@@ -46,12 +49,17 @@ namespace shadowcert::gpu {
 
 class ComputeVolumeSoup;  // gpu/compute_volume.h
 
-enum class ShadowMethod { cpu, cs, gs, ts, pertri, shadowmap };
+enum class ShadowMethod { cpu, cs, gs, ts, pertri, shadowmap, discrete, accurate, smooth };
+// The chain methods and the shadow map: what `--methods all` means (the smooth-silhouette
+// methods are asked for by name: they need casters that qualify, docs/smooth-silhouettes.md).
 inline constexpr std::array<ShadowMethod, 6> kShadowMethods{ShadowMethod::cpu, ShadowMethod::cs,
                                                            ShadowMethod::gs,  ShadowMethod::ts,
                                                            ShadowMethod::pertri, ShadowMethod::shadowmap};
+inline constexpr std::array<ShadowMethod, 3> kSilhouetteMethods{ShadowMethod::discrete, ShadowMethod::accurate,
+                                                               ShadowMethod::smooth};
 
-// "cpu", "cs", "gs", "ts", "pertri", "shadowmap" (the CLI's --method values).
+// "cpu", "cs", "gs", "ts", "pertri", "shadowmap", "discrete", "accurate", "smooth" (the CLI's
+// --method values).
 [[nodiscard]] std::string_view shadow_method_name(ShadowMethod method);
 // The method of that name; nullopt for any other string.
 [[nodiscard]] std::optional<ShadowMethod> parse_shadow_method(std::string_view name);
@@ -59,7 +67,13 @@ inline constexpr std::array<ShadowMethod, 6> kShadowMethods{ShadowMethod::cpu, S
 // the GPU builds it (cs, gs, ts, pertri).
 [[nodiscard]] constexpr bool draws_volume(ShadowMethod m) { return m != ShadowMethod::shadowmap; }
 [[nodiscard]] constexpr bool builds_volume_on_gpu(ShadowMethod m) {
-  return m != ShadowMethod::cpu && m != ShadowMethod::shadowmap;
+  return m == ShadowMethod::cs || m == ShadowMethod::gs || m == ShadowMethod::ts || m == ShadowMethod::pertri;
+}
+// Whether the caller hands the method one volume per light (ShadowMethodScene::cpu_volumes):
+// cpu and the smooth-silhouette methods.
+[[nodiscard]] constexpr bool draws_given_volume(ShadowMethod m) {
+  return m == ShadowMethod::cpu || m == ShadowMethod::discrete || m == ShadowMethod::accurate ||
+         m == ShadowMethod::smooth;
 }
 // The stages a frame of the method runs, in order: volume, depth, stencil, lit for the
 // volume methods (cpu's volume stage is empty: 0), depth, shadow_map, lit for shadowmap.
@@ -76,7 +90,8 @@ struct ShadowMethodScene {
   // build_edge_table. Ignored by the other methods.
   const Soup* canonical = nullptr;
   const EdgeTable* table = nullptr;
-  // cpu: one volume per light, in the lights' order (exact/chain_mesh.h). Ignored otherwise.
+  // cpu: one volume per light, in the lights' order (exact/chain_mesh.h); discrete, accurate,
+  // smooth: theirs (pipeline/method_inputs.h). Ignored by the other methods.
   std::span<const HomogeneousMesh> cpu_volumes;
 };
 

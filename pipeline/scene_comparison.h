@@ -24,13 +24,21 @@
 #include "gpu/egl_context.h"
 #include "gpu/offscreen_target.h"
 #include "gpu/shadow_method_renderer.h"
+#include "pipeline/silhouette_volumes.h"
 #include "pipeline/stencil_choice.h"
 
 namespace shadowcert {
 
 // Robust methods must show zero hard errors and closed volumes (docs/definitions.md#pixel-protocol); the shadow map
 // is the baseline whose errors are its speed-against-error figures (docs/definitions.md#speed-against-error).
-[[nodiscard]] constexpr bool robust(gpu::ShadowMethod method) { return method != gpu::ShadowMethod::shadowmap; }
+// `discrete` is held to the robust rule (on a qualifying caster it draws the exact chain's
+// shadow); `accurate` and `smooth` shadow a smooth surface that is not the polyhedral one, so
+// their disagreement with the exact image is their error, never a failure
+// (docs/smooth-silhouettes.md). Every volume must be closed all the same.
+[[nodiscard]] constexpr bool robust(gpu::ShadowMethod method) {
+  return method != gpu::ShadowMethod::shadowmap && method != gpu::ShadowMethod::accurate &&
+         method != gpu::ShadowMethod::smooth;
+}
 
 // One method against one light.
 struct LightRun {
@@ -50,7 +58,7 @@ struct MethodRun {
   // nullopt for shadowmap (no volume); otherwise whether every light's volume is closed.
   [[nodiscard]] std::optional<bool> closed() const;
   [[nodiscard]] double gl_ms() const;
-  // A robust method with a hard error or an open volume.
+  // A robust method with a hard error, or any volume method with an open volume.
   [[nodiscard]] bool failed() const;
 };
 
@@ -64,6 +72,7 @@ struct SceneComparisonOptions {
   // alone would mostly time llvmpipe's first-use compilation); 0: none.
   std::size_t timed_frames = 0;
   bool progress = false;  // the exact image's progress bar on stderr
+  SilhouetteOptions silhouette;  // discrete, accurate, smooth (pipeline/silhouette_volumes.h)
 };
 
 struct SceneComparison {
@@ -73,6 +82,8 @@ struct SceneComparison {
   // Per light, the stencil method every volume method counted it with, and with stencil_auto
   // the proof that chose it (pipeline/stencil_choice.h); empty when no method draws a volume.
   std::vector<LightStencil> stencil;
+  // Per smooth-silhouette method asked for, how each mesh cast (pipeline/silhouette_volumes.h).
+  std::vector<SilhouetteVolumes> silhouettes;
 
   [[nodiscard]] bool passed() const;  // no run failed
 };

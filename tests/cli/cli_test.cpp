@@ -673,3 +673,55 @@ TEST(CliStencil, BadOrConflictingStencilOptions_ExitTwo) {
   EXPECT_EQ(shadowmap.exit_code, 2);
   EXPECT_NE(shadowmap.output.find("shadowmap counts no volume"), std::string::npos) << shadowmap.output;
 }
+
+// ---- smooth silhouettes: discrete, accurate, smooth (docs/smooth-silhouettes.md) ---------------
+
+// default.json has a non-manifold fan and an open box with a fin: they fall back to the robust
+// chain, named with their reports; discrete is held to 0 hard errors, accurate and smooth report
+// theirs without failing.
+TEST(CliSilhouette, DiffDefaultScene_NonManifoldMeshesFallBackWithTheirReports) {
+  const fs::path json = temp_dir() / "diff_silhouette.json";
+  const RunResult r = run_cli("diff " + kDefaultScene + " --size 96x72 --methods discrete,accurate,smooth --json " +
+                              json.string());
+  if (render_unavailable(r)) GTEST_SKIP() << r.output;
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const nlohmann::json j = read_json(json);
+  EXPECT_EQ(j["methods"]["discrete"]["hard_errors"], 0);
+  EXPECT_EQ(j["methods"]["discrete"]["robust"], true);
+  EXPECT_EQ(j["methods"]["smooth"]["robust"], false);
+  for (const char* method : {"discrete", "accurate", "smooth"}) {
+    EXPECT_EQ(j["methods"][method]["closed"], true) << method;
+    bool fan_fell_back = false, floor_smooth = false;
+    for (const nlohmann::json& c : j["methods"][method]["casters"]) {
+      if (c["mesh"] == "fan")
+        fan_fell_back = c["cast_by"] == "robust chain" &&
+                        c["qualification"].get<std::string>().find("non-manifold edge") != std::string::npos;
+      if (c["mesh"] == "floor") floor_smooth = c["cast_by"] == method;
+    }
+    EXPECT_TRUE(fan_fell_back) << method;
+    EXPECT_TRUE(floor_smooth) << method;
+  }
+  EXPECT_NE(r.output.find("fan (16 triangles) cast by the robust chain: not an oriented 2-manifold"), std::string::npos)
+      << r.output;
+}
+
+TEST(CliSilhouette, RenderSmoothSphere_OneLoopAndAShadow) {
+  const fs::path json = temp_dir() / "render_smooth.json";
+  const RunResult r = run_cli("render " + kSource + "/data/scenes/smooth_sphere.json --method smooth --epsilon 0.003 "
+                              "--size 160x120 --json " + json.string());
+  if (render_unavailable(r)) GTEST_SKIP() << r.output;
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const nlohmann::json j = read_json(json);
+  EXPECT_GT(j["shadowed_pixels"].get<int>(), 200);
+  bool sphere = false;
+  for (const nlohmann::json& c : j["casters"])
+    if (c["mesh"] == "sphere") sphere = c["cast_by"] == "smooth" && c["loops"] == 1;
+  EXPECT_TRUE(sphere) << j.dump();
+}
+
+TEST(CliSilhouette, BadEpsilonOrCreaseAngle_ExitTwo) {
+  const std::string scene = kSource + "/data/scenes/smooth_sphere.json";
+  EXPECT_EQ(run_cli("render " + scene + " --method smooth --epsilon 0").exit_code, 2);
+  EXPECT_EQ(run_cli("render " + scene + " --method smooth --crease-angle 200").exit_code, 2);
+  EXPECT_EQ(run_cli("diff " + scene + " --methods smooth --epsilon -1").exit_code, 2);
+}

@@ -23,13 +23,13 @@ SmoothCaster caster_of(const Soup& soup, const SmoothCasterOptions& options = {}
   return *r.caster;
 }
 
-std::vector<std::uint8_t> lit_faces(const SmoothCaster& c, const Light& light) {
-  std::vector<std::uint8_t> lit(c.triangles.size());
+std::vector<Sign> face_sides(const SmoothCaster& c, const Light& light) {
+  std::vector<Sign> lit(c.triangles.size());
   const auto& l = light.position;
   for (std::size_t t = 0; t < lit.size(); ++t) {
     const Vec3& a = c.vertices[c.triangles[t][0]];
     const Vec3 n = cross(difference(c.vertices[c.triangles[t][1]], a), difference(c.vertices[c.triangles[t][2]], a));
-    lit[t] = dot(n, Vec3{l[0] - l[3] * a[0], l[1] - l[3] * a[1], l[2] - l[3] * a[2]}) > 0.0;
+    lit[t] = sign_of(dot(n, Vec3{l[0] - l[3] * a[0], l[1] - l[3] * a[1], l[2] - l[3] * a[2]}));
   }
   return lit;
 }
@@ -89,16 +89,16 @@ TEST(SmoothShadowVolume, ThousandRandomLightsPerCaster_EveryMethodIsClosed) {
       const SmoothVolume smooth = smooth_shadow_volume(c.caster, light, {.method = SilhouetteMethod::smooth});
       expect_closed(smooth, what + ", smooth");
       if (closed_caster(c.caster)) {
-        // X's boundary is the contour alone: one side quad (a triangle for a directional light)
-        // per contour segment, no T-junction left open.
+        // X's boundary is the contour alone, twice (the lit and the unlit part): two side quads (two
+        // triangles for a directional light) per contour segment, no T-junction left open.
         std::size_t segments = 0;
         for (const SmoothContour& contour : smooth.contours) segments += contour.points.size();
-        EXPECT_EQ(smooth.side_triangles, (light.directional() ? 1 : 2) * segments) << what;
+        EXPECT_EQ(smooth.side_triangles, 2 * (light.directional() ? 1 : 2) * segments) << what;
       }
       if (i % 10 == 0) {
         expect_closed(smooth_shadow_volume(c.caster, light, {.method = SilhouetteMethod::accurate}), what + ", accurate");
         expect_closed(smooth_shadow_volume(c.caster, light, {.method = SilhouetteMethod::discrete},
-                                           lit_faces(c.caster, light)),
+                                           face_sides(c.caster, light)),
                       what + ", discrete");
       }
       if (::testing::Test::HasFailure()) return;
@@ -113,14 +113,14 @@ TEST(SmoothShadowVolume, SmoothSphere_HasItsStripContourAndBackCap) {
   const SmoothVolume accurate = smooth_shadow_volume(c, light, {.method = SilhouetteMethod::accurate});
   ASSERT_EQ(smooth.contours.size(), 1u);
   ASSERT_EQ(smooth.loops.size(), 1u);
-  // The contour has more points than the loop; each contour segment adds two strip triangles,
-  // and X's boundary is exactly the contour (no T-junction left open: every partner point is a
-  // vertex of its front-cap piece), one side quad of two triangles per segment.
+  // The contour has more points than the loop; each contour segment adds its strip quad twice,
+  // and X's boundary is exactly the contour twice (no T-junction left open: every partner point
+  // is a vertex of its cap piece on both sides), two side quads per segment.
   const std::size_t extra = smooth.contours[0].points.size() - smooth.loops[0].points.size();
   EXPECT_GT(extra, 0u);
-  EXPECT_GE(smooth.cap_triangles, accurate.cap_triangles + 2 * smooth.contours[0].points.size());
-  EXPECT_EQ(smooth.side_triangles, 2 * smooth.contours[0].points.size());
-  EXPECT_EQ(accurate.side_triangles, 2 * accurate.loops[0].points.size());
+  EXPECT_GE(smooth.cap_triangles, accurate.cap_triangles + 4 * smooth.contours[0].points.size());
+  EXPECT_EQ(smooth.side_triangles, 4 * smooth.contours[0].points.size());
+  EXPECT_EQ(accurate.side_triangles, 4 * accurate.loops[0].points.size());
   // Point light: back cap = X at infinity, so the mesh has X twice plus the sides.
   EXPECT_EQ(smooth.mesh.triangles.size(), 2 * smooth.cap_triangles + smooth.side_triangles);
   for (const auto& v : smooth.mesh.vertices) EXPECT_TRUE(v[3] == 0.0f || v[3] == 1.0f);
@@ -148,10 +148,23 @@ TEST(SmoothShadowVolume, CreaseCrossings_LeaveNoTJunction) {
   for (const Light& light : {Light{{1.0, 0.05, 0.3, 0.0}}, Light{{3.0, 0.2, 1.0, 1.0}}}) {
     const SmoothVolume v = smooth_shadow_volume(c, light, {.method = SilhouetteMethod::smooth, .epsilon = 0.003});
     ASSERT_EQ(v.contours.size(), 1u);
-    const std::size_t per_edge = light.directional() ? 1 : 2;
+    const std::size_t per_edge = light.directional() ? 2 : 4;
     EXPECT_EQ(v.side_triangles, per_edge * v.contours[0].points.size());
     expect_closed(v, "crease sphere");
   }
+}
+
+TEST(SmoothShadowVolume, LightInAFloorsPlane_CastsNothing) {
+  // f = 0 at every corner: lit by the fixed rule, but the light lies in the plane the normals
+  // describe, so the floor casts nothing (as its exact light side 0), for every method.
+  const SmoothCaster c = caster_of(floor_quad(2.0));
+  const Light in_plane{{0.5, 0.0, 3.0, 1.0}};
+  for (SilhouetteMethod method : {SilhouetteMethod::accurate, SilhouetteMethod::smooth}) {
+    const SmoothVolume v = smooth_shadow_volume(c, in_plane, {.method = method});
+    EXPECT_TRUE(v.mesh.triangles.empty());
+  }
+  const std::vector<Sign> zero(c.triangles.size(), Sign::zero);
+  EXPECT_TRUE(smooth_shadow_volume(c, in_plane, {.method = SilhouetteMethod::discrete}, zero).mesh.triangles.empty());
 }
 
 TEST(SmoothShadowVolume, DirectionalLight_HasNoBackCapAndOneFarPoint) {

@@ -109,6 +109,26 @@ TEST_P(HardSceneDiff, RobustMethodsWithZFail_HaveNoHardErrorAndClosedVolumes) {
   expect_robust_methods_exact(d, GetParam());
 }
 
+// The smooth-silhouette methods on every hard scene (docs/smooth-silhouettes.md): discrete is
+// the exact chain of each qualifying mesh, so it is held to no hard error, counts included;
+// accurate and smooth shadow a smooth surface (their error is reported, not judged); every
+// volume of the three is closed.
+TEST_P(HardSceneDiff, SilhouetteMethods_DiscreteHasNoHardErrorAndEveryVolumeIsClosed) {
+  const std::filesystem::path file =
+      std::filesystem::path(SHADOWCERT_SOURCE_DIR) / "data" / "scenes" / "hard" / (GetParam() + ".json");
+  Scene scene = load_scene(file, [](const std::filesystem::path& f) { return read_soup(f); });
+  scene.camera.width = kWidth;
+  scene.camera.height = kHeight;
+  const SceneComparison c = compare_scene(scene, {ShadowMethod::discrete, ShadowMethod::accurate, ShadowMethod::smooth}, {});
+  for (const MethodRun& run : c.runs) {
+    SCOPED_TRACE(std::string(shadow_method_name(run.method)));
+    EXPECT_EQ(run.closed(), true);
+    if (run.method == ShadowMethod::discrete) {
+      EXPECT_EQ(run.sum(&PixelComparison::hard_errors), 0u);
+    }
+  }
+}
+
 // tests/regressions/gl/: scenes shrunk from `fuzz --gl` failures (tests/regressions/README.md),
 // each replayed as `shadowcert diff` does, at 256x192 and 1024x768, by every robust method:
 // no hard pixel, closed volumes. light_between_edge_ends: a side whose far vertices are nearly

@@ -1,0 +1,19 @@
+#pragma once
+// How each mesh cast under a smooth-silhouette method (pipeline/silhouette_volumes.h), as
+// `render` and `diff` report it: one line per mesh, and the JSON's "casters" array
+// (docs/cli.md, docs/smooth-silhouettes.md).
+#include <nlohmann/json.hpp>
+
+#include "pipeline/silhouette_volumes.h"
+
+namespace shadowcert::cli {
+
+// [{"mesh": name, "triangles": n, "cast_by": "discrete"|"accurate"|"smooth"|"robust chain",
+//   "qualification": "qualifies" or the report naming the offenders, "loops": first light's}, ...]
+[[nodiscard]] nlohmann::json silhouette_casters_json(const SilhouetteVolumes& volumes);
+
+// "  smooth: MESH (N triangles) cast by smooth, 1 loop" or "... cast by the robust chain: not an
+// oriented 2-manifold: ...", per mesh, on stdout.
+void print_silhouette_casters(const SilhouetteVolumes& volumes);
+
+}  // namespace shadowcert::cli
