@@ -28,7 +28,8 @@ std::vector<SilhouetteLoop> discrete_silhouette(const SmoothCaster& caster, std:
 }
 
 std::vector<SilhouetteLoop> accurate_silhouette(const SmoothCaster& caster, const Light& light) {
-  const detail::LitBoundary boundary = detail::accurate_boundary(caster, corner_light_values(caster, light));
+  require_defined(light, "accurate_silhouette");
+  const detail::LitBoundary boundary = detail::accurate_boundary(caster, detail::CornerValues(caster, light));
   return detail::loops_of(boundary, detail::chain(boundary));
 }
 

@@ -218,6 +218,10 @@ SmoothCasterResult smooth_caster(const Soup& soup, const SmoothCasterOptions& op
                  caster.normals[s1.triangle][corner_of(w.triangles[s1.triangle], s1.triangle, v) % 3];
     caster.crease[s0.triangle][s0.edge] = caster.crease[s1.triangle][s1.edge] = differs;
   }
+  for (std::uint32_t t = 0; t < n; ++t)
+    for (std::uint32_t k = 0; k < 3; ++k)
+      if (caster.crease[t][k] && caster.across[t][k] != kBorder && caster.across[t][k] > t)
+        caster.crease_edges.push_back({t, k});
   result.caster = std::move(caster);
   return result;
 }

@@ -70,6 +70,9 @@ struct SmoothCaster {
   // crease angle (OpenMesh's feature edge). File normals: the two triangles' corner normals
   // differ at an end. False at a border.
   std::vector<std::array<bool, 3>> crease;
+  // Every crease once, as (t, k) of its side with the lower triangle index: what the silhouettes
+  // walk to find crease pieces without visiting every edge.
+  std::vector<std::array<std::uint32_t, 2>> crease_edges;
   CornerNormalSource normal_source = CornerNormalSource::computed;
 };
 

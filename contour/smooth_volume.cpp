@@ -66,13 +66,14 @@ std::size_t corner_index(const Triangle& t, std::uint32_t v) {
 // counter-clockwise in t's order): its corners of that state, its own accurate points and, on a
 // crease, the other side's point where it falls inside that part of the edge (a vertex of a
 // crease piece).
-std::vector<std::pair<PointKey, Vec3>> part_polygon(const SmoothCaster& c, std::span<const std::array<double, 3>> f,
+std::vector<std::pair<PointKey, Vec3>> part_polygon(const SmoothCaster& c, const detail::CornerValues& f,
                                                     std::uint32_t t, bool want_lit) {
   std::vector<std::pair<PointKey, Vec3>> polygon;
   const Triangle& tri = c.triangles[t];
   for (std::size_t k = 0; k < 3; ++k) {
     const std::uint32_t a = tri[k], b = tri[(k + 1) % 3];
-    const bool lit_a = detail::lit(f[t][k]), lit_b = detail::lit(f[t][(k + 1) % 3]);
+    const std::array<double, 3> ft = f[t];
+    const bool lit_a = detail::lit(ft[k]), lit_b = detail::lit(ft[(k + 1) % 3]);
     const bool in_a = lit_a == want_lit, in_b = lit_b == want_lit;
     if (in_a) polygon.emplace_back(detail::vertex_key(a), c.vertices[a]);
     // Parameter s from a to b of the cut points on this edge inside the part.
@@ -87,7 +88,8 @@ std::vector<std::pair<PointKey, Vec3>> part_polygon(const SmoothCaster& c, std::
     const std::uint32_t other = c.across[t][k];
     if (c.crease[t][k] && other != kBorder) {
       const std::size_t oa = corner_index(c.triangles[other], a), ob = corner_index(c.triangles[other], b);
-      if (detail::lit(f[other][oa]) != detail::lit(f[other][ob])) {
+      const std::array<double, 3> fo = f[other];
+      if (detail::lit(fo[oa]) != detail::lit(fo[ob])) {
         const std::size_t k2 = ob;  // the other triangle's edge from b to a starts at its corner b
         const auto [key, p] = detail::edge_point(c, f, other, k2);
         const double s = p.edge_from == a ? p.u : 1.0 - p.u;
@@ -115,8 +117,7 @@ SmoothVolume smooth_shadow_volume(const SmoothCaster& caster, const Light& light
   for (Sign side : sides) lit_triangles.push_back(side == Sign::positive);
 
   SmoothVolume volume;
-  const std::vector<std::array<double, 3>> f = discrete ? std::vector<std::array<double, 3>>{}
-                                                         : corner_light_values(caster, light);
+  const detail::CornerValues f(caster, light);
   const detail::LitBoundary boundary =
       discrete ? detail::discrete_boundary(caster, lit_triangles) : detail::accurate_boundary(caster, f);
   const std::vector<detail::KeyedLoop> keyed = detail::chain(boundary);
@@ -154,7 +155,8 @@ SmoothVolume smooth_shadow_volume(const SmoothCaster& caster, const Light& light
     }
     // The light in the plane the corner normals describe at every corner (a floor with the light
     // in its plane): as the exact side 0, the triangle casts nothing.
-    if (f[t][0] == 0.0 && f[t][1] == 0.0 && f[t][2] == 0.0) continue;
+    const std::array<double, 3> ft = f[t];
+    if (ft[0] == 0.0 && ft[1] == 0.0 && ft[2] == 0.0) continue;
     for (const bool want_lit : {true, false}) {
       const std::vector<std::pair<PointKey, Vec3>> polygon = part_polygon(caster, f, t, want_lit);
       std::vector<std::uint32_t> ring;

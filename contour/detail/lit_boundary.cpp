@@ -78,13 +78,14 @@ SilhouettePoint vertex_point(const SmoothCaster& c, std::uint32_t t, std::uint32
 
 // The accurate point on edge k of triangle t (its two corners have opposite lit states), and its
 // key, computed from the edge's lower vertex index to its higher one.
-std::pair<PointKey, SilhouettePoint> edge_point(const SmoothCaster& c, std::span<const std::array<double, 3>> f,
-                                                std::uint32_t t, std::size_t k) {
+std::pair<PointKey, SilhouettePoint> edge_point(const SmoothCaster& c, const CornerValues& f, std::uint32_t t,
+                                                std::size_t k) {
   const Triangle& tri = c.triangles[t];
   std::size_t ci = k, cj = (k + 1) % 3;
   if (tri[ci] > tri[cj]) std::swap(ci, cj);
   const std::uint32_t i = tri[ci], j = tri[cj];
-  const double fi = f[t][ci], fj = f[t][cj];
+  const std::array<double, 3> ft = f[t];
+  const double fi = ft[ci], fj = ft[cj];
   const double u = fi / (fi - fj);  // nonzero denominator: the signs differ (0 counts as lit)
   if (u == 0.0) return {vertex_key(i), vertex_point(c, t, i)};
   if (u == 1.0) return {vertex_key(j), vertex_point(c, t, j)};
@@ -121,14 +122,16 @@ LitBoundary discrete_boundary(const SmoothCaster& caster, std::span<const std::u
   return pieces;
 }
 
-LitBoundary accurate_boundary(const SmoothCaster& caster, std::span<const std::array<double, 3>> f) {
+LitBoundary accurate_boundary(const SmoothCaster& caster, const CornerValues& f) {
   LitBoundary pieces;
   // 1. Inside each triangle: its lit part's boundary runs along the zero segment from the edge
   // where the corners go lit to unlit (in the triangle's order) to the edge where they go back.
   for (std::uint32_t t = 0; t < caster.triangles.size(); ++t) {
+    const std::array<double, 3> ft = f[t];
+    if (lit(ft[0]) == lit(ft[1]) && lit(ft[1]) == lit(ft[2])) continue;  // no zero set: most triangles
     std::size_t leaving = 3, entering = 3;
     for (std::size_t k = 0; k < 3; ++k) {
-      const bool here = lit(f[t][k]), next = lit(f[t][(k + 1) % 3]);
+      const bool here = lit(ft[k]), next = lit(ft[(k + 1) % 3]);
       if (here && !next) leaving = k;
       if (!here && next) entering = k;
     }
@@ -140,10 +143,9 @@ LitBoundary accurate_boundary(const SmoothCaster& caster, std::span<const std::a
   // 2. Along each crease: the parts of the edge lit on one side only, with the lit side on the
   // left (its own order along the edge), and a zero-length piece where both sides' points
   // coincide with both lit on the same end.
-  for (std::uint32_t t = 0; t < caster.triangles.size(); ++t)
-    for (std::size_t k = 0; k < 3; ++k) {
+  for (const auto& [t, k] : caster.crease_edges) {
+    {
       const std::uint32_t other = caster.across[t][k];
-      if (!caster.crease[t][k] || other == kBorder || other < t) continue;
       const std::uint32_t a = caster.triangles[t][k], b = caster.triangles[t][(k + 1) % 3];
       const std::size_t k2 = corner_index(caster.triangles[other], b);  // its edge k2 runs b -> a
       // Per side: lit at a, lit at b, and where the state changes (parameter s from a to b).
@@ -155,8 +157,9 @@ LitBoundary accurate_boundary(const SmoothCaster& caster, std::span<const std::a
       };
       const auto side = [&](std::uint32_t tri, std::size_t corner_a, std::size_t corner_b, std::size_t edge) {
         Side x;
-        x.at_a = lit(f[tri][corner_a]);
-        x.at_b = lit(f[tri][corner_b]);
+        const std::array<double, 3> fx = f[tri];
+        x.at_a = lit(fx[corner_a]);
+        x.at_b = lit(fx[corner_b]);
         if (x.at_a != x.at_b) {
           std::tie(x.key, x.point) = edge_point(caster, f, tri, edge);
           x.s = x.point.edge_from == a ? x.point.u : 1.0 - x.point.u;
@@ -199,6 +202,7 @@ LitBoundary accurate_boundary(const SmoothCaster& caster, std::span<const std::a
         else pieces.add(one.key, one.point, two.key, two.point, kBorder);
       }
     }
+  }
   return pieces;
 }
 

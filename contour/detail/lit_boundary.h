@@ -48,17 +48,38 @@ struct KeyedLoop {
 
 [[nodiscard]] inline bool lit(double f) { return f >= 0.0; }
 
+// The corner values f = n . (l - w v) of a triangle, computed when asked (a silhouette pass
+// touches every triangle once and most only to see one sign at all three corners: storing 3 n
+// doubles first cost more than the pass). Same expression, so the same bits, as
+// corner_light_values.
+class CornerValues {
+ public:
+  CornerValues(const SmoothCaster& caster, const Light& light) : caster_(&caster), l_(light.position) {}
+  [[nodiscard]] std::array<double, 3> operator[](std::size_t t) const {
+    std::array<double, 3> f{};
+    for (std::size_t k = 0; k < 3; ++k) {
+      const Vec3& v = caster_->vertices[caster_->triangles[t][k]];
+      const Vec3& n = caster_->normals[t][k];
+      f[k] = n[0] * (l_[0] - l_[3] * v[0]) + n[1] * (l_[1] - l_[3] * v[1]) + n[2] * (l_[2] - l_[3] * v[2]);
+    }
+    return f;
+  }
+
+ private:
+  const SmoothCaster* caster_;
+  std::array<double, 4> l_;
+};
+
 [[nodiscard]] inline PointKey vertex_key(std::uint32_t v) { return {PointKey::vertex, v, v, 0}; }
 
 [[nodiscard]] SilhouettePoint vertex_point(const SmoothCaster& c, std::uint32_t t, std::uint32_t v);
 
 // The accurate point on edge k of triangle t (its corners' lit states differ) and its key,
 // computed from the edge's lower vertex index to its higher one.
-[[nodiscard]] std::pair<PointKey, SilhouettePoint> edge_point(const SmoothCaster& c,
-                                                              std::span<const std::array<double, 3>> f,
+[[nodiscard]] std::pair<PointKey, SilhouettePoint> edge_point(const SmoothCaster& c, const CornerValues& f,
                                                               std::uint32_t t, std::size_t k);
 
-[[nodiscard]] LitBoundary accurate_boundary(const SmoothCaster& c, std::span<const std::array<double, 3>> f);
+[[nodiscard]] LitBoundary accurate_boundary(const SmoothCaster& c, const CornerValues& f);
 [[nodiscard]] LitBoundary discrete_boundary(const SmoothCaster& c, std::span<const std::uint8_t> lit_triangles);
 
 [[nodiscard]] std::vector<KeyedLoop> chain(const LitBoundary& boundary);
