@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <map>
 #include <numeric>
 #include <stdexcept>
 #include <unordered_map>
@@ -222,6 +223,20 @@ SmoothCasterResult smooth_caster(const Soup& soup, const SmoothCasterOptions& op
     for (std::uint32_t k = 0; k < 3; ++k)
       if (caster.crease[t][k] && caster.across[t][k] != kBorder && caster.across[t][k] > t)
         caster.crease_edges.push_back({t, k});
+  // Wedges: one per distinct (vertex, normal bits).
+  std::map<std::pair<std::uint32_t, Vec3>, std::uint32_t> wedge_of;
+  caster.wedge.resize(n);
+  for (std::uint32_t t = 0; t < n; ++t)
+    for (std::size_t k = 0; k < 3; ++k) {
+      const std::uint32_t v = caster.triangles[t][k];
+      const auto [it, added] =
+          wedge_of.emplace(std::pair{v, caster.normals[t][k]}, static_cast<std::uint32_t>(caster.wedge_vertex.size()));
+      if (added) {
+        caster.wedge_vertex.push_back(v);
+        caster.wedge_normal.push_back(caster.normals[t][k]);
+      }
+      caster.wedge[t][k] = it->second;
+    }
   result.caster = std::move(caster);
   return result;
 }

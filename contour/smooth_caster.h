@@ -64,6 +64,12 @@ struct SmoothCaster {
   std::vector<Triangle> triangles;  // welded indices, in the input's order and orientation
   // normals[t][k]: the unit normal at corner k of triangle t (k = 0, 1, 2 as in triangles[t]).
   std::vector<std::array<Vec3, 3>> normals;
+  // The wedges: corners of one vertex with one normal (bit for bit). wedge[t][k] is corner k's;
+  // wedge_vertex[w] and wedge_normal[w] are the wedge's. A light's corner values are computed
+  // once per wedge (contour/detail/lit_boundary.h), a third of the corners on a smooth mesh.
+  std::vector<std::array<std::uint32_t, 3>> wedge;
+  std::vector<std::uint32_t> wedge_vertex;
+  std::vector<Vec3> wedge_normal;
   // across[t][k]: the triangle across edge k = (corner k, corner k + 1 mod 3) of t, or kBorder.
   std::vector<std::array<std::uint32_t, 3>> across;
   // crease[t][k]: edge k of t is a crease. Computed normals: the dihedral angle there exceeds the

@@ -48,26 +48,28 @@ struct KeyedLoop {
 
 [[nodiscard]] inline bool lit(double f) { return f >= 0.0; }
 
-// The corner values f = n . (l - w v) of a triangle, computed when asked (a silhouette pass
-// touches every triangle once and most only to see one sign at all three corners: storing 3 n
-// doubles first cost more than the pass). Same expression, so the same bits, as
-// corner_light_values.
+// The corner values f = n . (l - w v) of a light, computed once per wedge (SmoothCaster::wedge:
+// a silhouette pass touches every triangle but most only to see one sign at all three corners,
+// so the pass is memory-bound and the wedges are a third of the corners on a smooth mesh). The
+// same expression, so the same bits, as corner_light_values.
 class CornerValues {
  public:
-  CornerValues(const SmoothCaster& caster, const Light& light) : caster_(&caster), l_(light.position) {}
-  [[nodiscard]] std::array<double, 3> operator[](std::size_t t) const {
-    std::array<double, 3> f{};
-    for (std::size_t k = 0; k < 3; ++k) {
-      const Vec3& v = caster_->vertices[caster_->triangles[t][k]];
-      const Vec3& n = caster_->normals[t][k];
-      f[k] = n[0] * (l_[0] - l_[3] * v[0]) + n[1] * (l_[1] - l_[3] * v[1]) + n[2] * (l_[2] - l_[3] * v[2]);
+  CornerValues(const SmoothCaster& caster, const Light& light) : caster_(&caster), f_(caster.wedge_vertex.size()) {
+    const auto& l = light.position;
+    for (std::size_t w = 0; w < f_.size(); ++w) {
+      const Vec3& v = caster.vertices[caster.wedge_vertex[w]];
+      const Vec3& n = caster.wedge_normal[w];
+      f_[w] = n[0] * (l[0] - l[3] * v[0]) + n[1] * (l[1] - l[3] * v[1]) + n[2] * (l[2] - l[3] * v[2]);
     }
-    return f;
+  }
+  [[nodiscard]] std::array<double, 3> operator[](std::size_t t) const {
+    const auto& w = caster_->wedge[t];
+    return {f_[w[0]], f_[w[1]], f_[w[2]]};
   }
 
  private:
   const SmoothCaster* caster_;
-  std::array<double, 4> l_;
+  std::vector<double> f_;
 };
 
 [[nodiscard]] inline PointKey vertex_key(std::uint32_t v) { return {PointKey::vertex, v, v, 0}; }

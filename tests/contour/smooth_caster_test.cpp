@@ -48,6 +48,12 @@ TEST(SmoothCaster, UvSphere_QualifiesClosedAndSmooth) {
   EXPECT_EQ(c.normal_source, CornerNormalSource::computed);
   EXPECT_EQ(count_borders(c), 0u);
   EXPECT_EQ(count_creases(c), 0u);
+  EXPECT_EQ(c.wedge_vertex.size(), c.vertices.size());  // smooth everywhere: one wedge per vertex
+  for (std::size_t t = 0; t < c.triangles.size(); ++t)
+    for (std::size_t k = 0; k < 3; ++k) {
+      EXPECT_EQ(c.wedge_vertex[c.wedge[t][k]], c.triangles[t][k]);
+      EXPECT_EQ(c.wedge_normal[c.wedge[t][k]], c.normals[t][k]);
+    }
   // Every corner normal is close to the radial direction, and bitwise one per vertex.
   std::map<std::uint32_t, Vec3> at_vertex;
   for (std::size_t t = 0; t < c.triangles.size(); ++t)
@@ -66,6 +72,8 @@ TEST(SmoothCaster, Box_CreasesItsTwelveEdgesButNotTheFaceDiagonals) {
   const SmoothCaster c = qualified(box({0, 0, 0}, {1, 2, 3}));
   EXPECT_EQ(count_borders(c), 0u);
   EXPECT_EQ(count_creases(c), 12u);
+  EXPECT_EQ(c.crease_edges.size(), 12u);
+  EXPECT_EQ(c.wedge_vertex.size(), 24u);  // each cube corner: three faces, three normals
   for (std::size_t t = 0; t < c.triangles.size(); ++t) {
     const Triangle& tri = c.triangles[t];
     const Vec3 face = normalized(cross(difference(c.vertices[tri[1]], c.vertices[tri[0]]),
