@@ -131,16 +131,15 @@ SmoothCasterResult smooth_caster(const Soup& soup, const SmoothCasterOptions& op
   }
   // A vertex whose corners fall into several fans (two cones touching at a point).
   std::vector<std::uint32_t> fan(w.vertices.size(), kBorder);
-  std::vector<bool> reported(w.vertices.size(), false);
+  std::vector<bool> several(w.vertices.size(), false);
   for (std::uint32_t c = 0; c < 3 * n; ++c) {
     const std::uint32_t v = w.triangles[c / 3][c % 3];
     const std::uint32_t r = corners.root(c);
     if (fan[v] == kBorder) fan[v] = r;
-    else if (fan[v] != r && !reported[v]) {
-      reported[v] = true;
-      report(q.non_manifold_vertices, q.non_manifold_vertex_count, v);
-    }
+    else if (fan[v] != r) several[v] = true;
   }
+  for (std::uint32_t v = 0; v < several.size(); ++v)  // in index order, as the edges are
+    if (several[v]) report(q.non_manifold_vertices, q.non_manifold_vertex_count, v);
   if (!q.qualifies()) return result;
 
   // The mesh: every check above is what OpenMesh's add_face refuses, so it accepts every face.
