@@ -7,12 +7,15 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <optional>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "cli/exit_code.h"
+#include "cli/silhouette_output.h"
 #include "exact/volume_closure.h"
+#include "pipeline/silhouette_volumes.h"
 #include "io/output_file.h"
 #include "io/scene_input.h"
 #include "io/soup_file.h"
@@ -45,6 +48,8 @@ struct CertifyOptions {
   std::string volume_out;
   std::string volume;  // a captured volume (.vol) to certify alone
   std::string json_file;
+  double epsilon = kDefaultContourEpsilon;           // --method smooth
+  double crease_angle = kDefaultCreaseAngleDegrees;  // --method discrete|accurate|smooth
 };
 
 using Clock = std::chrono::steady_clock;
@@ -70,6 +75,52 @@ Light chosen_light(const CertifyOptions& options, const Scene& scene) {
   return light;
 }
 
+// discrete, accurate, smooth: the smooth-silhouette method of that name, else nullopt.
+std::optional<gpu::ShadowMethod> silhouette_method(const std::string& name) {
+  for (gpu::ShadowMethod m : gpu::kSilhouetteMethods)
+    if (gpu::shadow_method_name(m) == name) return m;
+  return std::nullopt;
+}
+
+// certify --method discrete|accurate|smooth: every light's volume built as render draws it
+// (pipeline/silhouette_volumes.h), in world space, certified closed exactly
+// (exact/volume_closure.h); how each mesh cast. An open volume is a bug: exit 1.
+int run_certify_silhouette(const CertifyOptions& options, const Scene& scene, gpu::ShadowMethod method) {
+  std::vector<Light> lights;
+  if (options.light.empty()) lights = scene.lights;
+  else lights.push_back(chosen_light(options, scene));
+  if (lights.empty()) throw InputError(options.input, "the scene has no light; pass --light X,Y,Z,W");
+  const auto start = Clock::now();
+  const SilhouetteVolumes volumes =
+      silhouette_volumes(scene.meshes, lights, method, {options.epsilon, options.crease_angle});
+  const double build_seconds = seconds_since(start);
+  fmt::print("{}: {} mesh(es), {} light(s), {} (built in {:.3f} s)\n", options.input, scene.meshes.size(), lights.size(),
+             gpu::shadow_method_name(method), build_seconds);
+  print_silhouette_casters(volumes);
+  bool all_closed = true;
+  nlohmann::json per_light = nlohmann::json::array();
+  for (std::size_t k = 0; k < lights.size(); ++k) {
+    const VolumeClosure closure = certify_volume_closure(volumes.per_light[k]);
+    all_closed = all_closed && closure.certificate.closed;
+    fmt::print("  light {}: {} triangles, closure {} ({} unbalanced edges)\n", k, volumes.per_light[k].triangles.size(),
+               closure.certificate.closed ? "certified" : "FAILED", closure.certificate.unbalanced.size());
+    per_light.push_back({{"light", lights[k].position},
+                         {"triangles", volumes.per_light[k].triangles.size()},
+                         {"closed", closure.certificate.closed},
+                         {"unbalanced_edges", closure.certificate.unbalanced.size()}});
+  }
+  if (!options.json_file.empty())
+    write_json_file(options.json_file, {{"input", options.input},
+                                        {"method", gpu::shadow_method_name(method)},
+                                        {"epsilon", options.epsilon},
+                                        {"crease_angle", options.crease_angle},
+                                        {"build_seconds", build_seconds},
+                                        {"casters", silhouette_casters_json(volumes)},
+                                        {"lights", per_light},
+                                        {"closed", all_closed}});
+  return all_closed ? kExitOk : kExitCheckFailed;
+}
+
 std::vector<MultiplicityMethod> chosen_methods(const std::string& name) {
   if (name == "all")
     return {MultiplicityMethod::exact, MultiplicityMethod::kim, MultiplicityMethod::peciva,
@@ -77,7 +128,8 @@ std::vector<MultiplicityMethod> chosen_methods(const std::string& name) {
   try {
     return {parse_method(name)};
   } catch (const std::invalid_argument&) {
-    throw CLI::ValidationError("--method", "unknown method '" + name + "' (exact, kim, peciva, refedge, all)");
+    throw CLI::ValidationError("--method", "unknown method '" + name +
+                                               "' (exact, kim, peciva, refedge, all, discrete, accurate, smooth)");
   }
 }
 
@@ -239,6 +291,8 @@ int run_certify(const CertifyOptions& options) {
   if (options.input.empty()) throw CLI::ValidationError("input", "give a MESH|SCENE file, or --volume FILE");
   const auto start = Clock::now();
   const Scene scene = load_scene_or_mesh(options.input);
+  if (const std::optional<gpu::ShadowMethod> silhouette = silhouette_method(options.method))
+    return run_certify_silhouette(options, scene, *silhouette);
   const Light light = chosen_light(options, scene);
   const std::vector<MultiplicityMethod> methods = chosen_methods(options.method);
   if (options.precision != "float" && options.precision != "double")
@@ -309,7 +363,17 @@ void add_certify_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--light", options->light, "Light X,Y,Z,W (W = 1 point, W = 0 directional); default: the scene's first")
       ->delimiter(',')
       ->expected(4);
-  cmd->add_option("--method", options->method, "exact, kim, peciva, refedge or all")->capture_default_str();
+  cmd->add_option("--method", options->method,
+                  "exact, kim, peciva, refedge or all (multiplicities and their certificates), or discrete, accurate, "
+                  "smooth (the smooth-silhouette volume of every light, certified closed; docs/smooth-silhouettes.md)")
+      ->capture_default_str();
+  cmd->add_option("--epsilon", options->epsilon, "--method smooth: the contour error, world units")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--crease-angle", options->crease_angle,
+                  "--method discrete|accurate|smooth: crease angle of computed normals, degrees")
+      ->check(CLI::Range(0.0, 180.0))
+      ->capture_default_str();
   cmd->add_option("--precision", options->precision, "Arithmetic of the float methods: float or double")
       ->capture_default_str();
   cmd->add_option("--samples", options->samples, "Random count-check samples (half in the box, half on triangles)")

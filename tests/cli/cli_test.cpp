@@ -725,3 +725,20 @@ TEST(CliSilhouette, BadEpsilonOrCreaseAngle_ExitTwo) {
   EXPECT_EQ(run_cli("render " + scene + " --method smooth --crease-angle 200").exit_code, 2);
   EXPECT_EQ(run_cli("diff " + scene + " --methods smooth --epsilon -1").exit_code, 2);
 }
+
+// certify --method discrete|accurate|smooth: every light's volume certified closed, each mesh's
+// caster report in the JSON.
+TEST(CliSilhouette, CertifySmooth_EveryLightClosedWithTheCasters) {
+  for (const char* method : {"discrete", "accurate", "smooth"}) {
+    const fs::path json = temp_dir() / (std::string("certify_") + method + ".json");
+    const RunResult r = run_cli("certify " + kSource + "/data/scenes/closed_casters.json --method " + method +
+                                " --json " + json.string());
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    const nlohmann::json j = read_json(json);
+    EXPECT_EQ(j["closed"], true) << method;
+    ASSERT_FALSE(j["lights"].empty());
+    for (const nlohmann::json& l : j["lights"]) EXPECT_EQ(l["unbalanced_edges"], 0);
+    EXPECT_EQ(j["casters"].size(), 4u);
+  }
+  EXPECT_EQ(run_cli("certify " + kDefaultScene + " --method smooth --epsilon 0").exit_code, 2);
+}
