@@ -163,7 +163,8 @@ int run_render(const RenderOptions& options) {
   // chain of the others (pipeline/silhouette_volumes.h), drawn as cpu's volumes are.
   std::optional<SilhouetteVolumes> silhouette;
   if (!gpu::builds_volume_on_gpu(method) && method != gpu::ShadowMethod::cpu && gpu::draws_volume(method)) {
-    silhouette = silhouette_volumes(scene.meshes, scene.lights, method, {options.epsilon, options.crease_angle});
+    silhouette = silhouette_volumes(scene.meshes, scene.lights, method,
+                                    {options.epsilon, options.crease_angle, scene.camera.near_plane});
     inputs.cpu_volumes = silhouette->per_light;
   }
   const double chain_seconds = seconds_since(stage);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <stdexcept>
 #include <tuple>
 
@@ -18,16 +19,32 @@ using detail::PointKey;
 // far vertices.
 class VertexTable {
  public:
-  std::uint32_t finite(const Vec3& p) {
+  explicit VertexTable(double cap_offset) : cap_offset_(cap_offset) {}
+  // The vertex named by the point p; a cut point (on a triangle's edge or cut, with its unit
+  // normal n) is stored cap_offset behind the surface, at p - cap_offset n (SmoothVolumeOptions).
+  std::uint32_t finite(const Vec3& p, const Vec3* cut_normal = nullptr) {
     const auto [it, added] = finite_.emplace(p, static_cast<std::uint32_t>(points_.size()));
-    if (added) points_.push_back(p);
+    if (added) {
+      Vec3 stored = p;
+      if (cut_normal != nullptr && cap_offset_ > 0.0)
+        for (std::size_t k = 0; k < 3; ++k) stored[k] -= cap_offset_ * (*cut_normal)[k];
+      points_.push_back(stored);
+    }
     return it->second;
   }
   [[nodiscard]] const std::vector<Vec3>& points() const { return points_; }
 
  private:
+  double cap_offset_;
   std::map<Vec3, std::uint32_t> finite_;
   std::vector<Vec3> points_;
+};
+
+// A point of a cap polygon: its name, where it is, and for a cut point its normal.
+struct PolygonPoint {
+  PointKey key;
+  Vec3 position{};
+  std::optional<Vec3> cut_normal;
 };
 
 struct Triangles {
@@ -42,13 +59,13 @@ struct Triangles {
 // keys (in order) that the piece runs between: from -> to, the points in that order.
 struct Insertion {
   PointKey from;
-  std::vector<Vec3> points;
+  std::vector<ContourPoint> points;  // their partners are the points to insert
 };
 using Insertions = std::map<std::pair<PointKey, PointKey>, Insertion>;
 
 // The partners between consecutive polygon points a -> b (reversed when the piece runs b -> a).
-const std::vector<Vec3>* partners_between(const Insertions& insertions, const PointKey& a, const PointKey& b,
-                                          std::vector<Vec3>& reversed) {
+const std::vector<ContourPoint>* partners_between(const Insertions& insertions, const PointKey& a, const PointKey& b,
+                                                  std::vector<ContourPoint>& reversed) {
   const auto it = insertions.find(a < b ? std::pair{a, b} : std::pair{b, a});
   if (it == insertions.end()) return nullptr;
   if (it->second.from == a) return &it->second.points;
@@ -66,24 +83,24 @@ std::size_t corner_index(const Triangle& t, std::uint32_t v) {
 // counter-clockwise in t's order): its corners of that state, its own accurate points and, on a
 // crease, the other side's point where it falls inside that part of the edge (a vertex of a
 // crease piece).
-std::vector<std::pair<PointKey, Vec3>> part_polygon(const SmoothCaster& c, const detail::CornerValues& f,
-                                                    std::uint32_t t, bool want_lit) {
-  std::vector<std::pair<PointKey, Vec3>> polygon;
+std::vector<PolygonPoint> part_polygon(const SmoothCaster& c, const detail::CornerValues& f, std::uint32_t t,
+                                       bool want_lit) {
+  std::vector<PolygonPoint> polygon;
   const Triangle& tri = c.triangles[t];
   for (std::size_t k = 0; k < 3; ++k) {
     const std::uint32_t a = tri[k], b = tri[(k + 1) % 3];
     const std::array<double, 3> ft = f[t];
     const bool lit_a = detail::lit(ft[k]), lit_b = detail::lit(ft[(k + 1) % 3]);
     const bool in_a = lit_a == want_lit, in_b = lit_b == want_lit;
-    if (in_a) polygon.emplace_back(detail::vertex_key(a), c.vertices[a]);
+    if (in_a) polygon.push_back({detail::vertex_key(a), c.vertices[a], std::nullopt});
     // Parameter s from a to b of the cut points on this edge inside the part.
-    std::vector<std::tuple<double, PointKey, Vec3>> cuts;
+    std::vector<std::tuple<double, PointKey, SilhouettePoint>> cuts;
     double lo = in_a ? 0.0 : 1.0, hi = in_b ? 1.0 : 0.0;  // the part's interval [lo, hi] of the edge
     if (lit_a != lit_b) {
       const auto [key, p] = detail::edge_point(c, f, t, k);
       const double s = p.edge_from == a ? p.u : 1.0 - p.u;
       (in_a ? hi : lo) = key.kind == PointKey::vertex ? (key.a == a ? 0.0 : 1.0) : s;
-      if (key.kind != PointKey::vertex) cuts.emplace_back(s, key, p.position);
+      if (key.kind != PointKey::vertex) cuts.emplace_back(s, key, p);
     }
     const std::uint32_t other = c.across[t][k];
     if (c.crease[t][k] && other != kBorder) {
@@ -93,11 +110,11 @@ std::vector<std::pair<PointKey, Vec3>> part_polygon(const SmoothCaster& c, const
         const std::size_t k2 = ob;  // the other triangle's edge from b to a starts at its corner b
         const auto [key, p] = detail::edge_point(c, f, other, k2);
         const double s = p.edge_from == a ? p.u : 1.0 - p.u;
-        if (key.kind != PointKey::vertex && s > lo && s < hi) cuts.emplace_back(s, key, p.position);
+        if (key.kind != PointKey::vertex && s > lo && s < hi) cuts.emplace_back(s, key, p);
       }
     }
     std::sort(cuts.begin(), cuts.end(), [](const auto& x, const auto& y) { return std::get<0>(x) < std::get<0>(y); });
-    for (const auto& [s, key, p] : cuts) polygon.emplace_back(key, p);
+    for (const auto& [s, key, p] : cuts) polygon.push_back({key, p.position, p.normal});
   }
   return polygon;
 }
@@ -111,6 +128,8 @@ SmoothVolume smooth_shadow_volume(const SmoothCaster& caster, const Light& light
   const bool discrete = options.method == SilhouetteMethod::discrete;
   if (smooth && !(options.epsilon > 0.0 && std::isfinite(options.epsilon)))
     throw std::invalid_argument("smooth_shadow_volume: epsilon must be finite and > 0");
+  if (!(options.cap_offset >= 0.0 && std::isfinite(options.cap_offset)))
+    throw std::invalid_argument("smooth_shadow_volume: the cap offset must be finite and >= 0");
   if (discrete && sides.size() != caster.triangles.size())
     throw std::invalid_argument("smooth_shadow_volume: discrete needs one light side per caster triangle");
   std::vector<std::uint8_t> lit_triangles;
@@ -137,11 +156,11 @@ SmoothVolume smooth_shadow_volume(const SmoothCaster& caster, const Light& light
       Insertion& between = insertions[piece.from < piece.to ? std::pair{piece.from, piece.to}
                                                             : std::pair{piece.to, piece.from}];
       between.from = piece.from;
-      for (std::size_t k = first; k < last; ++k) between.points.push_back(contour.points[k].partner);
+      for (std::size_t k = first; k < last; ++k) between.points.push_back(contour.points[k]);
     }
   }
 
-  VertexTable vertices;
+  VertexTable vertices(options.cap_offset);
   Triangles x;  // the lit part, the unlit part reversed, the gap strip twice
   for (std::uint32_t t = 0; t < caster.triangles.size(); ++t) {
     const Triangle& tri = caster.triangles[t];
@@ -158,14 +177,15 @@ SmoothVolume smooth_shadow_volume(const SmoothCaster& caster, const Light& light
     const std::array<double, 3> ft = f[t];
     if (ft[0] == 0.0 && ft[1] == 0.0 && ft[2] == 0.0) continue;
     for (const bool want_lit : {true, false}) {
-      const std::vector<std::pair<PointKey, Vec3>> polygon = part_polygon(caster, f, t, want_lit);
+      const std::vector<PolygonPoint> polygon = part_polygon(caster, f, t, want_lit);
       std::vector<std::uint32_t> ring;
-      std::vector<Vec3> reversed;
+      std::vector<ContourPoint> reversed;
       for (std::size_t i = 0; i < polygon.size(); ++i) {
-        ring.push_back(vertices.finite(polygon[i].second));
-        if (const std::vector<Vec3>* between =
-                partners_between(insertions, polygon[i].first, polygon[(i + 1) % polygon.size()].first, reversed))
-          for (const Vec3& p : *between) ring.push_back(vertices.finite(p));
+        const PolygonPoint& v = polygon[i];
+        ring.push_back(vertices.finite(v.position, v.cut_normal ? &*v.cut_normal : nullptr));
+        if (const std::vector<ContourPoint>* between =
+                partners_between(insertions, v.key, polygon[(i + 1) % polygon.size()].key, reversed))
+          for (const ContourPoint& p : *between) ring.push_back(vertices.finite(p.partner, &p.normal));
       }
       ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
       while (ring.size() > 1 && ring.front() == ring.back()) ring.pop_back();
@@ -180,7 +200,7 @@ SmoothVolume smooth_shadow_volume(const SmoothCaster& caster, const Light& light
     for (std::size_t i = 0; i + 1 < n + (contour.closed ? 1 : 0); ++i) {
       const ContourPoint& p = contour.points[i];
       const ContourPoint& q = contour.points[(i + 1) % n];
-      const std::uint32_t p0 = vertices.finite(p.partner), q0 = vertices.finite(q.partner);
+      const std::uint32_t p0 = vertices.finite(p.partner, &p.normal), q0 = vertices.finite(q.partner, &q.normal);
       const std::uint32_t p1 = vertices.finite(p.position), q1 = vertices.finite(q.position);
       for (int copy = 0; copy < 2; ++copy) {  // once for the lit part, once for the unlit one
         x.add(q0, p0, p1);

@@ -135,7 +135,9 @@ SceneComparison compare_scene(const Scene& scene, const std::vector<gpu::ShadowM
     const SilhouetteVolumes* silhouette = nullptr;
     if (std::find(gpu::kSilhouetteMethods.begin(), gpu::kSilhouetteMethods.end(), method) !=
         gpu::kSilhouetteMethods.end()) {
-      result.silhouettes.push_back(silhouette_volumes(drawn.meshes, drawn.lights, method, options.silhouette));
+      SilhouetteOptions silhouette_options = options.silhouette;
+      silhouette_options.near_plane = drawn.camera.near_plane;  // the meshes are in the eye's frame
+      result.silhouettes.push_back(silhouette_volumes(drawn.meshes, drawn.lights, method, silhouette_options));
       silhouette = &result.silhouettes.back();
     }
     MethodRun run{method, {}};

@@ -5,7 +5,9 @@
 #include <stdexcept>
 
 #include "core/float_rounding.h"
+#include "core/vector3.h"
 #include "exact/cpu_volume.h"
+#include "gpu/depth_precision.h"
 #include "exact/light_orientation.h"
 #include "scene/canonical_soup.h"
 #include "scene/edge_table.h"
@@ -66,12 +68,18 @@ SilhouetteVolumes silhouette_volumes(std::span<const SceneMesh> meshes, std::spa
     }
     report.smooth = true;
     const SmoothCaster& c = *caster.caster;
+    double cap_offset = 0.0;
+    if (options.near_plane > 0.0 && kind != SilhouetteMethod::discrete) {
+      double farthest = 0.0;
+      for (const Vec3& v : c.vertices) farthest = std::max(farthest, std::sqrt(dot(v, v)));
+      cap_offset = gpu::depth_band(farthest, options.near_plane);
+    }
     for (std::size_t k = 0; k < lights.size(); ++k) {
       std::vector<Sign> sides;
       if (kind == SilhouetteMethod::discrete)
         for (const Triangle& tri : c.triangles)
           sides.push_back(light_orientation(c.vertices[tri[0]], c.vertices[tri[1]], c.vertices[tri[2]], rounded_lights[k]));
-      const SmoothVolume volume = smooth_shadow_volume(c, rounded_lights[k], {kind, options.epsilon}, sides);
+      const SmoothVolume volume = smooth_shadow_volume(c, rounded_lights[k], {kind, options.epsilon, cap_offset}, sides);
       if (k == 0) report.loops = volume.loops.size();
       append(out.per_light[k], volume.mesh);
     }

@@ -27,6 +27,11 @@ namespace shadowcert {
 struct SilhouetteOptions {
   double epsilon = kDefaultContourEpsilon;                   // smooth: world units, > 0
   double crease_angle_degrees = kDefaultCreaseAngleDegrees;  // computed normals: [0, 180]
+  // GL's near plane when the meshes are in the eye's frame (the eye at the origin), else 0.
+  // accurate and smooth then set each mesh's cut cap points behind its surface by the depth
+  // buffer's band at its farthest vertex (gpu/depth_precision.h; SmoothVolumeOptions::cap_offset
+  // says why); 0: caps on the surface.
+  double near_plane = 0.0;
 };
 
 // How one mesh cast.

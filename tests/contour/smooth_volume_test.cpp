@@ -96,6 +96,9 @@ TEST(SmoothShadowVolume, ThousandRandomLightsPerCaster_EveryMethodIsClosed) {
         EXPECT_EQ(smooth.side_triangles, 2 * (light.directional() ? 1 : 2) * segments) << what;
       }
       if (i % 10 == 0) {
+        // With the cut caps set behind the surface (the GL path's depth band): still closed.
+        expect_closed(smooth_shadow_volume(c.caster, light, {.method = SilhouetteMethod::smooth, .cap_offset = 0.01}),
+                      what + ", smooth with a cap offset");
         expect_closed(smooth_shadow_volume(c.caster, light, {.method = SilhouetteMethod::accurate}), what + ", accurate");
         expect_closed(smooth_shadow_volume(c.caster, light, {.method = SilhouetteMethod::discrete},
                                            face_sides(c.caster, light)),
@@ -175,6 +178,31 @@ TEST(SmoothShadowVolume, DirectionalLight_HasNoBackCapAndOneFarPoint) {
   for (const auto& p : v.mesh.vertices) far += p[3] == 0.0f;
   EXPECT_EQ(far, 1u);
   expect_closed(v, "directional");
+}
+
+// The cap offset moves exactly the cut points: on a sphere lit from outside, the front-cap
+// vertices that are not mesh vertices move inwards by the offset (within rounding), and the mesh
+// vertices stay.
+TEST(SmoothShadowVolume, CapOffset_SetsTheCutPointsBehindTheSurface) {
+  const SmoothCaster c = caster_of(uv_sphere({0, 0, 0}, 1.0, 12, 6));
+  const Light light{{0.3, 0.2, 4.0, 1.0}};
+  const SmoothVolume on = smooth_shadow_volume(c, light, {.method = SilhouetteMethod::accurate});
+  const SmoothVolume behind = smooth_shadow_volume(c, light, {.method = SilhouetteMethod::accurate, .cap_offset = 0.01});
+  ASSERT_EQ(on.mesh.vertices.size(), behind.mesh.vertices.size());
+  std::size_t moved = 0;
+  for (std::size_t i = 0; i < on.mesh.vertices.size(); ++i) {
+    if (on.mesh.vertices[i][3] != 1.0f) continue;
+    const auto& a = on.mesh.vertices[i];
+    const auto& b = behind.mesh.vertices[i];
+    const double ra = std::sqrt(double(a[0]) * a[0] + double(a[1]) * a[1] + double(a[2]) * a[2]);
+    const double rb = std::sqrt(double(b[0]) * b[0] + double(b[1]) * b[1] + double(b[2]) * b[2]);
+    if (a == b) continue;  // a mesh vertex
+    ++moved;
+    EXPECT_NEAR(ra - rb, 0.01, 1e-3) << i;  // the interpolated normal is nearly radial
+  }
+  EXPECT_EQ(moved, on.loops[0].points.size());  // the accurate points, nothing else
+  EXPECT_THROW((void)smooth_shadow_volume(c, light, {.method = SilhouetteMethod::smooth, .cap_offset = -1.0}),
+               std::invalid_argument);
 }
 
 TEST(SmoothShadowVolume, BadArguments_ThrowNamingTheFunction) {
