@@ -143,8 +143,12 @@ LitBoundary accurate_boundary(const SmoothCaster& caster, const CornerValues& f)
   // 2. Along each crease: the parts of the edge lit on one side only, with the lit side on the
   // left (its own order along the edge), and a zero-length piece where both sides' points
   // coincide with both lit on the same end.
-  for (const auto& [t, k] : caster.crease_edges) {
+  for (const std::array<std::uint32_t, 2>& crease : caster.crease_edges) {
     {
+      // Plain variables, not a structured binding: the lambdas below capture them (clang 14
+      // cannot capture a binding).
+      const std::uint32_t t = crease[0];
+      const std::size_t k = crease[1];
       const std::uint32_t other = caster.across[t][k];
       const std::uint32_t a = caster.triangles[t][k], b = caster.triangles[t][(k + 1) % 3];
       const std::size_t k2 = corner_index(caster.triangles[other], b);  // its edge k2 runs b -> a
