@@ -48,8 +48,7 @@ struct CertifyOptions {
   std::string volume_out;
   std::string volume;  // a captured volume (.vol) to certify alone
   std::string json_file;
-  double epsilon = kDefaultContourEpsilon;           // --method smooth
-  double crease_angle = kDefaultCreaseAngleDegrees;  // --method discrete|accurate|smooth
+  SilhouetteOptions silhouette;  // --method discrete|accurate|smooth: --epsilon, --crease-angle
 };
 
 using Clock = std::chrono::steady_clock;
@@ -92,7 +91,7 @@ int run_certify_silhouette(const CertifyOptions& options, const Scene& scene, gp
   if (lights.empty()) throw InputError(options.input, "the scene has no light; pass --light X,Y,Z,W");
   const auto start = Clock::now();
   const SilhouetteVolumes volumes =
-      silhouette_volumes(scene.meshes, lights, method, {options.epsilon, options.crease_angle});
+      silhouette_volumes(scene.meshes, lights, method, options.silhouette);
   const double build_seconds = seconds_since(start);
   fmt::print("{}: {} mesh(es), {} light(s), {} (built in {:.3f} s)\n", options.input, scene.meshes.size(), lights.size(),
              gpu::shadow_method_name(method), build_seconds);
@@ -112,8 +111,8 @@ int run_certify_silhouette(const CertifyOptions& options, const Scene& scene, gp
   if (!options.json_file.empty())
     write_json_file(options.json_file, {{"input", options.input},
                                         {"method", gpu::shadow_method_name(method)},
-                                        {"epsilon", options.epsilon},
-                                        {"crease_angle", options.crease_angle},
+                                        {"epsilon", options.silhouette.epsilon},
+                                        {"crease_angle", options.silhouette.crease_angle_degrees},
                                         {"build_seconds", build_seconds},
                                         {"casters", silhouette_casters_json(volumes)},
                                         {"lights", per_light},
@@ -367,13 +366,7 @@ void add_certify_command(CLI::App& app, int& exit_code) {
                   "exact, kim, peciva, refedge or all (multiplicities and their certificates), or discrete, accurate, "
                   "smooth (the smooth-silhouette volume of every light, certified closed; docs/smooth-silhouettes.md)")
       ->capture_default_str();
-  cmd->add_option("--epsilon", options->epsilon, "--method smooth: the contour error, world units")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
-  cmd->add_option("--crease-angle", options->crease_angle,
-                  "--method discrete|accurate|smooth: crease angle of computed normals, degrees")
-      ->check(CLI::Range(0.0, 180.0))
-      ->capture_default_str();
+  add_silhouette_options(*cmd, options->silhouette);
   cmd->add_option("--precision", options->precision, "Arithmetic of the float methods: float or double")
       ->capture_default_str();
   cmd->add_option("--samples", options->samples, "Random count-check samples (half in the box, half on triangles)")

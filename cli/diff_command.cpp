@@ -48,8 +48,7 @@ struct DiffOptions {
   std::string report;
   std::optional<int> device;
   long long shadowmap_size = gpu::kDefaultShadowMapSize;
-  double epsilon = kDefaultContourEpsilon;                   // smooth
-  double crease_angle = kDefaultCreaseAngleDegrees;          // discrete, accurate, smooth
+  SilhouetteOptions silhouette;  // --epsilon, --crease-angle
 };
 
 // The method's lit mask, gated by coverage (the frame's alpha).
@@ -176,7 +175,7 @@ int run_diff(const DiffOptions& options) {
   comparison_options.method_options.shadow_map_size = static_cast<std::uint32_t>(options.shadowmap_size);
   comparison_options.method_options.sign = *gpu::parse_sign_mode(options.sign);  // CLI11 checked the name
   comparison_options.timed_frames = kTimedFrames;
-  comparison_options.silhouette = {options.epsilon, options.crease_angle};
+  comparison_options.silhouette = options.silhouette;
   // A progress bar only on a terminal: logs and pipes get no carriage returns.
   comparison_options.progress = isatty(fileno(stderr)) != 0;
   const SceneComparison comparison = compare_scene(scene, methods, comparison_options);
@@ -317,15 +316,7 @@ void add_diff_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--methods", options->methods,
                   "Comma-separated methods to compare: cpu, cs, gs, ts, pertri, shadowmap, and the smooth-silhouette "
                   "methods discrete, accurate, smooth (docs/smooth-silhouettes.md; default: all, the first six)");
-  cmd->add_option("--epsilon", options->epsilon,
-                  "smooth: how far the smooth contour may stay from the surface the normals describe, world units")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
-  cmd->add_option("--crease-angle", options->crease_angle,
-                  "discrete, accurate, smooth: dihedral angle in degrees above which an edge keeps each side's normals "
-                  "(computed normals only)")
-      ->check(CLI::Range(0.0, 180.0))
-      ->capture_default_str();
+  add_silhouette_options(*cmd, options->silhouette);
   cmd->add_option("--stencil", options->stencil,
                   "Stencil counting of the volume methods: zfail (default; faces behind the visible point), zpass "
                   "(faces in front of it) or auto (per light, zpass where it is proven exactly for this camera, "

@@ -62,8 +62,7 @@ struct RenderOptions {
   float shadowmap_slope = gpu::kDefaultShadowMapSlope;
   bool timing = false;  // GPU stage times (gpu/gpu_stage_timer.h) over `frames` frames
   std::size_t frames = kDefaultTimingFrames;
-  double epsilon = kDefaultContourEpsilon;           // smooth
-  double crease_angle = kDefaultCreaseAngleDegrees;  // discrete, accurate, smooth
+  SilhouetteOptions silhouette;  // --epsilon, --crease-angle
 };
 
 using Clock = std::chrono::steady_clock;
@@ -163,8 +162,9 @@ int run_render(const RenderOptions& options) {
   // chain of the others (pipeline/silhouette_volumes.h), drawn as cpu's volumes are.
   std::optional<SilhouetteVolumes> silhouette;
   if (!gpu::builds_volume_on_gpu(method) && method != gpu::ShadowMethod::cpu && gpu::draws_volume(method)) {
-    silhouette = silhouette_volumes(scene.meshes, scene.lights, method,
-                                    {options.epsilon, options.crease_angle, scene.camera.near_plane});
+    SilhouetteOptions silhouette_options = options.silhouette;
+    silhouette_options.near_plane = scene.camera.near_plane;  // the scene is in the eye's frame
+    silhouette = silhouette_volumes(scene.meshes, scene.lights, method, silhouette_options);
     inputs.cpu_volumes = silhouette->per_light;
   }
   const double chain_seconds = seconds_since(stage);
@@ -306,15 +306,7 @@ void add_render_command(CLI::App& app, int& exit_code) {
                   "smooth: smooth-silhouette volumes of every mesh that is an oriented 2-manifold (the others by "
                   "the robust chain, named in the output; docs/smooth-silhouettes.md)")
       ->capture_default_str();
-  cmd->add_option("--epsilon", options->epsilon,
-                  "smooth: how far the smooth contour may stay from the surface the normals describe, world units")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
-  cmd->add_option("--crease-angle", options->crease_angle,
-                  "discrete, accurate, smooth: dihedral angle in degrees above which an edge keeps each side's normals "
-                  "(computed normals only)")
-      ->check(CLI::Range(0.0, 180.0))
-      ->capture_default_str();
+  add_silhouette_options(*cmd, options->silhouette);
   cmd->add_option("--stencil", options->stencil,
                   "Stencil counting of the volume methods: zfail (default; faces behind the visible point, right "
                   "wherever the eye is), zpass (faces in front of it; wrong with the eye in a volume) or auto (per "

@@ -6,6 +6,18 @@
 
 namespace shadowcert::cli {
 
+void add_silhouette_options(CLI::App& command, SilhouetteOptions& options) {
+  command.add_option("--epsilon", options.epsilon,
+                     "smooth: how far the smooth contour may stay from the surface the normals describe, world units")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  command.add_option("--crease-angle", options.crease_angle_degrees,
+                     "discrete, accurate, smooth: dihedral angle in degrees above which an edge keeps each side's "
+                     "normals (computed normals only)")
+      ->check(CLI::Range(0.0, 180.0))
+      ->capture_default_str();
+}
+
 nlohmann::json silhouette_casters_json(const SilhouetteVolumes& volumes) {
   nlohmann::json out = nlohmann::json::array();
   for (const SilhouetteCaster& c : volumes.casters)

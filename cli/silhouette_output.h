@@ -2,11 +2,16 @@
 // How each mesh cast under a smooth-silhouette method (pipeline/silhouette_volumes.h), as
 // `render` and `diff` report it: one line per mesh, and the JSON's "casters" array
 // (docs/cli.md, docs/smooth-silhouettes.md).
+#include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 #include "pipeline/silhouette_volumes.h"
 
 namespace shadowcert::cli {
+
+// --epsilon E and --crease-angle DEG of render, diff and certify, read into `options`
+// (near_plane is the caller's).
+void add_silhouette_options(CLI::App& command, SilhouetteOptions& options);
 
 // [{"mesh": name, "triangles": n, "cast_by": "discrete"|"accurate"|"smooth"|"robust chain",
 //   "qualification": "qualifies" or the report naming the offenders, "loops": first light's}, ...]
