@@ -40,27 +40,10 @@ layout(location = 2) uniform uint item_count;  // edges or triangles of this pas
 layout(location = 3) uniform uint capacity;    // vertices the Volume buffer holds
 layout(location = 4) uniform uint edge_count;  // where the triangle signs start in Signs
 
-const uint kNoRoom = 0xFFFFFFFFu;
-
 #include "reference_edge.glsl"
 
-// Where volume_triangle writes next (set after each reservation).
-uint volume_cursor = 0u;
-
-void volume_triangle(vec4 a, vec4 b, vec4 c) {
-  volume[volume_cursor] = a;
-  volume[volume_cursor + 1u] = b;
-  volume[volume_cursor + 2u] = c;
-  volume_cursor += 3u;
-}
-
+#include "volume_reservation.glsl"
 #include "far_split.glsl"
-
-// Reserves n vertices; kNoRoom when they do not fit (the count still records the request).
-uint reserve(uint n) {
-  const uint base = atomicAdd(requested, n);
-  return (n <= capacity && base <= capacity - n) ? base : kNoRoom;
-}
 
 void edge_pass(uint e) {
   const uint u = edges[e].x;

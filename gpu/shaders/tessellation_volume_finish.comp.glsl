@@ -15,7 +15,6 @@ layout(local_size_x = 64) in;
 const uint kOppositesPerRecord = 16u;  // == kTessellationOppositesPerRecord (tessellation_volume.h)
 const uint kRecordWords = 4u + kOppositesPerRecord;  // u, v, count, kind, opposites
 const uint kVerticesPerTriangle = 3u;
-const uint kNoRoom = 0xFFFFFFFFu;
 
 layout(std430, binding = 0) readonly buffer Vertices { vec4 vertices[]; };  // w = 1, float
 layout(std430, binding = 1) coherent buffer Deferred {
@@ -37,24 +36,8 @@ layout(location = 1) uniform uint capacity;  // vertices the capture buffer hold
 
 #include "reference_edge.glsl"
 
-// Where volume_triangle writes next (set after each reservation).
-uint volume_cursor = 0u;
-
-void volume_triangle(vec4 a, vec4 b, vec4 c) {
-  volume[volume_cursor] = a;
-  volume[volume_cursor + 1u] = b;
-  volume[volume_cursor + 2u] = c;
-  volume_cursor += 3u;
-}
-
+#include "volume_reservation.glsl"
 #include "far_split.glsl"
-
-// Reserves n vertices after the captured ones; kNoRoom when they do not fit (the count still
-// records the request).
-uint reserve(uint n) {
-  const uint base = atomicAdd(requested, n);
-  return (n <= capacity && base <= capacity - n) ? base : kNoRoom;
-}
 
 void deferred_record(uint record) {
   const uint first = record * kRecordWords;
