@@ -12,32 +12,17 @@
 
 #include "core/vector3.h"
 #include "scene/procedural_mesh.h"
+#include "support/contour_test_support.h"
 
 namespace {
 
 using namespace shadowcert;
-
-SmoothCaster caster_of(const Soup& soup, const SmoothCasterOptions& options = {}) {
-  SmoothCasterResult r = smooth_caster(soup, options);
-  if (!r.caster) throw std::runtime_error(r.qualification.summary());
-  return *r.caster;
-}
+using test_support::caster_of;
+using test_support::face_sides;
+using test_support::lit_faces;
 
 Light point_light(double x, double y, double z) { return Light{{x, y, z, 1.0}}; }
 Light directional(double x, double y, double z) { return Light{{x, y, z, 0.0}}; }
-
-// Lit triangles by the sign of their plane's value (double; the tests' lights are far from
-// every plane).
-std::vector<std::uint8_t> lit_faces(const SmoothCaster& c, const Light& light) {
-  std::vector<std::uint8_t> lit(c.triangles.size());
-  const auto& l = light.position;
-  for (std::size_t t = 0; t < lit.size(); ++t) {
-    const Vec3& a = c.vertices[c.triangles[t][0]];
-    const Vec3 n = cross(difference(c.vertices[c.triangles[t][1]], a), difference(c.vertices[c.triangles[t][2]], a));
-    lit[t] = dot(n, Vec3{l[0] - l[3] * a[0], l[1] - l[3] * a[1], l[2] - l[3] * a[2]}) > 0.0;
-  }
-  return lit;
-}
 
 std::size_t closed_loops(const std::vector<SilhouetteLoop>& loops) {
   return static_cast<std::size_t>(std::count_if(loops.begin(), loops.end(), [](const auto& l) { return l.closed; }));

@@ -12,27 +12,14 @@
 #include "core/vector3.h"
 #include "exact/volume_closure.h"
 #include "scene/procedural_mesh.h"
+#include "support/contour_test_support.h"
 
 namespace {
 
 using namespace shadowcert;
-
-SmoothCaster caster_of(const Soup& soup, const SmoothCasterOptions& options = {}) {
-  SmoothCasterResult r = smooth_caster(soup, options);
-  if (!r.caster) throw std::runtime_error(r.qualification.summary());
-  return *r.caster;
-}
-
-std::vector<Sign> face_sides(const SmoothCaster& c, const Light& light) {
-  std::vector<Sign> lit(c.triangles.size());
-  const auto& l = light.position;
-  for (std::size_t t = 0; t < lit.size(); ++t) {
-    const Vec3& a = c.vertices[c.triangles[t][0]];
-    const Vec3 n = cross(difference(c.vertices[c.triangles[t][1]], a), difference(c.vertices[c.triangles[t][2]], a));
-    lit[t] = sign_of(dot(n, Vec3{l[0] - l[3] * a[0], l[1] - l[3] * a[1], l[2] - l[3] * a[2]}));
-  }
-  return lit;
-}
+using test_support::caster_of;
+using test_support::face_sides;
+using test_support::lit_faces;
 
 Soup open_hemisphere() {
   const Soup sphere = uv_sphere({0, 0, 0}, 1.0, 16, 8);
