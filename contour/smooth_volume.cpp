@@ -100,7 +100,14 @@ std::vector<PolygonPoint> part_polygon(const SmoothCaster& c, const detail::Corn
       const auto [key, p] = detail::edge_point(c, f, t, k);
       const double s = p.edge_from == a ? p.u : 1.0 - p.u;
       (in_a ? hi : lo) = key.kind == PointKey::vertex ? (key.a == a ? 0.0 : 1.0) : s;
-      if (key.kind != PointKey::vertex) cuts.emplace_back(s, key, p);
+      if (key.kind != PointKey::vertex) {
+        cuts.emplace_back(s, key, p);
+      } else if ((key.a == a && !in_a) || (key.a == b && !in_b)) {
+        // The state changes at an end vertex whose own state is the other part's (f = 0 there,
+        // lit by the fixed rule): this part still reaches that vertex, which is then a vertex of
+        // its polygon, uncut. Without it a triangle lit only at that vertex lost its unlit part.
+        cuts.emplace_back(key.a == a ? 0.0 : 1.0, key, detail::vertex_point(c, t, key.a));
+      }
     }
     const std::uint32_t other = c.across[t][k];
     if (c.crease[t][k] && other != kBorder) {
@@ -114,7 +121,8 @@ std::vector<PolygonPoint> part_polygon(const SmoothCaster& c, const detail::Corn
       }
     }
     std::sort(cuts.begin(), cuts.end(), [](const auto& x, const auto& y) { return std::get<0>(x) < std::get<0>(y); });
-    for (const auto& [s, key, p] : cuts) polygon.push_back({key, p.position, p.normal});
+    for (const auto& [s, key, p] : cuts)
+      polygon.push_back({key, p.position, key.kind == PointKey::vertex ? std::nullopt : std::optional<Vec3>(p.normal)});
   }
   return polygon;
 }

@@ -192,6 +192,50 @@ TEST(SmoothShadowVolume, CapOffset_SetsTheCutPointsBehindTheSurface) {
                std::invalid_argument);
 }
 
+// The area of X's triangles (the front cap: the lit part and the unlit part reversed) without
+// the strip, in double from the float vertices.
+double cap_area(const SmoothVolume& v, std::size_t cap_triangles) {
+  double area = 0.0;
+  for (std::size_t i = 0; i < cap_triangles; ++i) {
+    const auto& t = v.mesh.triangles[i];
+    const auto point = [&](std::uint32_t k) {
+      const auto& p = v.mesh.vertices[k];
+      return Vec3{p[0], p[1], p[2]};
+    };
+    const Vec3 a = point(t[0]);
+    const Vec3 n = cross(difference(point(t[1]), a), difference(point(t[2]), a));
+    area += 0.5 * std::sqrt(dot(n, n));
+  }
+  return area;
+}
+
+double soup_area(const SmoothCaster& c) {
+  double area = 0.0;
+  for (const Triangle& t : c.triangles) {
+    const Vec3& a = c.vertices[t[0]];
+    const Vec3 n = cross(difference(c.vertices[t[1]], a), difference(c.vertices[t[2]], a));
+    area += 0.5 * std::sqrt(dot(n, n));
+  }
+  return area;
+}
+
+// The lit part and the unlit part together cover every triangle once, also where the
+// silhouette passes exactly through a vertex (f = 0 there, lit by the fixed rule): the triangles
+// around it whose other corners are unlit are wholly unlit and cast with their unlit part.
+// Regression: such a triangle's unlit polygon lost the vertex and cast nothing.
+TEST(SmoothShadowVolume, SilhouetteThroughAVertex_CapsCoverEveryTriangleOnce) {
+  const SmoothCaster c = caster_of(uv_sphere({0, 0, 0}, 1.0, 12, 6));
+  // The sphere's normals are its unit positions: f = v . l - 1 is 0 exactly at the equator
+  // vertex (1, 0, 0) for any light with l_x = 1.
+  for (const Light& light : {Light{{1.0, 3.0, 0.5, 1.0}}, Light{{1.0, -2.0, -0.25, 1.0}}}) {
+    const SmoothVolume v = smooth_shadow_volume(c, light, {.method = SilhouetteMethod::accurate});
+    EXPECT_NEAR(cap_area(v, v.cap_triangles), soup_area(c), 1e-5);
+    expect_closed(v, "through a vertex");
+  }
+  const SmoothVolume away = smooth_shadow_volume(c, Light{{0.3, 0.2, 4.0, 1.0}}, {.method = SilhouetteMethod::accurate});
+  EXPECT_NEAR(cap_area(away, away.cap_triangles), soup_area(c), 1e-5);
+}
+
 TEST(SmoothShadowVolume, BadArguments_ThrowNamingTheFunction) {
   const SmoothCaster c = caster_of(uv_sphere({0, 0, 0}, 1.0, 8, 4));
   const Light light{{0.0, 0.0, 3.0, 1.0}};
