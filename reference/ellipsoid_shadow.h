@@ -13,15 +13,11 @@
 #include <span>
 #include <vector>
 
+#include "core/ellipsoid.h"
 #include "core/light.h"
 #include "core/soup.h"
 
 namespace shadowcert {
-
-struct Ellipsoid {
-  Vec3 centre{};
-  std::array<Vec3, 3> axes{{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};  // the columns of A; independent
-};
 
 struct Plane {
   Vec3 point{};
