@@ -15,6 +15,7 @@
 #include "cli/exit_code.h"
 #include "cli/silhouette_output.h"
 #include "exact/volume_closure.h"
+#include "gpu/egl_context.h"
 #include "pipeline/silhouette_volumes.h"
 #include "io/output_file.h"
 #include "io/scene_input.h"
@@ -74,14 +75,14 @@ Light chosen_light(const CertifyOptions& options, const Scene& scene) {
   return light;
 }
 
-// discrete, accurate, smooth: the smooth-silhouette method of that name, else nullopt.
+// discrete, accurate, smooth, smooth-gpu: the smooth-silhouette method of that name, else nullopt.
 std::optional<gpu::ShadowMethod> silhouette_method(const std::string& name) {
   for (gpu::ShadowMethod m : gpu::kSilhouetteMethods)
     if (gpu::shadow_method_name(m) == name) return m;
   return std::nullopt;
 }
 
-// certify --method discrete|accurate|smooth: every light's volume built as render draws it
+// certify --method discrete|accurate|smooth|smooth-gpu: every light's volume built as render draws it
 // (pipeline/silhouette_volumes.h), in world space, certified closed exactly
 // (exact/volume_closure.h); how each mesh cast. An open volume is a bug: exit 1.
 int run_certify_silhouette(const CertifyOptions& options, const Scene& scene, gpu::ShadowMethod method) {
@@ -90,8 +91,13 @@ int run_certify_silhouette(const CertifyOptions& options, const Scene& scene, gp
   else lights.push_back(chosen_light(options, scene));
   if (lights.empty()) throw InputError(options.input, "the scene has no light; pass --light X,Y,Z,W");
   const auto start = Clock::now();
-  const SilhouetteVolumes volumes =
-      silhouette_volumes(scene.meshes, lights, method, options.silhouette);
+  SilhouetteVolumes volumes = silhouette_volumes(scene.meshes, lights, method, options.silhouette);
+  // smooth-gpu: the GPU builds the smooth casters' part, read back as drawn.
+  std::optional<gpu::EglContext> context;
+  if (method == gpu::ShadowMethod::smooth_gpu) {
+    context.emplace(gpu::open_gl_context("certify", std::nullopt));
+    capture_gpu_volumes(volumes, lights);
+  }
   const double build_seconds = seconds_since(start);
   fmt::print("{}: {} mesh(es), {} light(s), {} (built in {:.3f} s)\n", options.input, scene.meshes.size(), lights.size(),
              gpu::shadow_method_name(method), build_seconds);
@@ -128,7 +134,7 @@ std::vector<MultiplicityMethod> chosen_methods(const std::string& name) {
     return {parse_method(name)};
   } catch (const std::invalid_argument&) {
     throw CLI::ValidationError("--method", "unknown method '" + name +
-                                               "' (exact, kim, peciva, refedge, all, discrete, accurate, smooth)");
+                                               "' (exact, kim, peciva, refedge, all, discrete, accurate, smooth, smooth-gpu)");
   }
 }
 
@@ -298,8 +304,9 @@ int run_certify(const CertifyOptions& options) {
     throw CLI::ValidationError("--precision", "expects float or double");
   const Precision precision = options.precision == "float" ? Precision::float32 : Precision::float64;
 
-  const Soup input = merged_soup(scene);
-  if (input.triangles.empty()) throw InputError(options.input, "no triangle to certify");
+  // The shadow volumes' input: the casting meshes only (a mesh with "casts": false is in none).
+  const Soup input = merged_casters(scene);
+  if (input.triangles.empty()) throw InputError(options.input, "no casting triangle to certify");
   const double load_seconds = seconds_since(start);
 
   auto stage = Clock::now();
@@ -364,7 +371,8 @@ void add_certify_command(CLI::App& app, int& exit_code) {
       ->expected(4);
   cmd->add_option("--method", options->method,
                   "exact, kim, peciva, refedge or all (multiplicities and their certificates), or discrete, accurate, "
-                  "smooth (the smooth-silhouette volume of every light, certified closed; docs/smooth-silhouettes.md)")
+                  "smooth, smooth-gpu (the smooth-silhouette volume of every light, certified closed; smooth-gpu's "
+                  "built on the GPU through EGL and read back; docs/smooth-silhouettes.md)")
       ->capture_default_str();
   add_silhouette_options(*cmd, options->silhouette);
   cmd->add_option("--precision", options->precision, "Arithmetic of the float methods: float or double")

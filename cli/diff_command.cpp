@@ -4,12 +4,14 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cli/diff_report.h"
@@ -18,9 +20,11 @@
 #include "cli/silhouette_output.h"
 #include "cli/stencil_output.h"
 #include "io/output_file.h"
+#include "pipeline/analytic_comparison.h"
 #include "pipeline/scene_comparison.h"
 #include "io/scene_input.h"
 #include "core/input_error.h"
+#include "reference/analytic_shadow_image.h"
 #include "reference/exact_image.h"
 #include "reference/pixel_comparison.h"
 #include "gpu/egl_context.h"
@@ -124,8 +128,41 @@ nlohmann::json comparison_json(const PixelComparison& c) {
           {"coverage_errors", c.coverage_errors}, {"lit_errors", c.lit_errors}, {"count_errors", c.count_errors}};
 }
 
+// A silhouette run against the analytic shadow (pipeline/analytic_comparison.h).
+nlohmann::json analytic_json(const AnalyticCounts& a) {
+  return {{"receiver_agree", a.receiver_agree},         {"receiver_disagree", a.receiver_disagree},
+          {"receiver_ambiguous", a.receiver_ambiguous}, {"caster_agree", a.caster_agree},
+          {"caster_disagree", a.caster_disagree},       {"caster_band", a.caster_band},
+          {"caster_ambiguous", a.caster_ambiguous}};
+}
+
+// The analytic truth's own figures: its time, the meshes cast as ellipsoids, its band, and per
+// light how many pixels it puts in each class.
+nlohmann::json analytic_truth_json(const AnalyticShadowImage& truth, const Scene& scene) {
+  nlohmann::json casters = nlohmann::json::array();
+  for (std::uint32_t m : truth.analytic_casters) casters.push_back(scene.meshes[m].name);
+  nlohmann::json per_light = nlohmann::json::array();
+  constexpr std::array<std::pair<AnalyticPixel, const char*>, 7> kClasses{
+      {{AnalyticPixel::lit, "lit"},
+       {AnalyticPixel::shadowed, "shadowed"},
+       {AnalyticPixel::ambiguous, "ambiguous"},
+       {AnalyticPixel::caster_lit, "caster_lit"},
+       {AnalyticPixel::caster_shadowed, "caster_shadowed"},
+       {AnalyticPixel::caster_band, "caster_band"},
+       {AnalyticPixel::caster_ambiguous, "caster_ambiguous"}}};
+  for (const std::vector<AnalyticPixel>& light : truth.lights) {
+    nlohmann::json counts = nlohmann::json::object();
+    for (const auto& [value, name] : kClasses) counts[name] = std::count(light.begin(), light.end(), value);
+    per_light.push_back(counts);
+  }
+  return {{"seconds", truth.seconds},
+          {"casters", casters},
+          {"terminator_band", kDefaultTerminatorBand},
+          {"pixels", per_light}};
+}
+
 nlohmann::json method_json(const MethodRun& run, const DiffOptions& options) {
-  nlohmann::json j{{"robust", robust(run.method)},
+  nlohmann::json j{{"robust", run.held_robust},
                    {"hard_errors", run.sum(&PixelComparison::hard_errors)},
                    {"ambiguous", run.sum(&PixelComparison::ambiguous)},
                    {"agree", run.sum(&PixelComparison::agree)},
@@ -147,10 +184,35 @@ nlohmann::json method_json(const MethodRun& run, const DiffOptions& options) {
       lj["volume_triangles"] = l.volume_triangles;
     }
     if (!l.capacity_error.empty()) lj["capacity_error"] = l.capacity_error;
+    if (l.analytic) lj["analytic"] = analytic_json(*l.analytic);
     per_light.push_back(lj);
   }
   j["per_light"] = per_light;
+  if (const std::optional<AnalyticCounts> a = run.analytic()) j["analytic"] = analytic_json(*a);
   return j;
+}
+
+// The silhouette runs against the analytic shadow, one line each (reported, never a failure).
+void print_analytic(const AnalyticShadowImage& truth, const Scene& scene, const std::vector<MethodRun>& runs) {
+  std::string casters;
+  for (std::uint32_t m : truth.analytic_casters) casters += (casters.empty() ? "" : ", ") + scene.meshes[m].name;
+  fmt::print("  analytic shadow of {} as ellipsoid{}: {:.2f} s; pixels against it (never a failure):\n", casters,
+             truth.analytic_casters.size() == 1 ? "" : "s", truth.seconds);
+  fmt::print("  {:<10} {:>10} {:>10} {:>10} {:>10} {:>10} {:>10} {:>10}\n", "method", "recv agree", "disagree",
+             "ambiguous", "self agree", "disagree", "band", "ambiguous");
+  for (const MethodRun& run : runs)
+    if (const std::optional<AnalyticCounts> a = run.analytic())
+      fmt::print("  {:<10} {:>10} {:>10} {:>10} {:>10} {:>10} {:>10} {:>10}\n", gpu::shadow_method_name(run.method),
+                 a->receiver_agree, a->receiver_disagree, a->receiver_ambiguous, a->caster_agree, a->caster_disagree,
+                 a->caster_band, a->caster_ambiguous);
+}
+
+// The report's line for a silhouette run against the analytic shadow.
+std::string analytic_fact(const AnalyticCounts& a) {
+  return fmt::format("receivers: {} of {} decided pixels disagree ({} ambiguous); the casters' own pixels: {} of {} "
+                     "disagree with the interpolated-normal terminator ({} in its band, {} ambiguous)",
+                     a.receiver_disagree, a.receiver_agree + a.receiver_disagree, a.receiver_ambiguous,
+                     a.caster_disagree, a.caster_agree + a.caster_disagree, a.caster_band, a.caster_ambiguous);
 }
 
 int run_diff(const DiffOptions& options) {
@@ -239,6 +301,7 @@ int run_diff(const DiffOptions& options) {
   for (const MethodRun& run : runs) summary["methods"][std::string(gpu::shadow_method_name(run.method))] = method_json(run, options);
   for (const SilhouetteVolumes& s : comparison.silhouettes)
     summary["methods"][std::string(gpu::shadow_method_name(s.method))]["casters"] = silhouette_casters_json(s);
+  if (comparison.analytic) summary["analytic"] = analytic_truth_json(*comparison.analytic, scene);
   if (!options.out.empty()) write_json_file(std::filesystem::path(options.out) / "summary.json", summary);
   if (!options.json_file.empty()) write_json_file(options.json_file, summary);
 
@@ -257,7 +320,11 @@ int run_diff(const DiffOptions& options) {
                                                 exact.stats.rays, exact.stats.counts,
                                                 rounded_seconds)}};
     for (const MethodRun& run : runs)
-      report.rows.push_back({std::string(gpu::shadow_method_name(run.method)), robust(run.method),
+      if (const std::optional<AnalyticCounts> analytic = run.analytic())
+        report.facts.emplace_back("analytic shadow, " + std::string(gpu::shadow_method_name(run.method)),
+                                  analytic_fact(*analytic));
+    for (const MethodRun& run : runs)
+      report.rows.push_back({std::string(gpu::shadow_method_name(run.method)), run.held_robust,
                              run.sum(&PixelComparison::hard_errors), run.sum(&PixelComparison::ambiguous),
                              run.sum(&PixelComparison::agree), run.closed(), run.gl_ms(),
                              run.method == gpu::ShadowMethod::shadowmap
@@ -294,10 +361,11 @@ int run_diff(const DiffOptions& options) {
                run.sum(&PixelComparison::hard_errors), run.sum(&PixelComparison::ambiguous),
                run.sum(&PixelComparison::agree), closed ? (*closed ? "yes" : "NO") : "-", run.gl_ms(),
                run.failed() ? "  FAILED"
-               : robust(run.method) ? ""
+               : run.held_robust ? ""
                : run.method == gpu::ShadowMethod::shadowmap ? "  (baseline)"
                                                            : "  (smooth surface: its error)");
   }
+  if (comparison.analytic) print_analytic(*comparison.analytic, scene, runs);
   fmt::print("  {}\n", passed ? "passed: no robust method has a hard error or an open volume"
                               : "FAILED: a robust method has a hard error or an open volume");
   return passed ? kExitOk : kExitCheckFailed;
@@ -315,7 +383,7 @@ void add_diff_command(CLI::App& app, int& exit_code) {
   cmd->add_option("input", options->input, "Mesh file (.obj .off .ply .stl) or scene (.json)")->required();
   cmd->add_option("--methods", options->methods,
                   "Comma-separated methods to compare: cpu, cs, gs, ts, pertri, shadowmap, and the smooth-silhouette "
-                  "methods discrete, accurate, smooth (docs/smooth-silhouettes.md; default: all, the first six)");
+                  "methods discrete, accurate, smooth, smooth-gpu (docs/smooth-silhouettes.md; default: all, the first six)");
   add_silhouette_options(*cmd, options->silhouette);
   cmd->add_option("--stencil", options->stencil,
                   "Stencil counting of the volume methods: zfail (default; faces behind the visible point), zpass "

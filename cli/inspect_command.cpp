@@ -2,6 +2,7 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <fstream>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -64,23 +65,33 @@ void print_table(const std::string& title, const CasterDiagnostics& d) {
 
 int run_inspect(const InspectOptions& options) {
   const Scene scene = load_scene_or_mesh(options.input);
-  const Soup casters = merged_soup(scene);
-  if (casters.triangles.empty()) throw InputError(options.input, "no triangle to inspect");
+  const Soup casters = merged_casters(scene);
+  if (casters.triangles.empty()) throw InputError(options.input, "no casting triangle to inspect");
 
-  // The whole scene is what a shadow-volume renderer sees; each mesh is listed too so that
-  // a defect can be traced to its source.
+  // The casting meshes together are what a shadow-volume renderer extrudes (a mesh with
+  // "casts": false is in no volume, so it is left out); each mesh is listed too so that a
+  // defect can be traced to its source, and a receiver is named as such.
   const CasterDiagnostics all = diagnose_caster(casters);
   nlohmann::json report = to_json(all);
   report["input"] = options.input;
-  print_table(fmt::format("{} ({} mesh{})", options.input, scene.meshes.size(), scene.meshes.size() == 1 ? "" : "es"),
+  const auto receivers = static_cast<std::size_t>(
+      std::count_if(scene.meshes.begin(), scene.meshes.end(), [](const SceneMesh& m) { return !m.casts; }));
+  print_table(fmt::format("{} ({} mesh{}{})", options.input, scene.meshes.size(), scene.meshes.size() == 1 ? "" : "es",
+                          receivers == 0 ? std::string() : fmt::format(", {} receiving only", receivers)),
               all);
   if (scene.meshes.size() > 1) {
     nlohmann::json meshes = nlohmann::json::array();
     for (const SceneMesh& mesh : scene.meshes) {
+      if (!mesh.casts) {
+        fmt::print("mesh {}: receives only (\"casts\": false), not diagnosed\n", mesh.name);
+        meshes.push_back({{"name", mesh.name}, {"casts", false}});
+        continue;
+      }
       const CasterDiagnostics d = diagnose_caster(mesh.soup);
       print_table("mesh " + mesh.name, d);
       nlohmann::json entry = to_json(d);
       entry["name"] = mesh.name;
+      entry["casts"] = true;
       meshes.push_back(std::move(entry));
     }
     report["meshes"] = std::move(meshes);

@@ -151,21 +151,25 @@ int run_render(const RenderOptions& options) {
   scene = eye_relative_scene(scene);
   const Soup merged = merged_soup(scene);
   if (merged.triangles.empty()) throw InputError(options.input, "no triangle to render");
+  // Every mesh is drawn; only the casting ones (SceneMesh::casts) make the volumes.
+  const Soup casters = merged_casters(scene);
 
   // The methods' inputs (pipeline/method_inputs.h): the canonical soup and edge table (the
   // GPU-built methods read them), and for cpu one exact chain per light
   // (docs/definitions.md#counts) of the float-rounded input, as homogeneous floats.
   auto stage = Clock::now();
   const std::array methods{method};
-  MethodInputs inputs = prepare_method_inputs(merged, scene.lights, methods);
+  MethodInputs inputs = prepare_method_inputs(casters, scene.lights, methods);
   // discrete, accurate, smooth: each qualifying mesh's smooth-silhouette volume, the robust
-  // chain of the others (pipeline/silhouette_volumes.h), drawn as cpu's volumes are.
+  // chain of the others (pipeline/silhouette_volumes.h), drawn as cpu's volumes are; smooth-gpu:
+  // the smooth casters for the GPU to build every frame, the others' volumes as given.
   std::optional<SilhouetteVolumes> silhouette;
-  if (!gpu::builds_volume_on_gpu(method) && method != gpu::ShadowMethod::cpu && gpu::draws_volume(method)) {
+  if (gpu::is_silhouette_method(method)) {
     SilhouetteOptions silhouette_options = options.silhouette;
     silhouette_options.near_plane = scene.camera.near_plane;  // the scene is in the eye's frame
     silhouette = silhouette_volumes(scene.meshes, scene.lights, method, silhouette_options);
     inputs.cpu_volumes = silhouette->per_light;
+    inputs.smooth_casters = silhouette->gpu_casters;
   }
   const double chain_seconds = seconds_since(stage);
 
@@ -237,14 +241,17 @@ int run_render(const RenderOptions& options) {
   const double seconds = seconds_since(start);
 
   const std::string_view stencil = stencil_choice_name(stencil_choice);
+  const std::string triangles =
+      casters.triangles.size() == merged.triangles.size()
+          ? fmt::format("{} triangles", merged.triangles.size())
+          : fmt::format("{} triangles ({} cast)", merged.triangles.size(), casters.triangles.size());
   if (shadowmap) {
-    fmt::print("{}: {} triangles, {} lights, {}x{}, shadowmap {}^2 (bias {}, slope {}) on {}\n", options.input,
-               merged.triangles.size(), scene.lights.size(), scene.camera.width, scene.camera.height,
-               options.shadowmap_size, options.shadowmap_bias, options.shadowmap_slope, context.renderer());
+    fmt::print("{}: {}, {} lights, {}x{}, shadowmap {}^2 (bias {}, slope {}) on {}\n", options.input, triangles,
+               scene.lights.size(), scene.camera.width, scene.camera.height, options.shadowmap_size,
+               options.shadowmap_bias, options.shadowmap_slope, context.renderer());
   } else {
-    fmt::print("{}: {} triangles, {} lights, {}x{}, {}/{} on {}\n", options.input, merged.triangles.size(),
-               scene.lights.size(), scene.camera.width, scene.camera.height, options.method, stencil,
-               context.renderer());
+    fmt::print("{}: {}, {} lights, {}x{}, {}/{} on {}\n", options.input, triangles, scene.lights.size(),
+               scene.camera.width, scene.camera.height, options.method, stencil, context.renderer());
     print_stencil(stencils);
     if (silhouette) print_silhouette_casters(*silhouette);
     fmt::print("  volume triangles (first light) {}\n", volume_triangles);
@@ -304,7 +311,8 @@ void add_render_command(CLI::App& app, int& exit_code) {
                   "multiplicities and capture; gpu/tessellation_volume.h). shadowmap (no volume: a depth map "
                   "from each light, --shadowmap-size/-bias/-slope; gpu/shadow_map_renderer.h). discrete, accurate, "
                   "smooth: smooth-silhouette volumes of every mesh that is an oriented 2-manifold (the others by "
-                  "the robust chain, named in the output; docs/smooth-silhouettes.md)")
+                  "the robust chain, named in the output; docs/smooth-silhouettes.md); smooth-gpu: smooth's "
+                  "volume built on the GPU every frame (gpu/smooth_silhouette_volume.h)")
       ->capture_default_str();
   add_silhouette_options(*cmd, options->silhouette);
   cmd->add_option("--stencil", options->stencil,

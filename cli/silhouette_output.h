@@ -13,12 +13,16 @@ namespace shadowcert::cli {
 // (near_plane is the caller's).
 void add_silhouette_options(CLI::App& command, SilhouetteOptions& options);
 
-// [{"mesh": name, "triangles": n, "cast_by": "discrete"|"accurate"|"smooth"|"robust chain",
-//   "qualification": "qualifies" or the report naming the offenders, "loops": first light's}, ...]
+// [{"mesh": name, "triangles": n, "cast_by": "discrete"|"accurate"|"smooth"|"robust chain"|"nothing"
+//   (the command's method or the mesh's own "silhouette"; "nothing": "casts": false),
+//   "epsilon": the contour error when cast by smooth, else null,
+//   "qualification": "qualifies", the report naming the offenders, or why the mesh was not asked
+//   ("the scene asks for the chain", "the scene says it casts nothing"), "loops": first light's}, ...]
 [[nodiscard]] nlohmann::json silhouette_casters_json(const SilhouetteVolumes& volumes);
 
-// "  smooth: MESH (N triangles) cast by smooth, 1 loop" or "... cast by the robust chain: not an
-// oriented 2-manifold: ...", per mesh, on stdout.
+// "  smooth: MESH (N triangles) cast by smooth (epsilon 0.01), 1 loop", "... cast by discrete, 2
+// loops", "... cast by the robust chain: not an oriented 2-manifold: ..." or "... casts nothing:
+// the scene says it casts nothing", per mesh, on stdout.
 void print_silhouette_casters(const SilhouetteVolumes& volumes);
 
 }  // namespace shadowcert::cli

@@ -38,6 +38,12 @@ struct SilhouettePoint {
 
 struct SilhouetteLoop {
   std::vector<SilhouettePoint> points;  // in order; a closed loop does not repeat its first point
+  // segment_triangles[i]: the triangle whose lit part the segment points[i] -> points[i + 1]
+  // bounds (the last one of a closed loop returns to points[0]); kBorder for the zero-length
+  // piece between a crease point's two copies. A point at a mesh vertex where the loop changes
+  // triangles belongs to both segments: each takes that triangle's corner normal there
+  // (smooth_contour.h), as the paper doubles a crease point with either normal.
+  std::vector<std::uint32_t> segment_triangles;
   bool closed = false;
 };
 

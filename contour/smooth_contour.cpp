@@ -32,6 +32,15 @@ ContourPoint displaced(const SmoothCaster& c, const SilhouettePoint& s) {
   return p;
 }
 
+// A segment's end as its subdivision sees it: at a mesh vertex, with the corner normal of the
+// segment's own triangle `t` there (a loop point at a crease vertex belongs to segments of both
+// sides, each with its side's normal: the paper's doubled crease point); elsewhere as it is.
+ContourPoint segment_end(const SmoothCaster& c, ContourPoint p, const SilhouettePoint& s, std::uint32_t t) {
+  if (s.edge_from != s.edge_to || t == kBorder) return p;
+  p.normal = c.normals[t][corner_index(c.triangles[t], s.edge_from)];
+  return p;
+}
+
 // Step (c), Listing 1: the points strictly between a and b, in order, appended to `out`.
 void subdivide(const ContourPoint& a, const ContourPoint& b, double epsilon, std::uint32_t depth,
                std::vector<ContourPoint>& out) {
@@ -82,7 +91,12 @@ std::vector<SmoothContour> smooth_contour(const SmoothCaster& caster, const std:
     for (std::size_t i = 0; i < n; ++i) {
       contour.loop_points.push_back(contour.points.size());
       contour.points.push_back(moved[i]);
-      if (i + 1 < n || loop.closed) subdivide(moved[i], moved[(i + 1) % n], epsilon, 0, contour.points);
+      if (i + 1 < n || loop.closed) {
+        const std::size_t j = (i + 1) % n;
+        const std::uint32_t t = i < loop.segment_triangles.size() ? loop.segment_triangles[i] : kBorder;
+        subdivide(segment_end(caster, moved[i], loop.points[i], t), segment_end(caster, moved[j], loop.points[j], t),
+                  epsilon, 0, contour.points);
+      }
     }
     out.push_back(std::move(contour));
   }

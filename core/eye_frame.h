@@ -5,6 +5,9 @@
 // at 1e6 would be rounded to 0.0625 (docs/definitions.md#hard-cases, offset_1e6). The exact
 // protocol models exactly this input: reference/input_rounding.h rounds the scene as moved here.
 // Directions (w = 0 lights) and the camera's up vector do not move.
+#include <optional>
+#include <utility>
+
 #include "core/camera.h"
 #include "core/light.h"
 #include "core/scene.h"
@@ -40,7 +43,13 @@ namespace shadowcert {
   const Vec3 origin = scene.camera.eye;
   Scene out;
   out.meshes.reserve(scene.meshes.size());
-  for (const SceneMesh& mesh : scene.meshes) out.meshes.push_back({mesh.name, relative_to(mesh.soup, origin)});
+  for (const SceneMesh& mesh : scene.meshes) {
+    // Every field named, so that a new one warns here (-Wmissing-field-initializers).
+    std::optional<Ellipsoid> ellipsoid = mesh.ellipsoid;
+    if (ellipsoid) ellipsoid->centre = difference(ellipsoid->centre, origin);
+    out.meshes.push_back({mesh.name, relative_to(mesh.soup, origin), mesh.casts, mesh.silhouette, mesh.epsilon,
+                          std::move(ellipsoid)});
+  }
   for (const Light& light : scene.lights) out.lights.push_back(relative_to(light, origin));
   out.camera = relative_to(scene.camera, origin);
   return out;

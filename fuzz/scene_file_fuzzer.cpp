@@ -39,7 +39,14 @@ shadowcert::Soup stub_mesh_reader(const fs::path& file) {
 
 // parse_scene's promises (docs/scene-format.md) on a scene it returns.
 void require_valid_scene(const shadowcert::Scene& scene) {
-  for (const shadowcert::SceneMesh& mesh : scene.meshes) shadowcert::fuzz::require_valid_soup(mesh.soup);
+  for (const shadowcert::SceneMesh& mesh : scene.meshes) {
+    shadowcert::fuzz::require_valid_soup(mesh.soup);
+    if (mesh.epsilon) require(std::isfinite(*mesh.epsilon) && *mesh.epsilon > 0.0);
+    if (mesh.ellipsoid) {
+      require(finite(mesh.ellipsoid->centre));
+      for (const shadowcert::Vec3& axis : mesh.ellipsoid->axes) require(finite(axis));
+    }
+  }
   require(!scene.lights.empty());
   for (const shadowcert::Light& light : scene.lights) {
     const auto& p = light.position;

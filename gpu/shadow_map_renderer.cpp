@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <span>
 #include <stdexcept>
 #include <string>
 
@@ -211,7 +212,11 @@ StencilShadowFrame ShadowMapRenderer::render(const OffscreenTarget& target, cons
     glProgramUniformMatrix4fv(depth, kDepthLightToClipLocation, 1, GL_FALSE, glm::value_ptr(to_light_clip));
     glEnable(GL_POLYGON_OFFSET_FILL);
     glPolygonOffset(options.slope_scale, 0.0f);
-    glDrawArrays(GL_TRIANGLES, 0, receivers.single_order_vertex_count());
+    // The casters only: a part that only receives (ShadedSoupPart::casts) shadows nothing.
+    const std::span<const GLint> firsts = receivers.caster_firsts();
+    if (!firsts.empty())
+      glMultiDrawArrays(GL_TRIANGLES, firsts.data(), receivers.caster_counts().data(),
+                        static_cast<GLsizei>(firsts.size()));
     glDisable(GL_POLYGON_OFFSET_FILL);
     stage.reset();
 

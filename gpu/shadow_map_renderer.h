@@ -1,6 +1,7 @@
 #pragma once
 // The `shadowmap` baseline (docs/definitions.md#speed-against-error): no volume, no
-// counting identity. Per light, the receivers' depth is rendered from the light into a
+// counting identity. Per light, the depth of the receivers that cast (ShadedSoupPart::casts:
+// a part that only receives is left out) is rendered from the light into a
 // GL_DEPTH_COMPONENT32F texture; the scene pass compares each visible point's light-space
 // depth with it (GL_COMPARE_REF_TO_TEXTURE, hardware comparison, one nearest texel, no PCF)
 // and adds the light's Lambert term where the comparison says lit.

@@ -7,6 +7,7 @@
 #include "gpu/compute_volume.h"
 #include "gpu/geometry_shader_volume.h"
 #include "gpu/per_triangle_volume.h"
+#include "gpu/smooth_silhouette_volume.h"
 #include "gpu/tessellation_volume.h"
 
 namespace shadowcert::gpu {
@@ -52,7 +53,8 @@ std::unique_ptr<ShadowMethodRenderer::BuiltVolume> make_built_volume(ShadowMetho
     case ShadowMethod::shadowmap:
     case ShadowMethod::discrete:
     case ShadowMethod::accurate:
-    case ShadowMethod::smooth: break;
+    case ShadowMethod::smooth:
+    case ShadowMethod::smooth_gpu: break;
   }
   throw std::logic_error("make_built_volume: " + std::string(shadow_method_name(method)) +
                          " builds no volume on the GPU");
@@ -92,6 +94,7 @@ std::string_view shadow_method_name(ShadowMethod method) {
     case ShadowMethod::discrete: return "discrete";
     case ShadowMethod::accurate: return "accurate";
     case ShadowMethod::smooth: return "smooth";
+    case ShadowMethod::smooth_gpu: return "smooth-gpu";
   }
   throw std::invalid_argument("shadow_method_name: unknown method " + std::to_string(static_cast<int>(method)));
 }
@@ -131,9 +134,26 @@ ShadowMethodRenderer::ShadowMethodRenderer(ShadowMethod method, const ShadowMeth
                                   std::to_string(scene.cpu_volumes.size()) + " for " +
                                   std::to_string(lights_.size()) + " lights)");
     cpu_meshes_ = scene.cpu_volumes;
+    const bool smooth_gpu = method == ShadowMethod::smooth_gpu;
+    if (smooth_gpu && scene.smooth_casters != nullptr && !scene.smooth_casters->triangles.empty())
+      smooth_casters_ = std::make_unique<SmoothCasterBuffers>(*scene.smooth_casters);
     for (std::size_t i = 0; i < lights_.size(); ++i) {
-      cpu_volumes_.push_back(std::make_unique<ShadowVolumeMesh>(scene.cpu_volumes[i]));
-      light_volumes_.push_back({lights_[i], cpu_volumes_.back().get()});
+      LightVolume volume{lights_[i]};
+      // smooth-gpu draws its given volume only where there is one (the meshes it does not build).
+      if (!smooth_gpu || !scene.cpu_volumes[i].triangles.empty()) {
+        cpu_volumes_.push_back(std::make_unique<ShadowVolumeMesh>(scene.cpu_volumes[i]));
+        volume.volume = cpu_volumes_.back().get();
+      }
+      if (smooth_casters_) {
+        built_volumes_.push_back(std::make_unique<BuiltVolumeOf<SmoothSilhouetteVolume>>(*smooth_casters_));
+        volume.indirect = built_volumes_.back()->draw();
+      }
+      if (volume.volume == nullptr && !smooth_casters_) {
+        // Nothing casts: an empty volume counts nothing, as it should.
+        cpu_volumes_.push_back(std::make_unique<ShadowVolumeMesh>(scene.cpu_volumes[i]));
+        volume.volume = cpu_volumes_.back().get();
+      }
+      light_volumes_.push_back(volume);
     }
   } else {
     if (scene.canonical == nullptr || scene.table == nullptr)
@@ -223,18 +243,20 @@ void ShadowMethodRenderer::check_capacity() const {
 }
 
 std::uint64_t ShadowMethodRenderer::volume_triangles() const {
-  if (!cpu_meshes_.empty()) return cpu_meshes_.front().triangles.size();
+  std::uint64_t triangles = cpu_meshes_.empty() ? 0 : cpu_meshes_.front().triangles.size();
   if (!built_volumes_.empty()) {
     const auto& v = *built_volumes_.front();
-    return std::min(v.read_requested_vertices(), v.capacity_vertices()) / 3;  // what the draw covers
+    triangles += std::min(v.read_requested_vertices(), v.capacity_vertices()) / 3;  // what the draw covers
   }
-  return 0;
+  return triangles;
 }
 
 HomogeneousMesh ShadowMethodRenderer::first_volume() const {
-  if (!cpu_meshes_.empty()) return cpu_meshes_.front();
-  if (built_volumes_.empty()) throw std::logic_error("ShadowMethodRenderer::first_volume: shadowmap draws no volume");
+  if (cpu_meshes_.empty() && built_volumes_.empty())
+    throw std::logic_error("ShadowMethodRenderer::first_volume: shadowmap draws no volume");
   HomogeneousMesh mesh;
+  if (!cpu_meshes_.empty()) mesh = cpu_meshes_.front();
+  if (built_volumes_.empty()) return mesh;
   const std::vector<VolumeTriangle> triangles = built_volumes_.front()->read_triangles();
   mesh.vertices.reserve(3 * triangles.size());
   mesh.triangles.reserve(triangles.size());

@@ -13,6 +13,9 @@
 //   discrete, accurate, smooth
 //              smooth-silhouette volumes (docs/smooth-silhouettes.md), built by the caller
 //              (pipeline/ with contour/) and drawn as cpu's are
+//   smooth-gpu the smooth volume built on the GPU (gpu/smooth_silhouette_volume.h) from the
+//              caller's smooth casters, rebuilt every frame; the meshes it does not cast come
+//              as a given volume per light, drawn with it
 //
 // The GPU-built volumes (cs, gs, ts, pertri) are rebuilt in every frame, as for a moving
 // light, so a frame's time includes their build (stage `volume`); cpu's are built once by
@@ -48,32 +51,46 @@
 namespace shadowcert::gpu {
 
 class ComputeVolumeSoup;  // gpu/compute_volume.h
+class SmoothCasterBuffers;  // gpu/smooth_silhouette_volume.h
+struct SmoothCasterArrays;
 
-enum class ShadowMethod { cpu, cs, gs, ts, pertri, shadowmap, discrete, accurate, smooth };
+enum class ShadowMethod { cpu, cs, gs, ts, pertri, shadowmap, discrete, accurate, smooth, smooth_gpu };
 // The chain methods and the shadow map: what `--methods all` means (the smooth-silhouette
 // methods are asked for by name: they need casters that qualify, docs/smooth-silhouettes.md).
 inline constexpr std::array<ShadowMethod, 6> kShadowMethods{ShadowMethod::cpu, ShadowMethod::cs,
                                                            ShadowMethod::gs,  ShadowMethod::ts,
                                                            ShadowMethod::pertri, ShadowMethod::shadowmap};
-inline constexpr std::array<ShadowMethod, 3> kSilhouetteMethods{ShadowMethod::discrete, ShadowMethod::accurate,
-                                                               ShadowMethod::smooth};
+inline constexpr std::array<ShadowMethod, 4> kSilhouetteMethods{ShadowMethod::discrete, ShadowMethod::accurate,
+                                                               ShadowMethod::smooth, ShadowMethod::smooth_gpu};
 
-// "cpu", "cs", "gs", "ts", "pertri", "shadowmap", "discrete", "accurate", "smooth" (the CLI's
-// --method values).
+// "cpu", "cs", "gs", "ts", "pertri", "shadowmap", "discrete", "accurate", "smooth", "smooth-gpu"
+// (the CLI's --method values).
 [[nodiscard]] std::string_view shadow_method_name(ShadowMethod method);
 // The method of that name; nullopt for any other string.
 [[nodiscard]] std::optional<ShadowMethod> parse_shadow_method(std::string_view name);
 // Whether the method counts a shadow volume in the stencil (all but shadowmap), and whether
-// the GPU builds it (cs, gs, ts, pertri).
+// the GPU builds it from the canonical soup (cs, gs, ts, pertri).
 [[nodiscard]] constexpr bool draws_volume(ShadowMethod m) { return m != ShadowMethod::shadowmap; }
 [[nodiscard]] constexpr bool builds_volume_on_gpu(ShadowMethod m) {
   return m == ShadowMethod::cs || m == ShadowMethod::gs || m == ShadowMethod::ts || m == ShadowMethod::pertri;
 }
+// The smooth-silhouette methods (docs/smooth-silhouettes.md): discrete, accurate, smooth,
+// smooth-gpu.
+[[nodiscard]] constexpr bool is_silhouette_method(ShadowMethod m) {
+  return m == ShadowMethod::discrete || m == ShadowMethod::accurate || m == ShadowMethod::smooth ||
+         m == ShadowMethod::smooth_gpu;
+}
+// Whether the method shadows the smooth surface the corner normals describe rather than the
+// polyhedral one (accurate, smooth, smooth-gpu): its disagreement with the exact image is its
+// error, and its stencil counts are not n(P).
+[[nodiscard]] constexpr bool shadows_smooth_surface(ShadowMethod m) {
+  return m == ShadowMethod::accurate || m == ShadowMethod::smooth || m == ShadowMethod::smooth_gpu;
+}
 // Whether the caller hands the method one volume per light (ShadowMethodScene::cpu_volumes):
-// cpu and the smooth-silhouette methods.
+// cpu and the smooth-silhouette methods (for smooth-gpu, the volume of the meshes it does not
+// build; it may be empty).
 [[nodiscard]] constexpr bool draws_given_volume(ShadowMethod m) {
-  return m == ShadowMethod::cpu || m == ShadowMethod::discrete || m == ShadowMethod::accurate ||
-         m == ShadowMethod::smooth;
+  return m == ShadowMethod::cpu || is_silhouette_method(m);
 }
 // The stages a frame of the method runs, in order: volume, depth, stencil, lit for the
 // volume methods (cpu's volume stage is empty: 0), depth, shadow_map, lit for shadowmap.
@@ -91,8 +108,11 @@ struct ShadowMethodScene {
   const Soup* canonical = nullptr;
   const EdgeTable* table = nullptr;
   // cpu: one volume per light, in the lights' order (exact/chain_mesh.h); discrete, accurate,
-  // smooth: theirs (pipeline/method_inputs.h). Ignored by the other methods.
+  // smooth, smooth-gpu: theirs (pipeline/silhouette_volumes.h). Ignored by the other methods.
   std::span<const HomogeneousMesh> cpu_volumes;
+  // smooth-gpu: the casters whose smooth volume the GPU builds (pipeline/smooth_caster_arrays.h);
+  // null or empty: none. Ignored by the other methods.
+  const SmoothCasterArrays* smooth_casters = nullptr;
 };
 
 struct ShadowMethodOptions {
@@ -150,11 +170,12 @@ class ShadowMethodRenderer {
   // Does nothing for cpu and shadowmap. Synchronises with the GPU.
   void check_capacity() const;
   // The first light's volume triangles as drawn (cpu: its mesh's; GPU-built: after a frame,
-  // read back). 0 for shadowmap.
+  // read back; smooth-gpu: both). 0 for shadowmap.
   [[nodiscard]] std::uint64_t volume_triangles() const;
   // The first light's volume as drawn (render --capture): cpu's mesh as uploaded; for the
   // GPU-built methods, after a frame, the read-back triangles, three vertices each (not
-  // welded). Throws std::logic_error for shadowmap (no volume).
+  // welded); smooth-gpu: its given mesh, then the read-back triangles. Throws std::logic_error
+  // for shadowmap (no volume).
   [[nodiscard]] HomogeneousMesh first_volume() const;
 
   // A volume built on the GPU (cs, gs, ts, pertri behind one interface); in the .cpp.
@@ -173,6 +194,7 @@ class ShadowMethodRenderer {
   std::span<const HomogeneousMesh> cpu_meshes_;  // the caller's, for first_volume()
   std::vector<std::unique_ptr<ShadowVolumeMesh>> cpu_volumes_;
   std::unique_ptr<ComputeVolumeSoup> gpu_soup_;
+  std::unique_ptr<SmoothCasterBuffers> smooth_casters_;
   std::vector<std::unique_ptr<BuiltVolume>> built_volumes_;
   std::vector<LightVolume> light_volumes_;
   std::optional<StencilShadowRenderer> stencil_renderer_;

@@ -57,6 +57,17 @@ ShadedSoupMesh::ShadedSoupMesh(std::span<const ShadedSoupPart> parts)
   for (const ShadedSoupPart& part : parts) {
     if (part.soup == nullptr) throw std::invalid_argument("ShadedSoupMesh: a part without a soup");
     const Soup& soup = *part.soup;
+    if (part.casts && !soup.triangles.empty()) {
+      // GLint/GLsizei overflow is refused below, once every part is in.
+      const auto first = static_cast<GLint>(vertices.size());
+      const auto count = static_cast<GLsizei>(3 * soup.triangles.size());
+      if (!caster_firsts_.empty() && caster_firsts_.back() + caster_counts_.back() == first)
+        caster_counts_.back() += count;
+      else {
+        caster_firsts_.push_back(first);
+        caster_counts_.push_back(count);
+      }
+    }
     const bool vertex_normals = soup.normals.size() == soup.vertices.size() && !soup.normals.empty();
     for (const Triangle& t : soup.triangles) {
       const std::array<float, 3> n = face_normal(soup.vertices[t[0]], soup.vertices[t[1]], soup.vertices[t[2]]);
@@ -172,7 +183,8 @@ StencilShadowFrame StencilShadowRenderer::render(const OffscreenTarget& target, 
     if (lv.volume != nullptr) {
       glBindVertexArray(lv.volume->vertex_array());
       glDrawElements(GL_TRIANGLES, lv.volume->index_count(), GL_UNSIGNED_INT, nullptr);
-    } else {
+    }
+    if (lv.indirect.vertex_array != 0 && lv.indirect.command != 0) {
       glBindVertexArray(lv.indirect.vertex_array);
       glBindBuffer(GL_DRAW_INDIRECT_BUFFER, lv.indirect.command);
       glDrawArraysIndirect(GL_TRIANGLES, nullptr);

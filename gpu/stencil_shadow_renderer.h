@@ -42,6 +42,10 @@ namespace shadowcert::gpu {
 struct ShadedSoupPart {
   const Soup* soup = nullptr;
   std::array<float, 3> albedo{0.8f, 0.8f, 0.8f};
+  // false: the part only receives (a mesh with "casts": false): drawn and seen, but left out
+  // of the shadow map's depth pass. The volume methods are given their casters apart
+  // (ShadowMethodScene), so only the shadow map reads this.
+  bool casts = true;
 };
 
 // Receivers on the GPU: triangles expanded to three vertices each (vec4 position with
@@ -58,11 +62,18 @@ class ShadedSoupMesh {
   [[nodiscard]] GLsizei vertex_count() const { return vertex_count_; }
   // The first copy alone, (a, b, c) per triangle: for passes that need each triangle once.
   [[nodiscard]] GLsizei single_order_vertex_count() const { return vertex_count_ / 2; }
+  // The first copy of the casting parts' triangles (ShadedSoupPart::casts) as vertex ranges,
+  // first and count, for glMultiDrawArrays: what the shadow map's depth pass draws. Adjacent
+  // casting parts share one range; none when nothing casts.
+  [[nodiscard]] std::span<const GLint> caster_firsts() const { return caster_firsts_; }
+  [[nodiscard]] std::span<const GLsizei> caster_counts() const { return caster_counts_; }
 
  private:
   Buffer vertices_;
   VertexArray vertex_array_;
   GLsizei vertex_count_ = 0;
+  std::vector<GLint> caster_firsts_;
+  std::vector<GLsizei> caster_counts_;
 };
 
 enum class StencilMethod { zfail, zpass };
@@ -80,8 +91,9 @@ struct IndirectVolumeDraw {
   GLuint command = 0;
 };
 
-// A light and the volume its shadows are counted with: `volume`, or else `indirect`; counted
-// with `stencil` when set, else with StencilShadowOptions::method.
+// A light and the volume its shadows are counted with: `volume`, `indirect`, or both (their
+// union: smooth-gpu's GPU-built volume and the given volume of the meshes it does not build);
+// counted with `stencil` when set, else with StencilShadowOptions::method.
 struct LightVolume {
   Light light;
   const ShadowVolumeMesh* volume = nullptr;

@@ -35,11 +35,13 @@ gpu::ShadowMethodScene method_scene(const MethodInputs& inputs, std::span<const 
   scene.canonical = &inputs.canonical.soup;
   scene.table = &inputs.table;
   scene.cpu_volumes = inputs.cpu_volumes;
+  scene.smooth_casters = &inputs.smooth_casters;
   return scene;
 }
 
 gpu::ShadowMethodScene light_scene(const MethodInputs& inputs, std::span<const gpu::ShadedSoupPart> receivers,
-                                   std::span<const Light> lights, std::size_t k, const HomogeneousMesh* cpu) {
+                                   std::span<const Light> lights, std::size_t k, const HomogeneousMesh* cpu,
+                                   const gpu::SmoothCasterArrays* smooth) {
   if (k >= lights.size())
     throw std::out_of_range("light_scene: light " + std::to_string(k) + " of " + std::to_string(lights.size()));
   gpu::ShadowMethodScene scene = method_scene(inputs, receivers, lights.subspan(k, 1));
@@ -49,6 +51,7 @@ gpu::ShadowMethodScene light_scene(const MethodInputs& inputs, std::span<const g
     scene.cpu_volumes = std::span<const HomogeneousMesh>(&inputs.cpu_volumes[k], 1);
   else
     scene.cpu_volumes = {};
+  if (smooth != nullptr) scene.smooth_casters = smooth;
   return scene;
 }
 

@@ -17,6 +17,7 @@
 #include "core/light.h"
 #include "core/soup.h"
 #include "gpu/shadow_method_renderer.h"
+#include "gpu/smooth_silhouette_volume.h"
 #include "scene/canonical_soup.h"
 #include "scene/edge_table.h"
 
@@ -28,6 +29,9 @@ struct MethodInputs {
   // cpu only: cpu_volume_mesh(canonical.soup, table, lights[k]) for every light k, in order;
   // empty when cpu is not among the methods.
   std::vector<HomogeneousMesh> cpu_volumes;
+  // smooth-gpu only: the casters the GPU builds the smooth volume of (the caller's:
+  // pipeline/silhouette_volumes.h's gpu_casters); empty otherwise.
+  gpu::SmoothCasterArrays smooth_casters;
 };
 
 // `casters`: every caster triangle of the scene in one soup (scene/merged_soup.h), indices in
@@ -51,10 +55,12 @@ void add_cpu_volumes(MethodInputs& inputs, std::span<const Light> lights);
                                                   std::span<const Light> lights);
 
 // Light `k` of `lights` alone; cpu draws `*cpu` when given (a planted volume, say), else
-// inputs.cpu_volumes[k] when there is one. Throws std::out_of_range for k outside `lights`.
+// inputs.cpu_volumes[k] when there is one; smooth-gpu builds `*smooth` when given, else
+// inputs.smooth_casters. Throws std::out_of_range for k outside `lights`.
 [[nodiscard]] gpu::ShadowMethodScene light_scene(const MethodInputs& inputs,
                                                  std::span<const gpu::ShadedSoupPart> receivers,
                                                  std::span<const Light> lights, std::size_t k,
-                                                 const HomogeneousMesh* cpu = nullptr);
+                                                 const HomogeneousMesh* cpu = nullptr,
+                                                 const gpu::SmoothCasterArrays* smooth = nullptr);
 
 }  // namespace shadowcert

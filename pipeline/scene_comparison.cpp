@@ -45,11 +45,22 @@ std::vector<std::uint8_t> coverage(const gpu::RgbaImage& colour) {
 }
 
 // reference_image of `scene`, whose merged soup the caller has (compare_scene merges once).
-// Every triangle of the scene receives and casts, as in the GL methods. The GPU gets the scene
-// in float: where that rounding changes the exact answer, the pixel is ambiguous
-// (reference/input_rounding.h), so the scene is imaged twice.
+// Every triangle of the scene receives, and those of the meshes that cast (SceneMesh::casts)
+// cast, as in the GL methods. The GPU gets the scene in float: where that rounding changes the
+// exact answer, the pixel is ambiguous (reference/input_rounding.h), so the scene is imaged twice.
 ExactImage reference_image_of(const Soup& merged, const Scene& scene, bool progress, double* rounded_seconds) {
-  return exact_image_of_float_input(merged, scene.lights, scene.camera, exact_options(scene.camera, progress), rounded_seconds);
+  ExactImageOptions options = exact_options(scene.camera, progress);
+  if (!std::all_of(scene.meshes.begin(), scene.meshes.end(), [](const SceneMesh& m) { return m.casts; }))
+    options.casts = casting_triangles(scene);
+  return exact_image_of_float_input(merged, scene.lights, scene.camera, options, rounded_seconds);
+}
+
+// Whether every mesh was cast by discrete or the robust chain (or not at all): then the volume
+// shadows what the exact chain shadows, and the run is held to the robust rule.
+bool chain_shadows_only(const SilhouetteVolumes& volumes) {
+  return std::all_of(volumes.casters.begin(), volumes.casters.end(), [](const SilhouetteCaster& c) {
+    return !c.cast_by || *c.cast_by == gpu::ShadowMethod::discrete;
+  });
 }
 
 }  // namespace
@@ -69,8 +80,15 @@ double MethodRun::gl_ms() const {
   return std::accumulate(lights.begin(), lights.end(), 0.0, [](double s, const LightRun& l) { return s + l.gl_ms; });
 }
 
+std::optional<AnalyticCounts> MethodRun::analytic() const {
+  std::optional<AnalyticCounts> sum;
+  for (const LightRun& l : lights)
+    if (l.analytic) (sum ? *sum : sum.emplace()) += *l.analytic;
+  return sum;
+}
+
 bool MethodRun::failed() const {
-  return closed() == false || (robust(method) && sum(&PixelComparison::hard_errors) > 0);
+  return closed() == false || (held_robust && sum(&PixelComparison::hard_errors) > 0);
 }
 
 bool SceneComparison::passed() const {
@@ -96,7 +114,7 @@ LightRun compare_light(gpu::ShadowMethodRenderer& renderer, const ExactImage& ex
   // The chain methods' stencil counts are n(P) itself, and so are discrete's (on a qualifying
   // caster it is the exact chain; pipeline/silhouette_volumes.h). accurate and smooth shadow
   // another surface: only their lit masks are compared, as the shadow map's.
-  if (gpu::draws_volume(method) && method != gpu::ShadowMethod::accurate && method != gpu::ShadowMethod::smooth)
+  if (gpu::draws_volume(method) && !gpu::shadows_smooth_surface(method))
     rendered.counts = l.frame.first_stencil.pixels;
   l.comparison = compare_pixels(exact, light, rendered);
   if (gpu::draws_volume(method)) {
@@ -119,10 +137,16 @@ SceneComparison compare_scene(const Scene& scene, const std::vector<gpu::ShadowM
 
   SceneComparison result;
   result.exact = reference_image_of(merged, scene, options.progress, &result.rounded_seconds);
+  const bool silhouette_methods = std::any_of(methods.begin(), methods.end(), [](gpu::ShadowMethod m) {
+    return std::find(gpu::kSilhouetteMethods.begin(), gpu::kSilhouetteMethods.end(), m) != gpu::kSilhouetteMethods.end();
+  });
+  // The analytic truth is the world scene's (its ellipsoids are in world space).
+  if (options.analytic && silhouette_methods && has_analytic_caster(scene))
+    result.analytic = analytic_reference(scene, options.silhouette.crease_angle_degrees);
   // The GL methods draw the scene in its eye's frame (core/eye_frame.h), which the reference's
   // float-rounded image models.
   const Scene drawn = eye_relative_scene(scene);
-  const MethodInputs inputs = prepare_method_inputs(merged_soup(drawn), drawn.lights, methods);
+  const MethodInputs inputs = prepare_method_inputs(merged_casters(drawn), drawn.lights, methods);
   const std::vector<gpu::ShadedSoupPart> parts = shaded_parts(drawn);
   const gpu::OffscreenTarget target(scene.camera.width, scene.camera.height);
   if (std::any_of(methods.begin(), methods.end(), gpu::draws_volume)) {
@@ -140,7 +164,7 @@ SceneComparison compare_scene(const Scene& scene, const std::vector<gpu::ShadowM
       result.silhouettes.push_back(silhouette_volumes(drawn.meshes, drawn.lights, method, silhouette_options));
       silhouette = &result.silhouettes.back();
     }
-    MethodRun run{method, {}};
+    MethodRun run{method, {}, robust(method) && (silhouette == nullptr || chain_shadows_only(*silhouette))};
     for (std::size_t k = 0; k < drawn.lights.size(); ++k) {
       gpu::ShadowMethodOptions method_options = options.method_options;
       method_options.light_stencil.clear();
@@ -148,9 +172,12 @@ SceneComparison compare_scene(const Scene& scene, const std::vector<gpu::ShadowM
       // The z-pass proof is about the exact chain; a smooth-silhouette volume is another one.
       if (silhouette != nullptr) method_options.light_stencil.assign(1, gpu::StencilMethod::zfail);
       gpu::ShadowMethodRenderer renderer(
-          method, light_scene(inputs, parts, drawn.lights, k, silhouette ? &silhouette->per_light[k] : nullptr),
+          method, light_scene(inputs, parts, drawn.lights, k, silhouette ? &silhouette->per_light[k] : nullptr,
+                              silhouette ? &silhouette->gpu_casters : nullptr),
           method_options);
       run.lights.push_back(compare_light(renderer, result.exact, k, target, drawn.camera, options.timed_frames));
+      if (silhouette != nullptr && result.analytic)
+        run.lights.back().analytic = compare_analytic(*result.analytic, k, run.lights.back().frame);
     }
     result.runs.push_back(std::move(run));
   }

@@ -24,6 +24,7 @@
 #include "gpu/egl_context.h"
 #include "gpu/offscreen_target.h"
 #include "gpu/shadow_method_renderer.h"
+#include "pipeline/analytic_comparison.h"
 #include "pipeline/silhouette_volumes.h"
 #include "pipeline/stencil_choice.h"
 
@@ -32,12 +33,11 @@ namespace shadowcert {
 // Robust methods must show zero hard errors and closed volumes (docs/definitions.md#pixel-protocol); the shadow map
 // is the baseline whose errors are its speed-against-error figures (docs/definitions.md#speed-against-error).
 // `discrete` is held to the robust rule (on a qualifying caster it draws the exact chain's
-// shadow); `accurate` and `smooth` shadow a smooth surface that is not the polyhedral one, so
+// shadow); `accurate`, `smooth` and `smooth-gpu` shadow a smooth surface that is not the polyhedral one, so
 // their disagreement with the exact image is their error, never a failure
 // (docs/smooth-silhouettes.md). Every volume must be closed all the same.
 [[nodiscard]] constexpr bool robust(gpu::ShadowMethod method) {
-  return method != gpu::ShadowMethod::shadowmap && method != gpu::ShadowMethod::accurate &&
-         method != gpu::ShadowMethod::smooth;
+  return method != gpu::ShadowMethod::shadowmap && !gpu::shadows_smooth_surface(method);
 }
 
 // One method against one light.
@@ -48,17 +48,26 @@ struct LightRun {
   std::uint64_t volume_triangles = 0;
   double gl_ms = 0.0;          // mean wall ms of the timed frames; 0 when none were timed
   std::string capacity_error;  // a GPU-built volume overflowed its buffers (then drawn open)
+  // A smooth-silhouette method against the analytic shadow (pipeline/analytic_comparison.h),
+  // when the comparison has one (SceneComparison::analytic): reported, never a failure.
+  std::optional<AnalyticCounts> analytic;
 };
 
 struct MethodRun {
   gpu::ShadowMethod method = gpu::ShadowMethod::cpu;
   std::vector<LightRun> lights;
+  // Held to the robust rule (failed() on a hard error): robust(method), but a discrete run only
+  // when every mesh was cast by discrete or the chain (a mesh's own "silhouette" may ask for
+  // accurate or smooth, whose disagreement is their error; pipeline/silhouette_volumes.h).
+  bool held_robust = true;
 
   [[nodiscard]] std::uint64_t sum(std::uint64_t PixelComparison::*figure) const;
   // nullopt for shadowmap (no volume); otherwise whether every light's volume is closed.
   [[nodiscard]] std::optional<bool> closed() const;
   [[nodiscard]] double gl_ms() const;
-  // A robust method with a hard error, or any volume method with an open volume.
+  // The lights' analytic counts summed; nullopt when the run has none.
+  [[nodiscard]] std::optional<AnalyticCounts> analytic() const;
+  // A run held robust with a hard error, or any volume method with an open volume.
   [[nodiscard]] bool failed() const;
 };
 
@@ -73,6 +82,9 @@ struct SceneComparisonOptions {
   std::size_t timed_frames = 0;
   bool progress = false;  // the exact image's progress bar on stderr
   SilhouetteOptions silhouette;  // discrete, accurate, smooth (pipeline/silhouette_volumes.h)
+  // When a smooth-silhouette method runs and a mesh casts as a known ellipsoid
+  // (has_analytic_caster): the analytic shadow image too, and each such run against it.
+  bool analytic = true;
 };
 
 struct SceneComparison {
@@ -84,13 +96,16 @@ struct SceneComparison {
   std::vector<LightStencil> stencil;
   // Per smooth-silhouette method asked for, how each mesh cast (pipeline/silhouette_volumes.h).
   std::vector<SilhouetteVolumes> silhouettes;
+  // The analytic shadow of the scene's ellipsoids (SceneComparisonOptions::analytic), which
+  // the smooth-silhouette runs were compared with; nullopt when none.
+  std::optional<AnalyticShadowImage> analytic;
 
   [[nodiscard]] bool passed() const;  // no run failed
 };
 
-// The exact image of `scene` (every mesh receives and casts) at its camera, with the GL depth
-// band (gpu/depth_precision.h), marked by the float-rounded scene's image
-// (reference/input_rounding.h): what every GL frame of the scene is compared with. With
+// The exact image of `scene` (every mesh receives; those with SceneMesh::casts cast) at its
+// camera, with the GL depth band (gpu/depth_precision.h), marked by the float-rounded scene's
+// image (reference/input_rounding.h): what every GL frame of the scene is compared with. With
 // `progress`, a bar on stderr; `rounded_seconds` receives the second image's time.
 [[nodiscard]] ExactImage reference_image(const Scene& scene, bool progress = false,
                                          double* rounded_seconds = nullptr);
@@ -105,8 +120,8 @@ struct SceneComparison {
                                      const gpu::OffscreenTarget& target, const Camera& camera,
                                      std::size_t timed_frames = 0);
 
-// The reference and every method on `scene` (every mesh receives and casts, as in the GL
-// methods). Preconditions: a GL context is current on this thread; the scene has at least one
+// The reference and every method on `scene` (every mesh receives; the meshes that cast,
+// SceneMesh::casts, cast, as in the GL methods). Preconditions: a GL context is current on this thread; the scene has at least one
 // light and one triangle, and `methods` is not empty (std::invalid_argument("compare_scene:
 // ...") otherwise). Throws what the renderers and the exact image throw.
 [[nodiscard]] SceneComparison compare_scene(const Scene& scene, const std::vector<gpu::ShadowMethod>& methods,

@@ -65,22 +65,45 @@ struct Silhouette {
 // the silhouette.
 struct ImageGeometry {
   const Soup& soup;
+  std::span<const std::uint8_t> casts;  // ExactImageOptions::casts: per triangle, or empty (all cast)
   std::vector<HomogeneousPoint> lights;
   std::vector<std::vector<Sign>> light_sides;  // [light][triangle]: s(t) of docs/definitions.md#orientation
-  std::vector<std::unique_ptr<Silhouette>> silhouettes;
+  std::vector<std::unique_ptr<Silhouette>> silhouettes;  // of the casting triangles
   std::vector<std::unique_ptr<Silhouette>> casting_edges;  // with a depth band: every edge of a caster
   detail::BoxTree tree;
 
   [[nodiscard]] const Vec3& vertex(std::uint32_t triangle, int k) const {
     return soup.vertices[soup.triangles[triangle][static_cast<std::size_t>(k)]];
   }
+  [[nodiscard]] bool casting(std::uint32_t triangle) const { return casts.empty() || casts[triangle] != 0; }
 };
 
-void validate(const Soup& soup, std::span<const Light> lights) {
+void validate(const Soup& soup, std::span<const Light> lights, const ExactImageOptions& options) {
   require_indices_in_range(soup, "exact_image");
   require_finite_vertices(soup, "exact_image");
   if (soup.triangles.size() >= kUndefinedCount) throw std::invalid_argument("exact_image: too many triangles");
   for (const Light& light : lights) require_defined(light, "exact_image");
+  if (!options.casts.empty() && options.casts.size() != soup.triangles.size())
+    throw std::invalid_argument("exact_image: casts has " + std::to_string(options.casts.size()) + " flags for " +
+                                std::to_string(soup.triangles.size()) + " triangles");
+}
+
+// The casting triangles of `soup` alone, in order, on all of its vertices.
+Soup casting_soup(const Soup& soup, std::span<const std::uint8_t> casts) {
+  Soup out;
+  out.vertices = soup.vertices;
+  for (std::size_t t = 0; t < soup.triangles.size(); ++t)
+    if (casts[t] != 0) out.triangles.push_back(soup.triangles[t]);
+  return out;
+}
+
+// The entries of `sides` (one per soup triangle) of the casting triangles, in order.
+std::vector<Sign> casting_sides(const std::vector<Sign>& sides, std::span<const std::uint8_t> casts) {
+  if (casts.empty()) return sides;
+  std::vector<Sign> out;
+  for (std::size_t t = 0; t < sides.size(); ++t)
+    if (casts[t] != 0) out.push_back(sides[t]);
+  return out;
 }
 
 std::vector<Box> triangle_boxes(const Soup& soup) {
@@ -134,7 +157,8 @@ std::unique_ptr<Silhouette> silhouette(const Soup& canonical, const EdgeTable& t
   return edge_set(canonical, table, [&](std::size_t e) { return m.multiplicity[e] != 0; });
 }
 
-// Every edge with a casting triangle on it (canonical triangles keep the soup's order).
+// Every edge with a casting triangle on it (canonical triangles keep the casting soup's order,
+// which `sides` follows).
 std::unique_ptr<Silhouette> casting_edges(const Soup& canonical, const EdgeTable& table, const std::vector<Sign>& sides) {
   return edge_set(canonical, table, [&](std::size_t e) {
     for (std::uint32_t k = table.first_opposite[e]; k < table.first_opposite[e + 1]; ++k)
@@ -200,6 +224,7 @@ std::uint32_t count_at(const ImageGeometry& g, std::size_t light, const PixelRay
   bool touched = false;
   const auto classify = [&](std::uint32_t id) {
     if (id == h) return true;  // the triangle that contains P (docs/definitions.md#pixel-protocol)
+    if (!g.casting(id)) return true;  // receives only: in no volume
     const Sign s = sides[id];
     if (s == Sign::zero) return true;  // casts nothing (docs/definitions.md#orientation)
     const Vec3 &a = g.vertex(id, 0), &b = g.vertex(id, 1), &c = g.vertex(id, 2);
@@ -489,17 +514,19 @@ bool band_meets_volume(const ImageGeometry& g, std::size_t light, const DepthBan
 ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Camera& camera,
                        const ExactImageOptions& options) {
   const auto start = Clock::now();
-  validate(soup, lights);
+  validate(soup, lights, options);
   const RayGrid grid{camera_frame(camera, "exact_image"), camera.width, camera.height};
 
-  ImageGeometry g{soup, {}, {}, {}, {}, detail::BoxTree(triangle_boxes(soup), detail::LeafTest::exact)};
-  const CanonicalSoup canonical = canonical_soup(soup);
+  ImageGeometry g{soup, options.casts, {}, {}, {}, {}, detail::BoxTree(triangle_boxes(soup), detail::LeafTest::exact)};
+  // Every triangle is seen (the box tree above); the volumes are the casting triangles' alone.
+  const CanonicalSoup canonical = canonical_soup(options.casts.empty() ? soup : casting_soup(soup, options.casts));
   const EdgeTable table = build_edge_table(canonical.soup);
   for (const Light& light : lights) {
     g.lights.push_back(light.position);
     g.light_sides.push_back(light_sides(soup, light));
     g.silhouettes.push_back(silhouette(canonical.soup, table, light));
-    if (options.depth_band) g.casting_edges.push_back(casting_edges(canonical.soup, table, g.light_sides.back()));
+    if (options.depth_band)
+      g.casting_edges.push_back(casting_edges(canonical.soup, table, casting_sides(g.light_sides.back(), options.casts)));
   }
   ExactImage image;
   image.width = grid.width;

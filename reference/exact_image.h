@@ -10,6 +10,9 @@
 // coordinates for the rare signs the enclosure cannot decide. For each light, n(P) is the
 // number of casting triangles (s != 0, docs/definitions.md#orientation) crossed by the open segment P -> light (the ray
 // towards l for w = 0), the hit triangle excluded (docs/definitions.md#pixel-protocol).
+// A triangle that ExactImageOptions::casts marks as receiving only (a mesh with "casts": false,
+// core/scene.h) is seen, hit and hides what lies behind it, and has its own terminator, but it
+// is in no volume: it is never counted, and its edges are no silhouette and no volume face.
 //
 // A pixel is AMBIGUOUS (docs/definitions.md#pixel-protocol) when the exact answer at its centre does not pin down what a
 // correct renderer shows there:
@@ -99,13 +102,18 @@ struct ExactImageOptions {
   // which draws them as cancelling pairs) is ambiguous: kDepthBand. The band's end points are
   // rounded to doubles, which only moves the band by an ulp; the tests on them are exact.
   std::function<double(double view_depth)> depth_band;
+
+  // Which triangles cast: one flag per soup triangle, 0 for a triangle that only receives;
+  // empty: every triangle casts. Only casting triangles are counted in n(P), and only they
+  // make the silhouettes and the depth band's volume faces; every triangle is seen.
+  std::vector<std::uint8_t> casts;
 };
 
-// The exact image of `soup` (every triangle both receives and casts; world space) for
-// `camera` and each of `lights`. Parallel over rows (TBB).
+// The exact image of `soup` (every triangle receives; those options.casts allows, all by
+// default, cast; world space) for `camera` and each of `lights`. Parallel over rows (TBB).
 // Throws std::invalid_argument("exact_image: ...") for a vertex index out of range, a
-// non-finite coordinate, a light with w not in {0, 1} or a zero direction, or a degenerate
-// camera (core/pixel_ray.h).
+// non-finite coordinate, a light with w not in {0, 1} or a zero direction, a degenerate
+// camera (core/pixel_ray.h), or casts neither empty nor one flag per triangle.
 [[nodiscard]] ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Camera& camera,
                                      const ExactImageOptions& options = {});
 

@@ -124,4 +124,14 @@ Soup transformed(const Soup& soup, const AffineTransform& transform) {
   return out;
 }
 
+Ellipsoid transformed(const Ellipsoid& ellipsoid, const AffineTransform& transform) {
+  if (determinant(power_of_two_normalised(transform.linear)) == 0.0)
+    throw std::invalid_argument("transformed: the linear part is singular (a zero scale or a degenerate matrix)");
+  const Vec3 c = apply(transform.linear, ellipsoid.centre);
+  Ellipsoid out;
+  out.centre = {c[0] + transform.translation[0], c[1] + transform.translation[1], c[2] + transform.translation[2]};
+  for (std::size_t k = 0; k < 3; ++k) out.axes[k] = apply(transform.linear, ellipsoid.axes[k]);
+  return out;
+}
+
 }  // namespace shadowcert

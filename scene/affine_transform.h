@@ -3,6 +3,7 @@
 // one from a row-major matrix or from translate / scale / rotate_deg (docs/scene-format.md).
 #include <array>
 
+#include "core/ellipsoid.h"
 #include "core/soup.h"
 
 namespace shadowcert {
@@ -23,5 +24,9 @@ struct AffineTransform {
 // triangles are reversed so that outward-oriented meshes stay outward after a mirror.
 // Throws std::invalid_argument("transformed: ...") when det A == 0.
 [[nodiscard]] Soup transformed(const Soup& soup, const AffineTransform& transform);
+
+// The image of an ellipsoid x = c + B u (|u| <= 1): centre A c + t, axes the columns of A B.
+// Throws std::invalid_argument("transformed: ...") when det A == 0.
+[[nodiscard]] Ellipsoid transformed(const Ellipsoid& ellipsoid, const AffineTransform& transform);
 
 }  // namespace shadowcert

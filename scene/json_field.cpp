@@ -80,6 +80,11 @@ std::string JsonField::string() const {
   return value_->get<std::string>();
 }
 
+bool JsonField::boolean() const {
+  if (!value_->is_boolean()) fail_type("true or false");
+  return value_->get<bool>();
+}
+
 Vec3 JsonField::vec3() const {
   if (!value_->is_array() || value_->size() != 3) {
     if (value_->is_array()) fail("expected an array of 3 numbers, got " + std::to_string(value_->size()) + " elements");

@@ -37,6 +37,7 @@ class JsonField {
   [[nodiscard]] double number() const;  // any JSON number (always finite)
   [[nodiscard]] std::uint64_t unsigned_integer(std::uint64_t max) const;  // integral, in [0, max]
   [[nodiscard]] std::string string() const;
+  [[nodiscard]] bool boolean() const;  // true or false, never a number or a string
   [[nodiscard]] Vec3 vec3() const;  // exactly three numbers
 
  private:

@@ -32,13 +32,28 @@ void append_soup(Soup& to, const Soup& from) {
   for (const Triangle& t : from.triangles) to.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
 }
 
-Soup merged_soup(const Scene& scene) {
+namespace {
+
+Soup merged(const Scene& scene, bool casters_only) {
   Soup out;
   for (const SceneMesh& mesh : scene.meshes) {
+    if (casters_only && !mesh.casts) continue;
     if (!fits(out, mesh.soup)) throw InputError(mesh.name, "the scene has more than 2^32-1 vertices in all");
     append_soup(out, mesh.soup);
   }
   return out;
+}
+
+}  // namespace
+
+Soup merged_soup(const Scene& scene) { return merged(scene, false); }
+
+Soup merged_casters(const Scene& scene) { return merged(scene, true); }
+
+std::vector<std::uint8_t> casting_triangles(const Scene& scene) {
+  std::vector<std::uint8_t> casts;
+  for (const SceneMesh& mesh : scene.meshes) casts.insert(casts.end(), mesh.soup.triangles.size(), mesh.casts ? 1 : 0);
+  return casts;
 }
 
 }  // namespace shadowcert

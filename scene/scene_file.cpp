@@ -1,6 +1,7 @@
 #include "scene/scene_file.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -8,6 +9,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <utility>
 
 #include "core/camera.h"
@@ -72,16 +74,24 @@ bool all_finite(const Soup& soup) {
   });
 }
 
-Soup placed(Soup soup, const JsonField& transform_field) {
+bool all_finite(const Ellipsoid& e) {
+  for (const Vec3& v : {e.centre, e.axes[0], e.axes[1], e.axes[2]})
+    if (!std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2])) return false;
+  return true;
+}
+
+// The mesh's soup and analytic surface mapped by its "transform".
+void place(SceneMesh& mesh, const JsonField& transform_field) {
   const AffineTransform transform = read_transform(transform_field);
-  if (is_identity(transform)) return soup;
+  if (is_identity(transform)) return;
   try {
-    soup = transformed(soup, transform);
+    mesh.soup = transformed(mesh.soup, transform);
+    if (mesh.ellipsoid) mesh.ellipsoid = transformed(*mesh.ellipsoid, transform);
   } catch (const std::invalid_argument&) {
     transform_field.fail("singular transform (a zero scale or a degenerate matrix)");
   }
-  if (!all_finite(soup)) transform_field.fail("maps a vertex to a non-finite coordinate (overflow)");
-  return soup;
+  if (!all_finite(mesh.soup) || (mesh.ellipsoid && !all_finite(*mesh.ellipsoid)))
+    transform_field.fail("maps a vertex to a non-finite coordinate (overflow)");
 }
 
 // ---- meshes -----------------------------------------------------------------------------
@@ -113,9 +123,31 @@ Soup load_mesh_file(const JsonField& field, const std::filesystem::path& base_di
   return soup;
 }
 
+// "silhouette": one of the four names of MeshSilhouette.
+MeshSilhouette read_silhouette(const JsonField& field) {
+  static constexpr std::array<std::pair<std::string_view, MeshSilhouette>, 4> kNames{
+      {{"chain", MeshSilhouette::chain},
+       {"discrete", MeshSilhouette::discrete},
+       {"accurate", MeshSilhouette::accurate},
+       {"smooth", MeshSilhouette::smooth}}};
+  if (field.json().is_string()) {
+    const std::string name = field.string();
+    for (const auto& [known, value] : kNames)
+      if (name == known) return value;
+  }
+  field.fail("expected \"chain\", \"discrete\", \"accurate\" or \"smooth\", got " + field.json().dump());
+}
+
+// "epsilon": the mesh's contour error, world units.
+double read_epsilon(const JsonField& field) {
+  const double epsilon = field.number();  // JSON numbers are finite
+  if (!(epsilon > 0.0)) field.fail("must be a distance > 0 (world units), got " + field.json().dump());
+  return epsilon;
+}
+
 SceneMesh read_mesh_entry(const JsonField& field, const std::filesystem::path& base_dir,
                           const MeshFileReader& reader) {
-  field.require_keys_within({"name", "file", "generator", "params", "transform"});
+  field.require_keys_within({"name", "file", "generator", "params", "transform", "casts", "silhouette", "epsilon"});
   const auto file = field.member("file");
   const auto generator = field.member("generator");
   const auto params = field.member("params");
@@ -129,10 +161,17 @@ SceneMesh read_mesh_entry(const JsonField& field, const std::filesystem::path& b
     mesh.soup = load_mesh_file(*file, base_dir, reader);
   } else {
     mesh.name = generator->string();
-    mesh.soup = run_generator(*generator, params);
+    GeneratedMesh generated = run_generator(*generator, params);
+    mesh.soup = std::move(generated.soup);
+    mesh.ellipsoid = generated.ellipsoid;
   }
   if (const auto name = field.member("name")) mesh.name = name->string();
-  if (const auto transform = field.member("transform")) mesh.soup = placed(std::move(mesh.soup), *transform);
+  if (const auto transform = field.member("transform")) place(mesh, *transform);
+  if (const auto casts = field.member("casts")) mesh.casts = casts->boolean();
+  if (const auto silhouette = field.member("silhouette")) mesh.silhouette = read_silhouette(*silhouette);
+  // Allowed without "silhouette": it is the mesh's contour error whenever it is cast smooth,
+  // by its own "silhouette" or by the command's method.
+  if (const auto epsilon = field.member("epsilon")) mesh.epsilon = read_epsilon(*epsilon);
   return mesh;
 }
 

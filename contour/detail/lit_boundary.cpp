@@ -217,6 +217,7 @@ std::vector<SilhouetteLoop> loops_of(const LitBoundary& boundary, const std::vec
     SilhouetteLoop loop;
     loop.closed = k.closed;
     for (const PointKey& key : k.keys) loop.points.push_back(boundary.points.at(key));
+    for (std::size_t piece : k.pieces) loop.segment_triangles.push_back(boundary.pieces[piece].triangle);
     loops.push_back(std::move(loop));
   }
   return loops;

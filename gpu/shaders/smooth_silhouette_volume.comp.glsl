@@ -225,31 +225,67 @@ void side(vec3 a, vec3 b) {
   if (light.w != 0.0) put_triangle(vec4(b, 1.0), far_point(a), far_point(b));
 }
 
-// A cap polygon, fanned from its first point as its points arrive (smooth_volume.cpp's ring:
-// repeated points dropped, reversed for the unlit part).
-vec3 g_fan_first, g_fan_previous;
-uint g_fan_points = 0u;
-bool g_fan_reversed = false;
+// A cap polygon's ring, streamed point by point (smooth_volume.cpp's ring: repeated points
+// dropped). As caps (g_ring_sides false) it is fanned from its first point, reversed for the
+// unlit part. As sides (a triangle that casts nothing, triangle_pass says why) each ring edge
+// flagged by the caller is X's boundary in reverse: the cap the triangle does not draw would have
+// cancelled it there, so its reverse is extruded.
+vec3 g_ring_first, g_ring_previous;
+uint g_ring_points = 0u;
+bool g_ring_reversed = false;
+bool g_ring_sides = false;
+// Sides only: the ring runs along a crease piece this triangle owns (its strip is its own), and
+// whether the previous and the first point lie on the contour as well (the strip has no width
+// there).
+bool g_ring_owned_piece = false;
+bool g_ring_previous_on_contour = false, g_ring_first_on_contour = false;
 
-void fan_begin(bool reversed) {
-  g_fan_points = 0u;
-  g_fan_reversed = reversed;
+// Whether a flagged ring edge is extruded: not where it runs along its own crease piece's strip
+// where that strip has no width (both ends on the contour): the strip's side is that edge's
+// extrusion already (strip_segment).
+bool ring_edge_extruded(bool flagged, bool from_on_contour, bool to_on_contour) {
+  return flagged && !(g_ring_owned_piece && from_on_contour && to_on_contour);
 }
 
-void fan_point(vec3 p) {
-  if (g_fan_points > 0u && p == g_fan_previous) return;
-  if (g_fan_points == 0u) {
-    g_fan_first = p;
-  } else if (g_fan_points >= 2u) {
-    if (g_fan_reversed) x_triangle(g_fan_first, p, g_fan_previous);
-    else x_triangle(g_fan_first, g_fan_previous, p);
+void ring_begin(bool reversed, bool sides) {
+  g_ring_points = 0u;
+  g_ring_reversed = reversed;
+  g_ring_sides = sides;
+}
+
+// The next ring point; `flagged`: the ring edge that ends at it is to be extruded (sides only);
+// `on_contour`: the point is its own contour point as well (a mesh vertex, or a partner with no
+// displacement).
+void ring_point(vec3 p, bool flagged, bool on_contour) {
+  if (g_ring_points > 0u && p == g_ring_previous) return;
+  if (g_ring_points == 0u) {
+    g_ring_first = p;
+    g_ring_first_on_contour = on_contour;
+  } else if (g_ring_sides) {
+    if (ring_edge_extruded(flagged, g_ring_previous_on_contour, on_contour)) side(p, g_ring_previous);
+  } else if (g_ring_points >= 2u) {
+    if (g_ring_reversed) x_triangle(g_ring_first, p, g_ring_previous);
+    else x_triangle(g_ring_first, g_ring_previous, p);
   }
-  g_fan_previous = p;
-  ++g_fan_points;
+  g_ring_previous = p;
+  g_ring_previous_on_contour = on_contour;
+  ++g_ring_points;
 }
+
+// The ring's last edge, back to its first point.
+void ring_close(bool flagged) {
+  if (g_ring_sides && g_ring_points > 1u && g_ring_first != g_ring_previous &&
+      ring_edge_extruded(flagged, g_ring_previous_on_contour, g_ring_first_on_contour))
+    side(g_ring_first, g_ring_previous);
+}
+
+bool g_casts = true;  // the triangle being emitted draws caps (casts_caps)
 
 // One piece of the strip, between consecutive contour points p and q, twice (once for the lit
-// part, once for the unlit one), and its outer edge p -> q extruded twice.
+// part, once for the unlit one), and its outer edge p -> q extruded twice. Where the strip has
+// no width and its triangle draws no caps (its owner casts nothing), that edge is also its own
+// missing cap's, whose reverse the owner does not extrude (ring_edge_extruded): once then, as
+// the CPU's cancellation leaves it.
 void strip_segment(ContourPoint p, ContourPoint q) {
   const vec3 p0 = stored_partner(p), q0 = stored_partner(q);
   for (uint copy = 0u; copy < 2u; ++copy) {
@@ -257,7 +293,7 @@ void strip_segment(ContourPoint p, ContourPoint q) {
     x_triangle(q0, p.position, q.position);
   }
   side(p.position, q.position);
-  side(p.position, q.position);
+  if (g_casts || p0 != p.position || q0 != q.position) side(p.position, q.position);
 }
 
 // ------------------------------------------------------------------------------ subdivision
@@ -284,9 +320,12 @@ bool refine(ContourPoint a, ContourPoint b, out ContourPoint mid) {
 const uint kToCap = 0u, kToStrip = 1u;
 ContourPoint g_strip_previous;
 
+bool g_ring_flag = false;  // what ring_point's partners from consume() are flagged with
+
 void consume(uint consumer, ContourPoint p) {
   if (consumer == kToCap) {
-    fan_point(stored_partner(p));
+    const vec3 stored = stored_partner(p);
+    ring_point(stored, g_ring_flag, stored == p.position);
   } else {
     strip_segment(g_strip_previous, p);
     g_strip_previous = p;
@@ -345,10 +384,12 @@ void strip(ContourPoint a, ContourPoint b) {
 const uint kMaxPieces = 16u;
 uvec4 g_piece_from[kMaxPieces], g_piece_to[kMaxPieces];
 ContourPoint g_piece_a[kMaxPieces], g_piece_b[kMaxPieces];
+bool g_piece_owned[kMaxPieces];  // this triangle emits its strip
 uint g_pieces = 0u;
 
-void add_piece(uvec4 from, ContourPoint a, uvec4 to, ContourPoint b) {
+void add_piece(uvec4 from, ContourPoint a, uvec4 to, ContourPoint b, bool owned) {
   if (g_pieces == kMaxPieces) return;  // cannot happen: one segment, 3 creases x 4, 3 edges
+  g_piece_owned[g_pieces] = owned;
   g_piece_from[g_pieces] = from;
   g_piece_to[g_pieces] = to;
   g_piece_a[g_pieces] = a;
@@ -356,14 +397,18 @@ void add_piece(uvec4 from, ContourPoint a, uvec4 to, ContourPoint b) {
   ++g_pieces;
 }
 
-// The partners between consecutive cap points named `x` -> `y`, when a piece runs between them.
+// The partners between consecutive cap points named `x` -> `y`, when a piece runs between them;
+// g_ring_owned_piece says whether this triangle owns it.
 void insert_partners(uvec4 x, uvec4 y) {
+  g_ring_owned_piece = false;
   for (uint k = 0u; k < g_pieces; ++k) {
     if (g_piece_from[k] == x && g_piece_to[k] == y) {
+      g_ring_owned_piece = g_piece_owned[k];
       walk(g_piece_a[k], g_piece_b[k], false, kToCap);
       return;
     }
     if (g_piece_from[k] == y && g_piece_to[k] == x) {
+      g_ring_owned_piece = g_piece_owned[k];
       walk(g_piece_a[k], g_piece_b[k], true, kToCap);
       return;
     }
@@ -432,7 +477,6 @@ void crease_pieces(Tri here, uint t, uint k, bool emit_strips) {
   const CreaseSide s1 = crease_side(one, t_one, k1, (k1 + 1u) % 3u, k1, a);
   const CreaseSide s2 = crease_side(two, t_two, corner_of(two, a), k2, k2, a);
   const uvec4 key_a = uvec4(kVertexKey, a, a, 0u), key_b = uvec4(kVertexKey, b, b, 0u);
-  const ContourPoint point_a = vertex_point(one, k1), point_b = vertex_point(one, (k1 + 1u) % 3u);
 
   // The cuts 0, s1, s2, 1 in order, repeats dropped (s = -1: no change on that side). Written
   // out rather than sorted in a loop: llvmpipe miscompiled an in-place sort of this local array
@@ -457,7 +501,12 @@ void crease_pieces(Tri here, uint t, uint k, bool emit_strips) {
     precise float mid = 0.5 * (cuts[c] + cuts[c + 1u]);
     const bool lit_one = lit_at(s1, mid), lit_two = lit_at(s2, mid);
     if (lit_one == lit_two) continue;
-    // The points at both cuts; where both sides change at one s, the lit side's.
+    // The points at both cuts; where both sides change at one s, the lit side's; at a mesh vertex,
+    // with the lit side's corner normal (the side whose lit part the piece bounds;
+    // contour/silhouette_loop.h's segment_triangles).
+    const Tri lit_side = lit_one ? one : two;
+    const ContourPoint point_a = vertex_point(lit_side, corner_of(lit_side, a));
+    const ContourPoint point_b = vertex_point(lit_side, corner_of(lit_side, b));
     uvec4 key[2];
     ContourPoint point[2];
     for (uint e = 0u; e < 2u; ++e) {
@@ -478,8 +527,8 @@ void crease_pieces(Tri here, uint t, uint k, bool emit_strips) {
     }
     // One's order a -> b when one is lit there, two's b -> a otherwise.
     const uint from = lit_one ? 0u : 1u, to = lit_one ? 1u : 0u;
-    add_piece(key[from], point[from], key[to], point[to]);
     const bool owned = lit_one == here_is_one;
+    add_piece(key[from], point[from], key[to], point[to], owned);
     if (emit_strips && owned) strip(point[from], point[to]);
   }
   if (s1.s >= 0.0 && s1.s == s2.s && s1.at_a == s2.at_a && emit_strips && here_is_one) {
@@ -502,7 +551,7 @@ void neighbour_piece_along(Tri here, uint k) {
   if (from.key.x != kVertexKey || to.key.x != kVertexKey) return;
   const uint a = here.v[k], b = here.v[(k + 1u) % 3u];
   if ((from.key.y == a && to.key.y == b) || (from.key.y == b && to.key.y == a))
-    add_piece(from.key, from.point, to.key, to.point);
+    add_piece(from.key, from.point, to.key, to.point, false);
 }
 
 // ------------------------------------------------------------------------------ a triangle
@@ -511,14 +560,32 @@ void neighbour_piece_along(Tri here, uint k) {
 const uint kMaxPolygon = 12u;
 uvec4 g_polygon_key[kMaxPolygon];
 vec3 g_polygon_point[kMaxPolygon];
+// The edge k whose part the point was found on, and whether it is that edge's first corner: the
+// ring edge from a point to the next runs along edge k when the next one is on edge k too, or
+// is the next edge's first corner (the part meets an edge in one interval).
+uint g_polygon_edge[kMaxPolygon];
+bool g_polygon_corner[kMaxPolygon];
+bool g_polygon_on_contour[kMaxPolygon];  // a mesh vertex (a cut point is displaced off the mesh)
 uint g_polygon_size = 0u;
 
-void polygon_add(uvec4 key, vec3 p) {
+void polygon_add(uvec4 key, vec3 p, uint edge, bool corner) {
   if (g_polygon_size < kMaxPolygon) {
+    g_polygon_on_contour[g_polygon_size] = key.x == kVertexKey;
     g_polygon_key[g_polygon_size] = key;
     g_polygon_point[g_polygon_size] = p;
+    g_polygon_edge[g_polygon_size] = edge;
+    g_polygon_corner[g_polygon_size] = corner;
     ++g_polygon_size;
   }
+}
+
+// The edge of x that the ring runs along from polygon point i to the next, or 3 (across it).
+uint polygon_edge_after(uint i) {
+  const uint j = (i + 1u) % g_polygon_size;
+  const uint k = g_polygon_edge[i];
+  if (g_polygon_edge[j] == k && !g_polygon_corner[j]) return k;
+  if (g_polygon_corner[j] && g_polygon_edge[j] == (k + 1u) % 3u) return k;
+  return 3u;
 }
 
 // Swaps two cut points when they are out of order.
@@ -546,7 +613,7 @@ void part_polygon(Tri x, uint t, bool want_lit) {
     const uint a = x.v[k], b = x.v[k1];
     const bool lit_a = lit(x.f[k]), lit_b = lit(x.f[k1]);
     const bool in_a = lit_a == want_lit, in_b = lit_b == want_lit;
-    if (in_a) polygon_add(uvec4(kVertexKey, a, a, 0u), vertices[a].xyz);
+    if (in_a) polygon_add(uvec4(kVertexKey, a, a, 0u), vertices[a].xyz, k, true);
     // Cut points on this edge inside the part, by s from a to b (at most three).
     float cut_s[3];
     uvec4 cut_key[3];
@@ -597,7 +664,7 @@ void part_polygon(Tri x, uint t, bool want_lit) {
       order_cuts(cut_s[1], cut_key[1], cut_point[1], cut_s[2], cut_key[2], cut_point[2]);
       order_cuts(cut_s[0], cut_key[0], cut_point[0], cut_s[1], cut_key[1], cut_point[1]);
     }
-    for (uint i = 0u; i < cuts; ++i) polygon_add(cut_key[i], cut_point[i]);
+    for (uint i = 0u; i < cuts; ++i) polygon_add(cut_key[i], cut_point[i], k, false);
   }
 }
 
@@ -620,14 +687,24 @@ void border_sides(Tri x, uint t, uint k) {
   else side(b, c);
 }
 
-void emit_triangle(Tri x, uint t) {
+// Whether a triangle draws caps: not when the light lies in the plane its corner normals
+// describe at every corner (f = 0 at all three; as the exact side 0, it casts nothing).
+bool casts_caps(Tri x) { return !(x.f[0] == 0.0 && x.f[1] == 0.0 && x.f[2] == 0.0); }
+
+// `casts`: casts_caps(x). A triangle that does not still owns its crease pieces' strips (the
+// contour runs along its creases as the CPU's loops do) and closes the gap its missing caps
+// leave next to the triangles that cast.
+void emit_triangle(Tri x, uint t, bool casts) {
+  bool neighbour_casts[3];
+  for (uint k = 0u; k < 3u; ++k)
+    neighbour_casts[k] = !casts && x.across[k] != kBorder && casts_caps(load_triangle(x.across[k]));
   g_pieces = 0u;
   // 1. The pieces whose partners the caps insert: the own segment, the crease pieces (and their
   // strips when owned, emitted here), a neighbour's segment along a shared edge.
   EdgePoint from, to;
   uint from_edge = 3u, to_edge = 3u;
   const bool has_segment = own_segment(x, t, from, to, from_edge, to_edge);
-  if (has_segment) add_piece(from.key, from.point, to.key, to.point);
+  if (has_segment) add_piece(from.key, from.point, to.key, to.point, true);
   for (uint k = 0u; k < 3u; ++k) {
     const uint other = x.across[k];
     if (other == kBorder) continue;
@@ -638,16 +715,24 @@ void emit_triangle(Tri x, uint t) {
       if (lit(x.f[k]) == lit(x.f[k1]) && (x.f[k] == 0.0 || x.f[k1] == 0.0)) neighbour_piece_along(x, k);
     }
   }
-  // 2. The caps: the lit part, then the unlit part reversed.
+  // 2. The caps: the lit part, then the unlit part reversed. A triangle that casts nothing
+  // draws none, and extrudes the reverse of its ring's edges shared with a triangle that casts.
   for (uint part = 0u; part < 2u; ++part) {
     const bool want_lit = part == 0u;
+    if (!casts && !want_lit) break;  // f = 0 everywhere counts as lit: no unlit part
     part_polygon(x, t, want_lit);
-    fan_begin(!want_lit);
+    if (g_polygon_size == 0u) continue;
+    ring_begin(!want_lit, !casts);
+    ring_point(g_polygon_point[0], false, g_polygon_on_contour[0]);
     for (uint i = 0u; i < g_polygon_size; ++i) {
-      fan_point(g_polygon_point[i]);
+      const uint along = polygon_edge_after(i);
+      g_ring_flag = !casts && along != 3u && neighbour_casts[along];
       insert_partners(g_polygon_key[i], g_polygon_key[(i + 1u) % g_polygon_size]);
+      if (i + 1u < g_polygon_size) ring_point(g_polygon_point[i + 1u], g_ring_flag, g_polygon_on_contour[i + 1u]);
+      else ring_close(g_ring_flag);
     }
   }
+  if (!casts) return;
   // 3. The own segment's strip and contour sides; its ends on a border are X's boundary too.
   if (has_segment) {
     strip(from.point, to.point);
@@ -667,20 +752,19 @@ void emit_triangle(Tri x, uint t) {
 
 void triangle_pass(uint t) {
   const Tri x = load_triangle(t);
-  // The light in the plane the corner normals describe at every corner: as the exact side 0,
-  // the triangle casts nothing.
-  if (x.f[0] == 0.0 && x.f[1] == 0.0 && x.f[2] == 0.0) return;
+  const bool casts = casts_caps(x);
+  g_casts = casts;
   g_cap_offset = x.cap_offset;
   g_epsilon = x.epsilon;
   g_counting = true;
   g_vertices = 0u;
-  emit_triangle(x, t);
+  emit_triangle(x, t, casts);
   if (g_vertices == 0u) return;
   const uint base = reserve(g_vertices);
   if (base == kNoRoom) return;
   volume_cursor = base;
   g_counting = false;
-  emit_triangle(x, t);
+  emit_triangle(x, t, casts);
 }
 
 void main() {

@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "scene/procedural_mesh.h"
@@ -22,57 +23,68 @@ std::uint32_t u32_or(const JsonField& p, std::string_view key, std::uint32_t fal
 }
 
 // Defaults: unit-sized shapes at the origin, resolutions fine enough for smooth shading.
-Soup floor_from(const JsonField& p) {
+GeneratedMesh floor_from(const JsonField& p) {
   p.require_keys_within({"half_size"});
-  return floor_quad(number_or(p, "half_size", 10.0));
+  return {floor_quad(number_or(p, "half_size", 10.0)), std::nullopt};
 }
 
-Soup box_from(const JsonField& p) {
+GeneratedMesh box_from(const JsonField& p) {
   p.require_keys_within({"min", "max"});
-  return box(vec3_or(p, "min", {-0.5, -0.5, -0.5}), vec3_or(p, "max", {0.5, 0.5, 0.5}));
+  return {box(vec3_or(p, "min", {-0.5, -0.5, -0.5}), vec3_or(p, "max", {0.5, 0.5, 0.5})), std::nullopt};
 }
 
-Soup uv_sphere_from(const JsonField& p) {
+// The sphere of centre `centre` and radius `radius` as an ellipsoid: axes r e_x, r e_y, r e_z.
+Ellipsoid sphere_ellipsoid(const Vec3& centre, double radius) {
+  return {centre, {{{radius, 0, 0}, {0, radius, 0}, {0, 0, radius}}}};
+}
+
+// The spheres record the surface they approximate (their vertices lie on it).
+GeneratedMesh uv_sphere_from(const JsonField& p) {
   p.require_keys_within({"center", "radius", "slices", "stacks"});
-  return uv_sphere(vec3_or(p, "center", {0, 0, 0}), number_or(p, "radius", 1.0), u32_or(p, "slices", 32),
-                   u32_or(p, "stacks", 16));
+  const Vec3 centre = vec3_or(p, "center", {0, 0, 0});
+  const double radius = number_or(p, "radius", 1.0);
+  Soup soup = uv_sphere(centre, radius, u32_or(p, "slices", 32), u32_or(p, "stacks", 16));
+  return {std::move(soup), sphere_ellipsoid(centre, radius)};
 }
 
-Soup icosphere_from(const JsonField& p) {
+GeneratedMesh icosphere_from(const JsonField& p) {
   p.require_keys_within({"center", "radius", "subdivisions"});
-  return icosphere(vec3_or(p, "center", {0, 0, 0}), number_or(p, "radius", 1.0), u32_or(p, "subdivisions", 3));
+  const Vec3 centre = vec3_or(p, "center", {0, 0, 0});
+  const double radius = number_or(p, "radius", 1.0);
+  Soup soup = icosphere(centre, radius, u32_or(p, "subdivisions", 3));
+  return {std::move(soup), sphere_ellipsoid(centre, radius)};
 }
 
-Soup torus_from(const JsonField& p) {
+GeneratedMesh torus_from(const JsonField& p) {
   p.require_keys_within({"center", "major_radius", "minor_radius", "major_segments", "minor_segments"});
-  return torus(vec3_or(p, "center", {0, 0, 0}), number_or(p, "major_radius", 1.0), number_or(p, "minor_radius", 0.25),
-               u32_or(p, "major_segments", 48), u32_or(p, "minor_segments", 24));
+  return {torus(vec3_or(p, "center", {0, 0, 0}), number_or(p, "major_radius", 1.0), number_or(p, "minor_radius", 0.25),
+                u32_or(p, "major_segments", 48), u32_or(p, "minor_segments", 24)), std::nullopt};
 }
 
-Soup sphere_grid_from(const JsonField& p) {
+GeneratedMesh sphere_grid_from(const JsonField& p) {
   p.require_keys_within({"triangles"});
-  return sphere_grid(unsigned_or(p, "triangles", kSphereGridMaxTriangles, 1'000'000));
+  return {sphere_grid(unsigned_or(p, "triangles", kSphereGridMaxTriangles, 1'000'000)), std::nullopt};
 }
 
-Soup random_soup_from(const JsonField& p) {
+GeneratedMesh random_soup_from(const JsonField& p) {
   p.require_keys_within({"seed", "triangles", "extent"});
-  return random_soup(unsigned_or(p, "seed", kU64, 1), unsigned_or(p, "triangles", kU32 / 3, 100),
-                     number_or(p, "extent", 1.0));
+  return {random_soup(unsigned_or(p, "seed", kU64, 1), unsigned_or(p, "triangles", kU32 / 3, 100),
+                      number_or(p, "extent", 1.0)), std::nullopt};
 }
 
-Soup nonmanifold_fan_from(const JsonField& p) {
+GeneratedMesh nonmanifold_fan_from(const JsonField& p) {
   p.require_keys_within({"k"});
-  return nonmanifold_fan(u32_or(p, "k", 8));
+  return {nonmanifold_fan(u32_or(p, "k", 8)), std::nullopt};
 }
 
-Soup open_box_with_fins_from(const JsonField& p) {
+GeneratedMesh open_box_with_fins_from(const JsonField& p) {
   p.require_keys_within({});
-  return open_box_with_fins();
+  return {open_box_with_fins(), std::nullopt};
 }
 
 struct Generator {
   std::string_view name;
-  Soup (*make)(const JsonField& params);
+  GeneratedMesh (*make)(const JsonField& params);
 };
 
 constexpr std::array<Generator, 9> kGenerators{{{"floor", floor_from},
@@ -102,7 +114,7 @@ constexpr std::array<Generator, 9> kGenerators{{{"floor", floor_from},
 
 }  // namespace
 
-Soup run_generator(const JsonField& name_field, const std::optional<JsonField>& params) {
+GeneratedMesh run_generator(const JsonField& name_field, const std::optional<JsonField>& params) {
   const std::string name = name_field.string();
   for (const Generator& g : kGenerators) {
     if (g.name != name) continue;

@@ -88,6 +88,35 @@ TEST(CliInspect, DefaultScene_ReportsNonManifoldCastersPerMesh) {
   EXPECT_GE(j["meshes"].size(), 2u);
 }
 
+// data/scenes/noncasting_floor.json: the floor and the pane only receive ("casts": false), so
+// inspect and certify work on the sphere (528 triangles) and the box (12) alone.
+TEST(CliInspect, NonCastingMeshes_LeftOutOfTheCastersAndNamed) {
+  const fs::path json = temp_dir() / "noncasting_inspect.json";
+  const RunResult r = run_cli("inspect " + kSource + "/data/scenes/noncasting_floor.json --json " + json.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const nlohmann::json j = read_json(json);
+  EXPECT_EQ(j["triangles"], 540);
+  ASSERT_EQ(j["meshes"].size(), 4u);
+  EXPECT_EQ(j["meshes"][0]["casts"], false);
+  EXPECT_FALSE(j["meshes"][0].contains("triangles"));
+  EXPECT_EQ(j["meshes"][2]["casts"], true);
+  EXPECT_EQ(j["meshes"][2]["triangles"], 528);
+  EXPECT_NE(r.output.find("mesh floor: receives only"), std::string::npos) << r.output;
+}
+
+TEST(CliCertify, NonCastingMeshes_CertifiesTheCastersOnlyAndNeedsOne) {
+  const fs::path json = temp_dir() / "noncasting_certify.json";
+  const RunResult r = run_cli("certify " + kSource + "/data/scenes/noncasting_floor.json --method exact --samples 200 "
+                              "--json " + json.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(read_json(json)["triangles"], 540);
+  const fs::path nothing = temp_dir() / "nothing_casts.json";
+  std::ofstream(nothing) << R"({"meshes": [{"generator": "floor", "casts": false}]})";
+  const RunResult none = run_cli("certify " + nothing.string());
+  EXPECT_EQ(none.exit_code, 2);
+  EXPECT_NE(none.output.find("no casting triangle"), std::string::npos) << none.output;
+}
+
 TEST(CliInspect, BadFile_ExitsTwoNamingFileAndLine) {
   const fs::path bad = temp_dir() / "bad.obj";
   std::ofstream(bad) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n";
@@ -681,7 +710,7 @@ TEST(CliStencil, BadOrConflictingStencilOptions_ExitTwo) {
 // theirs without failing.
 TEST(CliSilhouette, DiffDefaultScene_NonManifoldMeshesFallBackWithTheirReports) {
   const fs::path json = temp_dir() / "diff_silhouette.json";
-  const RunResult r = run_cli("diff " + kDefaultScene + " --size 96x72 --methods discrete,accurate,smooth --json " +
+  const RunResult r = run_cli("diff " + kDefaultScene + " --size 96x72 --methods discrete,accurate,smooth,smooth-gpu --json " +
                               json.string());
   if (render_unavailable(r)) GTEST_SKIP() << r.output;
   ASSERT_EQ(r.exit_code, 0) << r.output;
@@ -689,7 +718,8 @@ TEST(CliSilhouette, DiffDefaultScene_NonManifoldMeshesFallBackWithTheirReports) 
   EXPECT_EQ(j["methods"]["discrete"]["hard_errors"], 0);
   EXPECT_EQ(j["methods"]["discrete"]["robust"], true);
   EXPECT_EQ(j["methods"]["smooth"]["robust"], false);
-  for (const char* method : {"discrete", "accurate", "smooth"}) {
+  EXPECT_EQ(j["methods"]["smooth-gpu"]["robust"], false);
+  for (const char* method : {"discrete", "accurate", "smooth", "smooth-gpu"}) {
     EXPECT_EQ(j["methods"][method]["closed"], true) << method;
     bool fan_fell_back = false, floor_smooth = false;
     for (const nlohmann::json& c : j["methods"][method]["casters"]) {
@@ -719,6 +749,32 @@ TEST(CliSilhouette, RenderSmoothSphere_OneLoopAndAShadow) {
   EXPECT_TRUE(sphere) << j.dump();
 }
 
+// A scene whose sphere records its ellipsoid: diff also compares the silhouette runs with the
+// analytic shadow (docs/smooth-silhouettes.md#per-pixel-error-against-the-analytic-shadow),
+// reports it in text and JSON and keeps the exit code; other runs and other scenes get none.
+TEST(CliSilhouette, DiffSmoothSphere_ReportsTheAnalyticErrorAndKeepsTheExitCode) {
+  const fs::path json = temp_dir() / "diff_analytic.json";
+  const RunResult r = run_cli("diff " + kSource + "/data/scenes/smooth_sphere.json --size 160x120 --methods "
+                              "cpu,discrete,smooth --json " + json.string());
+  if (render_unavailable(r)) GTEST_SKIP() << r.output;
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("analytic shadow of sphere as ellipsoid"), std::string::npos) << r.output;
+  const nlohmann::json j = read_json(json);
+  ASSERT_TRUE(j.contains("analytic")) << j.dump();
+  EXPECT_EQ(j["analytic"]["casters"], nlohmann::json::array({"sphere"}));
+  EXPECT_GT(j["analytic"]["pixels"][0]["shadowed"].get<int>(), 100);
+  EXPECT_FALSE(j["methods"]["cpu"].contains("analytic"));
+  const nlohmann::json& discrete = j["methods"]["discrete"]["analytic"];
+  const nlohmann::json& smooth = j["methods"]["smooth"]["analytic"];
+  EXPECT_LT(smooth["receiver_disagree"].get<int>(), discrete["receiver_disagree"].get<int>());
+  EXPECT_LT(smooth["caster_disagree"].get<int>(), discrete["caster_disagree"].get<int>());
+  EXPECT_TRUE(j["methods"]["smooth"]["per_light"][0].contains("analytic"));
+  // default.json has no analytic caster.
+  const fs::path plain = temp_dir() / "diff_no_analytic.json";
+  ASSERT_EQ(run_cli("diff " + kDefaultScene + " --size 64x48 --methods smooth --json " + plain.string()).exit_code, 0);
+  EXPECT_FALSE(read_json(plain).contains("analytic"));
+}
+
 TEST(CliSilhouette, BadEpsilonOrCreaseAngle_ExitTwo) {
   const std::string scene = kSource + "/data/scenes/smooth_sphere.json";
   EXPECT_EQ(run_cli("render " + scene + " --method smooth --epsilon 0").exit_code, 2);
@@ -741,4 +797,24 @@ TEST(CliSilhouette, CertifySmooth_EveryLightClosedWithTheCasters) {
     EXPECT_EQ(j["casters"].size(), 4u);
   }
   EXPECT_EQ(run_cli("certify " + kDefaultScene + " --method smooth --epsilon 0").exit_code, 2);
+}
+
+// certify --method smooth-gpu: the GPU builds the smooth casters' part of every light's volume,
+// read back and certified closed with the rest; render draws it.
+TEST(CliSilhouette, CertifyAndRenderSmoothGpu_ClosedAndAShadow) {
+  const fs::path json = temp_dir() / "certify_smooth_gpu.json";
+  const RunResult r = run_cli("certify " + kSource + "/data/scenes/closed_casters.json --method smooth-gpu --json " +
+                              json.string());
+  if (render_unavailable(r)) GTEST_SKIP() << r.output;
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const nlohmann::json j = read_json(json);
+  EXPECT_EQ(j["closed"], true);
+  bool built_on_gpu = false;
+  for (const nlohmann::json& c : j["casters"]) built_on_gpu = built_on_gpu || c["cast_by"] == "smooth-gpu";
+  EXPECT_TRUE(built_on_gpu) << j.dump();
+  const fs::path render_json = temp_dir() / "render_smooth_gpu.json";
+  const RunResult render = run_cli("render " + kSource + "/data/scenes/smooth_sphere.json --method smooth-gpu "
+                                   "--size 160x120 --json " + render_json.string());
+  ASSERT_EQ(render.exit_code, 0) << render.output;
+  EXPECT_GT(read_json(render_json)["shadowed_pixels"].get<int>(), 200);
 }

@@ -4,7 +4,8 @@
 //  2. on default.json its lit mask agrees with the exact `cpu` stencil method's except on a
 //     band along shadow boundaries (texel staircases, bias), a band that narrows as the map
 //     grows: mismatches(2048) < mismatches(256);
-//  3. sizes outside [1, kMaxShadowMapSize] are rejected.
+//  3. sizes outside [1, kMaxShadowMapSize] are rejected;
+//  4. a part that only receives (ShadedSoupPart::casts) is drawn but shadows nothing.
 #include "gpu/shadow_map_renderer.h"
 
 #include <gtest/gtest.h>
@@ -15,6 +16,7 @@
 #include <iostream>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "support/gl_test_support.h"
 #include "gpu/shadow_volume_geometry.h"
@@ -63,6 +65,57 @@ TEST_F(ShadowMapRendererTest, DirectionalLightShadowOfATriangleOnTheFloor) {
 TEST_F(ShadowMapRendererTest, SizesOutsideTheRangeAreRejected) {
   EXPECT_THROW(ShadowMapRenderer(0), std::invalid_argument);
   EXPECT_THROW(ShadowMapRenderer(kMaxShadowMapSize + 1), std::invalid_argument);
+}
+
+// The occluder of triangle_over_floor.h as a part of its own, red, casting or not.
+TEST_F(ShadowMapRendererTest, NonCastingPartIsDrawnButLeftOutOfTheDepthMap) {
+  const Soup all = triangle_over_floor();
+  Soup floor = all;
+  floor.triangles = {all.triangles[0], all.triangles[1]};
+  Soup occluder = all;
+  occluder.triangles = {all.triangles[2]};
+  const Camera camera = side_camera();
+  const OffscreenTarget target(camera.width, camera.height);
+  const std::array lights{kSideLight};
+  const Pixel on_occluder = pixel_of(camera, {0.0, 1.0, -1.0 / 3.0});  // its centroid, in view
+  for (const bool casts : {true, false}) {
+    SCOPED_TRACE(casts ? "casting" : "receiving only");
+    const std::array parts{ShadedSoupPart{&floor, {0.8f, 0.8f, 0.8f}, true},
+                           ShadedSoupPart{&occluder, {0.9f, 0.1f, 0.1f}, casts}};
+    const ShadedSoupMesh receivers(parts);
+    const StencilShadowFrame frame =
+        ShadowMapRenderer().render(target, receivers, soup_bounds(all), camera, lights);
+    if (casts) {
+      expect_shadow_pattern(camera, frame, kSideShadowed, kSideLit);
+    } else {
+      // No shadow anywhere on the floor: the points deep inside the casting occluder's shadow are lit.
+      for (const Vec3& p : kSideShadowed) {
+        const Pixel px = pixel_of(camera, p);
+        EXPECT_EQ(*frame.first_lit_mask.at(px.x, px.row), 255) << p[0] << ", " << p[2];
+      }
+    }
+    // Either way the occluder is drawn, in its own colour, over the floor behind it.
+    const auto colour = frame.colour.at(on_occluder.x, on_occluder.row);
+    EXPECT_GT(colour[0], colour[1] + 30);
+  }
+}
+
+// The depth pass draws the casting parts' first copies: adjacent ones as one range.
+TEST_F(ShadowMapRendererTest, CasterRangesCoverTheCastingPartsOnly) {
+  const Soup all = triangle_over_floor();  // 3 triangles
+  Soup one = all;
+  one.triangles = {all.triangles[2]};
+  const std::array parts{ShadedSoupPart{&all, {}, true}, ShadedSoupPart{&one, {}, true},
+                         ShadedSoupPart{&all, {}, false}, ShadedSoupPart{&one, {}, true}};
+  const ShadedSoupMesh mesh(parts);
+  const std::vector<GLint> firsts(mesh.caster_firsts().begin(), mesh.caster_firsts().end());
+  const std::vector<GLsizei> counts(mesh.caster_counts().begin(), mesh.caster_counts().end());
+  EXPECT_EQ(firsts, (std::vector<GLint>{0, 21}));
+  EXPECT_EQ(counts, (std::vector<GLsizei>{12, 3}));
+  EXPECT_EQ(mesh.single_order_vertex_count(), 24);
+  const ShadedSoupMesh whole(all);  // a soup alone casts whole
+  EXPECT_EQ(std::vector<GLsizei>(whole.caster_counts().begin(), whole.caster_counts().end()),
+            (std::vector<GLsizei>{9}));
 }
 
 // The boundary band on default.json (1024x768, its point light) is a few pixels wide along

@@ -1,7 +1,8 @@
 // The exact image (reference/exact_image.h, docs/definitions.md#pixel-protocol): the shadow of a sphere over a floor
 // against the analytic disc, a square's shadow under a directional light, invariance under
 // vertex relabelling, face reversal and translation, a ray exactly through a shared edge, the
-// terminator of a triangle facing away from the light, and input validation.
+// terminator of a triangle facing away from the light, triangles that only receive, and input
+// validation.
 #include "reference/exact_image.h"
 
 #include <gtest/gtest.h>
@@ -357,6 +358,80 @@ TEST(ExactImage, DepthBand_MarksNearlyCoincidentSurfacesAndGrazingVolumeFaces) {
     }
 }
 
+// --- triangles that only receive (ExactImageOptions::casts, a mesh's "casts": false) ----------
+
+// A floor, a closed box high above it and, between them, a square that only receives.
+TEST(ExactImage, NonCastingTriangles_AreSeenAndHideButCastNothing) {
+  Soup without = floor_quad(6.0);                            // triangles 0, 1
+  append(without, box({-0.5, 3.0, -0.5}, {0.5, 3.5, 0.5}));  // 2 to 13
+  Soup with = without;
+  append(with, test_support::soup_of({{-1.5, 2.0, -1.5}, {1.5, 2.0, -1.5}, {1.5, 2.0, 1.5}, {-1.5, 2.0, 1.5}},
+                                     {{0, 2, 1}, {0, 3, 2}}));  // 14, 15: the square, last
+  ASSERT_EQ(with.triangles.size(), 16u);
+  ExactImageOptions receiving;
+  receiving.casts.assign(16, 1);
+  receiving.casts[14] = receiving.casts[15] = 0;
+  const std::vector<Light> lights{point_light(0.5, 8.0, 0.3)};
+  Camera camera;
+  camera.eye = {4.0, 7.0, 6.0};
+  camera.target = {0.0, 0.5, 0.0};
+  camera.width = 96;
+  camera.height = 72;
+  const ExactImage image = exact_image(with, lights, camera, receiving);
+  const ExactImage casting = exact_image(with, lights, camera);
+  const ExactImage absent = exact_image(without, lights, camera);
+
+  // It hides as a caster does: the same triangle seen at every pixel.
+  EXPECT_EQ(image.hit_triangles, casting.hit_triangles);
+  const ExactLightImage& l = image.lights.at(0);
+  std::size_t unshadowed = 0, square_seen = 0, square_shadowed = 0;
+  for (std::size_t p = 0; p < l.counts.size(); ++p) {
+    const std::uint32_t h = image.hit_triangles[p];
+    if (h == kNoHit || l.ambiguity[p] != 0) continue;
+    if (h < 14) {
+      // Where the floor or the box is seen, n(P) is that of the scene without the square.
+      EXPECT_EQ(absent.hit_triangles[p], h) << p;
+      EXPECT_EQ(l.counts[p], absent.lights[0].counts[p]) << p;
+      if (casting.lights[0].ambiguity[p] == 0 && casting.lights[0].counts[p] != l.counts[p]) ++unshadowed;
+    } else {
+      // It still receives: the box's shadow (two crossings of the closed box) falls on it.
+      ++square_seen;
+      EXPECT_TRUE(l.counts[p] == 0 || l.counts[p] == 2) << p;
+      square_shadowed += l.counts[p] == 2;
+    }
+  }
+  // Not vacuous: the square casting would shadow part of the floor, and the box shadows it.
+  EXPECT_GT(unshadowed, 100u);
+  EXPECT_GT(square_seen, 200u);
+  EXPECT_GT(square_shadowed, 20u);
+}
+
+// The floor of DepthBand_MarksNearlyCoincidentSurfacesAndGrazingVolumeFaces with the light 1e-9
+// above it: its diagonal's side face grazes it. A floor that only receives has no volume face.
+TEST(ExactImage, NonCastingFloor_HasNoVolumeFaceInTheDepthBandAndIsStillItsOwnTerminator) {
+  ExactImageOptions banded;
+  banded.depth_band = [](double) { return 1e-3; };
+  Camera camera = top_down_camera();
+  camera.width = camera.height = 8;
+  const std::vector<Light> grazing{point_light(0.25, 1e-9, 3.0)};
+  const ExactImage cast = exact_image(floor_quad(4.0), grazing, camera, banded);
+  banded.casts = {0, 0};
+  const ExactImage received = exact_image(floor_quad(4.0), grazing, camera, banded);
+  std::size_t band_pixels = 0;
+  for (std::size_t p = 0; p < received.hit_triangles.size(); ++p) {
+    band_pixels += (cast.lights[0].ambiguity[p] & kDepthBand) != 0;
+    EXPECT_EQ(received.lights[0].ambiguity[p] & kDepthBand, 0) << p;
+    EXPECT_EQ(received.lights[0].ambiguity[p], cast.lights[0].ambiguity[p] & ~kDepthBand) << p;
+    EXPECT_EQ(received.lights[0].counts[p], cast.lights[0].counts[p]) << p;
+  }
+  EXPECT_GT(band_pixels, 0u);
+  // Lit from below, it is its own terminator whether it casts or not.
+  const std::vector<Light> below{point_light(0.25, -3.0, 0.5)};
+  const ExactImage from_below = exact_image(floor_quad(4.0), below, camera, banded);
+  for (std::uint8_t a : from_below.lights[0].ambiguity)
+    EXPECT_TRUE((a & kTerminator) != 0 || (a & kZeroSign) != 0);  // a centre on the diagonal: no hit to judge
+}
+
 TEST(ExactImage, TriangleFacingAwayFromTheLight_IsTerminatorAmbiguous) {
   const Soup soup = floor_quad(4.0);
   // One light below the floor (the floor faces away from it, seen from above), one above.
@@ -502,6 +577,10 @@ TEST(ExactImage, BadInput_ThrowsNamingTheFunction) {
     EXPECT_NE(std::string(e.what()).find("exact_image"), std::string::npos);
   }
   EXPECT_THROW((void)exact_image(floor_quad(1.0), std::vector<Light>{Light{{0, 0, 0, 0}}}, camera),
+               std::invalid_argument);
+  ExactImageOptions one_flag;
+  one_flag.casts = {1};  // the floor has two triangles
+  EXPECT_THROW((void)exact_image(floor_quad(1.0), std::vector<Light>{point_light(0, 1, 0)}, camera, one_flag),
                std::invalid_argument);
   camera.target = camera.eye;
   EXPECT_THROW((void)exact_image(floor_quad(1.0), std::vector<Light>{}, camera), std::invalid_argument);

@@ -80,6 +80,33 @@ TEST(MergedSoup, EmptyMeshesAndScene_AreNeutral) {
   EXPECT_EQ(merged.normals, floor.normals);  // a soup without vertices has all its normals
 }
 
+void expect_same_soup(const Soup& got, const Soup& expected) {
+  EXPECT_EQ(got.vertices, expected.vertices);
+  EXPECT_EQ(got.triangles, expected.triangles);
+  EXPECT_EQ(got.normals, expected.normals);
+}
+
+TEST(MergedCasters, NonCastingMeshes_LeftOutAndFlaggedInMergedSoupsOrder) {
+  Scene scene = scene_of({floor_quad(2.0), nonmanifold_fan(5), box({0, 0, 0}, {1, 1, 1}), floor_quad(1.0)});
+  scene.meshes[0].casts = false;
+  scene.meshes[3].casts = false;
+  // The casters are exactly the casting meshes merged alone, in their order.
+  expect_same_soup(merged_casters(scene), merged_soup(scene_of({scene.meshes[1].soup, scene.meshes[2].soup})));
+  // One flag per triangle of merged_soup, 0 on the floors' triangles only.
+  std::vector<std::uint8_t> expected(2, 0);
+  expected.insert(expected.end(), 5 + 12, 1);
+  expected.insert(expected.end(), 2, 0);
+  const std::vector<std::uint8_t> casts = casting_triangles(scene);
+  EXPECT_EQ(casts, expected);
+  EXPECT_EQ(casts.size(), merged_soup(scene).triangles.size());
+}
+
+TEST(MergedCasters, EveryMeshCasting_IsTheMergedSoup) {
+  const Scene scene = scene_of({floor_quad(2.0), uv_sphere({0.0, 1.0, 0.0}, 0.5, 6, 3)});
+  expect_same_soup(merged_casters(scene), merged_soup(scene));
+  EXPECT_EQ(casting_triangles(scene), std::vector<std::uint8_t>(merged_soup(scene).triangles.size(), 1));
+}
+
 TEST(AppendSoup, ToASoupWithTriangles_OffsetsByItsVertexCount) {
   Soup to = box({0, 0, 0}, {1, 1, 1});
   const std::size_t before = to.vertices.size();

@@ -177,6 +177,78 @@ TEST(ParseScene, NonUniformScale_NormalsByInverseTranspose) {
   }
 }
 
+TEST(ParseScene, MeshKeys_CastsSilhouetteAndEpsilonRead) {
+  const Scene s = parse(R"({"meshes": [
+    {"generator": "floor", "casts": false},
+    {"generator": "uv_sphere", "silhouette": "smooth", "epsilon": 0.02},
+    {"generator": "box", "silhouette": "chain", "casts": true},
+    {"generator": "icosphere", "epsilon": 1e-3},
+    {"generator": "torus"}]})");
+  ASSERT_EQ(s.meshes.size(), 5u);
+  EXPECT_FALSE(s.meshes[0].casts);
+  EXPECT_EQ(s.meshes[1].silhouette, shadowcert::MeshSilhouette::smooth);
+  EXPECT_EQ(s.meshes[1].epsilon, 0.02);
+  EXPECT_TRUE(s.meshes[2].casts);
+  EXPECT_EQ(s.meshes[2].silhouette, shadowcert::MeshSilhouette::chain);
+  // An epsilon without "silhouette" is kept: it applies whenever the command casts the mesh smooth.
+  EXPECT_FALSE(s.meshes[3].silhouette.has_value());
+  EXPECT_EQ(s.meshes[3].epsilon, 1e-3);
+  // Absent keys: the mesh casts, and the command decides.
+  EXPECT_TRUE(s.meshes[4].casts);
+  EXPECT_FALSE(s.meshes[4].silhouette.has_value());
+  EXPECT_FALSE(s.meshes[4].epsilon.has_value());
+  for (const char* name : {"discrete", "accurate"})
+    EXPECT_TRUE(parse(std::string(R"({"meshes": [{"generator": "box", "silhouette": ")") + name + R"("}]})")
+                    .meshes[0]
+                    .silhouette.has_value())
+        << name;
+}
+
+// |A^-1 (x - c)| for the ellipsoid x = c + A u: 1 on its surface.
+double ellipsoid_radius(const shadowcert::Ellipsoid& e, const Vec3& x) {
+  const Vec3& a = e.axes[0];
+  const Vec3& b = e.axes[1];
+  const Vec3& c = e.axes[2];
+  // A^-1 = (rows b x c, c x a, a x b) / det A, by Cramer's rule.
+  const double det = dot(a, cross(b, c));
+  const Vec3 d = sub(x, e.centre);
+  const Vec3 u{dot(cross(b, c), d) / det, dot(cross(c, a), d) / det, dot(cross(a, b), d) / det};
+  return std::sqrt(dot(u, u));
+}
+
+TEST(ParseScene, SphereGenerators_RecordTheirEllipsoidUnderAnyTransform) {
+  const Scene s = parse(R"({"meshes": [
+    {"generator": "uv_sphere", "params": {"center": [1, 0, 0], "radius": 2}},
+    {"generator": "uv_sphere", "params": {"center": [1, 0, 0], "radius": 2},
+     "transform": {"translate": [1, 2, 3], "scale": [2, 3, 4]}},
+    {"generator": "icosphere", "params": {"center": [0.5, -1, 2], "radius": 0.75, "subdivisions": 2},
+     "transform": {"translate": [-3, 1, 0.25], "scale": [1, 0.5, 2], "rotate_deg": [20, -35, 110]}},
+    {"generator": "uv_sphere", "params": {"radius": 1.5, "slices": 9, "stacks": 7},
+     "transform": {"matrix": [1, 0.5, 0, 2,  0, -1, 0.25, 0,  0.3, 0, 2, -1,  0, 0, 0, 1]}},
+    {"generator": "icosphere", "transform": {"rotate_deg": [0, 0, 45], "scale": -2}}]})");
+  ASSERT_EQ(s.meshes.size(), 5u);
+  // Untransformed: the params' sphere. Scaled and moved: centre M c, axes A r e_i.
+  ASSERT_TRUE(s.meshes[0].ellipsoid.has_value());
+  EXPECT_EQ(s.meshes[0].ellipsoid->centre, (Vec3{1, 0, 0}));
+  EXPECT_EQ(s.meshes[0].ellipsoid->axes, (std::array<Vec3, 3>{{{2, 0, 0}, {0, 2, 0}, {0, 0, 2}}}));
+  ASSERT_TRUE(s.meshes[1].ellipsoid.has_value());
+  EXPECT_EQ(s.meshes[1].ellipsoid->centre, (Vec3{3, 2, 3}));
+  EXPECT_EQ(s.meshes[1].ellipsoid->axes, (std::array<Vec3, 3>{{{4, 0, 0}, {0, 6, 0}, {0, 0, 8}}}));
+  // Whatever the transform (rotation, shear, mirror), every vertex lies on the recorded surface.
+  for (const shadowcert::SceneMesh& mesh : s.meshes) {
+    ASSERT_TRUE(mesh.ellipsoid.has_value()) << mesh.name;
+    double worst = 0.0;
+    for (const Vec3& v : mesh.soup.vertices) worst = std::max(worst, std::abs(ellipsoid_radius(*mesh.ellipsoid, v) - 1.0));
+    EXPECT_LT(worst, 1e-14) << mesh.name;
+  }
+}
+
+TEST(ParseScene, OtherMeshes_HaveNoEllipsoid) {
+  const Scene s = parse(R"({"meshes": [{"generator": "floor"}, {"generator": "box"}, {"generator": "torus"},
+    {"generator": "nonmanifold_fan"}, {"generator": "open_box_with_fins"}, {"generator": "random_soup"}]})");
+  for (const shadowcert::SceneMesh& mesh : s.meshes) EXPECT_FALSE(mesh.ellipsoid.has_value()) << mesh.name;
+}
+
 TEST(ParseScene, Lights_PointAndDirectional) {
   const Scene s = parse(R"({"lights": [[0, 10, 0, 1], [1, 1, 1, 0], [1e300, -2, 3, 1]]})");
   ASSERT_EQ(s.lights.size(), 3u);
@@ -239,6 +311,7 @@ TEST(LoadScene, MeshFiles_ResolvedAgainstSceneFolderAndPlaced) {
   EXPECT_EQ(s.meshes[0].name, "meshes/tri.obj");
   EXPECT_EQ(s.meshes[1].name, "absolute");
   EXPECT_EQ(s.meshes[0].soup.vertices[1], (Vec3{1, 0, 5}));
+  EXPECT_FALSE(s.meshes[0].ellipsoid.has_value());  // a file says nothing of the surface it samples
 }
 
 TEST(LoadScene, MissingMeshFile_ErrorKeepsReaderMessage) {
@@ -322,6 +395,10 @@ TEST(LoadScene, BadScenes_ErrorNamesFileKeyAndProblem) {
       {"description_type.json", "description: expected a string, got number", 0},
       // Found by fuzz/scene_file_fuzzer (docs/fuzzing-parsers.md): a box scaled by 1e308.
       {"default_light_overflow.json", "the default light (above the meshes, as high as they are across) overflows", 0},
+      {"casts_not_boolean.json", "meshes[0].casts: expected true or false, got number", 0},
+      {"silhouette_unknown.json",
+       "meshes[1].silhouette: expected \"chain\", \"discrete\", \"accurate\" or \"smooth\", got \"smoth\"", 0},
+      {"epsilon_not_positive.json", "meshes[0].epsilon: must be a distance > 0 (world units), got 0", 0},
   };
   std::size_t files = 0;
   for (const auto& entry : std::filesystem::directory_iterator(kTestScenes / "bad")) files += entry.is_regular_file();

@@ -107,14 +107,14 @@ inline ShadowMethodRenderer one_light_renderer(ShadowMethod method, const Soup& 
 }
 
 // A scene ready for every method, as `shadowcert render` prepares it (pipeline/method_inputs.h):
-// its meshes merged (merged_soup) as the casters; each mesh a receiver part; cpu's volume of
-// each light. Set the camera's size before or after; change the lights only before
-// (cpu_volumes follow them). Not copyable: `parts` point into `scene`.
+// its casting meshes merged (merged_casters) as the casters; each mesh a receiver part, casting
+// as it says; cpu's volume of each light. Set the camera's size before or after; change the
+// lights only before (cpu_volumes follow them). Not copyable: `parts` point into `scene`.
 struct PreparedScene {
   explicit PreparedScene(Scene s)
-      : scene(std::move(s)), soup(merged_soup(scene)),
-        prepared(prepare_method_inputs(soup, scene.lights, kShadowMethods)) {
-    for (const SceneMesh& mesh : scene.meshes) parts.push_back({&mesh.soup});
+      : scene(std::move(s)), soup(merged_soup(scene)), casters(merged_casters(scene)),
+        prepared(prepare_method_inputs(casters, scene.lights, kShadowMethods)) {
+    for (const SceneMesh& mesh : scene.meshes) parts.push_back({&mesh.soup, ShadedSoupPart{}.albedo, mesh.casts});
   }
   PreparedScene(const PreparedScene&) = delete;
   PreparedScene& operator=(const PreparedScene&) = delete;
@@ -127,7 +127,8 @@ struct PreparedScene {
   }
 
   Scene scene;
-  Soup soup;
+  Soup soup;     // every mesh (merged_soup)
+  Soup casters;  // the casting meshes (merged_casters)
   MethodInputs prepared;
   std::vector<ShadedSoupPart> parts;
   const std::vector<HomogeneousMesh>& cpu_volumes = prepared.cpu_volumes;

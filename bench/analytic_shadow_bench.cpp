@@ -1,0 +1,383 @@
+// Smooth silhouettes pixel by pixel (docs/smooth-silhouettes.md, "Per-pixel error against the
+// analytic shadow"): each method's GL frame against the analytic shadow of the ellipsoid its
+// caster approximates (pipeline/analytic_comparison.h), with the GL time per frame; and, on the
+// real meshes of ../shared/data/, each method against the polyhedral exact image (what `diff`
+// computes), with the qualification and the time per frame. Needs EGL (llvmpipe will do).
+//
+//   analytic_shadow_bench [--resolution=1024x768] [--mesh-resolution=512x384] [Google Benchmark flags]
+//   analytic_shadow_bench --benchmark_filter='^pixels/'     # the per-pixel table
+//   analytic_shadow_bench --benchmark_filter='^offset/'     # the cap offset against self-shadowing
+//   analytic_shadow_bench --benchmark_filter='^mesh/'       # the real meshes
+//
+//   pixels/METHOD/SHAPE/LIGHT   discrete, accurate and smooth at eps in {0.1, 0.03, 0.01, 0.003}
+//       (caster radius 1 at the origin, the floor y = -1.5 receiving only), on uv spheres from
+//       8x4 to 256x128 and an ellipsoid (bench/smooth_silhouette_bench.cpp's shapes, lights
+//       and floor), under the point light (1.2, 4, 0.8) and the sun towards (0.3, 1, 0.2).
+//       The volume is pipeline/silhouette_volumes.h's (what `render` and `diff` draw: the scene
+//       in the eye's frame, rounded to float, cut caps behind the surface by the depth band).
+//       Counters: recv_dis, recv_agree, recv_amb (floor pixels), self_dis, self_agree, self_band,
+//       self_amb (the caster's own pixels, against the interpolated-normal terminator), build_ms
+//       (the volume, CPU, one build), vol_tris. Time: GL ms per frame (manual time, wall
+//       clock, glFinish; the first frame, with its readback, is untimed).
+//   offset/METHOD/OFFSET/SHAPE/LIGHT   accurate and smooth(0.01) with the cut caps on the surface
+//       (0), behind it by the depth band (band, what GL draws), and by the paper's 0.15: the
+//       same counters.
+//   mesh/NAME   discrete, accurate and smooth(0.01) in one `diff` comparison
+//       (pipeline/scene_comparison.h) of the mesh over a floor, framed as the SharedMeshDiff
+//       tests frame it. Counters: METHOD_dis (pixels where the method's lit mask disagrees
+//       with the polyhedral exact image: its hard errors), METHOD_agree, ambiguous, METHOD_ms
+//       (GL ms per frame), qualified (1: the mesh is cast by the methods; 0: it falls back to
+//       the robust chain, the label says why), tris. Skipped when the file is absent.
+#include <benchmark/benchmark.h>
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <numeric>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "contour/smooth_caster.h"
+#include "contour/smooth_volume.h"
+#include "core/eye_frame.h"
+#include "core/float_rounding.h"
+#include "core/near_plane.h"
+#include "core/vector3.h"
+#include "exact/light_orientation.h"
+#include "gpu/depth_precision.h"
+#include "gpu/egl_context.h"
+#include "gpu/gl_environment_error.h"
+#include "gpu/offscreen_target.h"
+#include "gpu/shadow_method_renderer.h"
+#include "io/soup_file.h"
+#include "pipeline/analytic_comparison.h"
+#include "pipeline/mesh_palette.h"
+#include "pipeline/method_inputs.h"
+#include "pipeline/scene_comparison.h"
+#include "pipeline/silhouette_volumes.h"
+#include "scene/merged_soup.h"
+#include "scene/procedural_mesh.h"
+
+namespace {
+
+using namespace shadowcert;
+using Clock = std::chrono::steady_clock;
+
+const Light kPointLight{{1.2, 4.0, 0.8, 1.0}};
+const Light kSun{{0.3, 1.0, 0.2, 0.0}};
+constexpr double kFloorHeight = -1.5;
+constexpr double kFloorHalfSize = 8.0;
+// The paper's offset of the caps along -n (Mattausch et al. 2012, §5), for a caster of unit size.
+constexpr double kPaperCapOffset = 0.15;
+// GL frames timed per benchmark after the untimed compared one.
+constexpr benchmark::IterationCount kFrames = 5;
+
+struct Settings {
+  std::uint32_t width = 1024, height = 768;            // pixels/ and offset/
+  std::uint32_t mesh_width = 512, mesh_height = 384;  // mesh/
+};
+Settings g_settings;
+
+struct Shape {
+  std::string name;
+  Soup soup;
+  Ellipsoid truth;
+};
+
+// bench/smooth_silhouette_bench.cpp's ellipsoid: a 32x16 uv sphere under A (columns below),
+// its normals computed from the transformed mesh.
+Shape ellipsoid_shape() {
+  const Ellipsoid e{{0, 0, 0}, {{{1.4, 0.0, 0.2}, {0.0, 0.8, 0.0}, {-0.3, 0.0, 1.0}}}};
+  Soup s = uv_sphere({0, 0, 0}, 1.0, 32, 16);
+  s.normals.clear();
+  for (Vec3& v : s.vertices) {
+    const Vec3 u = v;
+    for (std::size_t k = 0; k < 3; ++k) v[k] = e.axes[0][k] * u[0] + e.axes[1][k] * u[1] + e.axes[2][k] * u[2];
+  }
+  return {"ellipsoid32x16", s, e};
+}
+
+std::vector<Shape> shapes() {
+  std::vector<Shape> out;
+  for (const auto& [slices, stacks] : {std::pair{8u, 4u}, {12u, 6u}, {16u, 8u}, {32u, 16u}, {64u, 32u}, {128u, 64u},
+                                       {256u, 128u}})
+    out.push_back({"sphere" + std::to_string(slices) + "x" + std::to_string(stacks),
+                   uv_sphere({0, 0, 0}, 1.0, slices, stacks), Ellipsoid{}});
+  out.push_back(ellipsoid_shape());
+  return out;
+}
+
+// One shape under one light: the scene, as GL gets it, and the analytic truth. One at a time.
+struct Case {
+  std::string key;
+  Scene scene;  // world space
+  Scene drawn;  // the eye's frame (core/eye_frame.h)
+  std::vector<gpu::ShadedSoupPart> parts;
+  MethodInputs inputs;
+  AnalyticShadowImage truth;
+};
+
+Scene shape_scene(const Shape& shape, const Light& light) {
+  Scene scene;
+  SceneMesh floor;
+  floor.name = "floor";
+  floor.soup = floor_quad(kFloorHalfSize);
+  for (Vec3& v : floor.soup.vertices) v[1] += kFloorHeight;
+  floor.casts = false;  // it only receives
+  scene.meshes.push_back(std::move(floor));
+  SceneMesh caster;
+  caster.name = shape.name;
+  caster.soup = shape.soup;
+  caster.ellipsoid = shape.truth;
+  scene.meshes.push_back(std::move(caster));
+  scene.lights = {light};
+  // Sees the shadow and the caster's terminator side (docs/smooth-silhouettes.md).
+  scene.camera.eye = {-2.5, 5.5, 6.5};
+  scene.camera.target = {-0.4, -0.9, -0.3};
+  scene.camera.width = g_settings.width;
+  scene.camera.height = g_settings.height;
+  scene.camera = camera_fitted_to(scene);
+  return scene;
+}
+
+Case& case_for(const Shape& shape, std::string_view light_name, const Light& light) {
+  static std::unique_ptr<Case> current;
+  const std::string key = shape.name + "/" + std::string(light_name);
+  if (current && current->key == key) return *current;
+  current.reset();
+  auto c = std::make_unique<Case>();
+  c->key = key;
+  c->scene = shape_scene(shape, light);
+  c->drawn = eye_relative_scene(c->scene);
+  c->parts = shaded_parts(c->drawn);
+  const std::array methods{gpu::ShadowMethod::smooth};
+  c->inputs = prepare_method_inputs(merged_casters(c->drawn), c->drawn.lights, methods);
+  c->truth = analytic_reference(c->scene);
+  current = std::move(c);
+  return *current;
+}
+
+// The caster's volume as silhouette_volumes builds it, but with the cut caps `offset` behind
+// the surface (a negative offset: the depth band, as silhouette_volumes sets it).
+HomogeneousMesh volume_with_offset(const Case& c, SilhouetteMethod method, double epsilon, double offset) {
+  const SceneMesh& mesh = c.drawn.meshes[1];
+  const SmoothCasterResult caster = smooth_caster(float_rounded(mesh.soup));
+  if (!caster.caster) throw std::runtime_error(mesh.name + ": " + caster.qualification.summary());
+  if (offset < 0.0) {
+    double farthest = 0.0;
+    for (const Vec3& v : caster.caster->vertices) farthest = std::max(farthest, std::sqrt(dot(v, v)));
+    offset = gpu::depth_band(farthest, c.drawn.camera.near_plane);
+  }
+  return smooth_shadow_volume(*caster.caster, float_rounded(c.drawn.lights[0]), {method, epsilon, offset}).mesh;
+}
+
+// Renders `volume` for the case's light, compares the first frame with the truth and times
+// kFrames more.
+void measure(benchmark::State& state, Case& c, gpu::ShadowMethod method, const HomogeneousMesh& volume,
+             double build_ms) {
+  gpu::ShadowMethodOptions options;
+  options.light_stencil.assign(1, gpu::StencilMethod::zfail);  // as compare_scene draws these
+  gpu::ShadowMethodRenderer renderer(method, light_scene(c.inputs, c.parts, c.drawn.lights, 0, &volume), options);
+  const gpu::OffscreenTarget target(c.drawn.camera.width, c.drawn.camera.height);
+  const AnalyticCounts a = compare_analytic(c.truth, 0, renderer.render(target, c.drawn.camera));
+  for (auto _ : state) state.SetIterationTime(renderer.render_frames(target, c.drawn.camera, 1).front() / 1000.0);
+  state.counters["recv_dis"] = static_cast<double>(a.receiver_disagree);
+  state.counters["recv_agree"] = static_cast<double>(a.receiver_agree);
+  state.counters["recv_amb"] = static_cast<double>(a.receiver_ambiguous);
+  state.counters["self_dis"] = static_cast<double>(a.caster_disagree);
+  state.counters["self_agree"] = static_cast<double>(a.caster_agree);
+  state.counters["self_band"] = static_cast<double>(a.caster_band);
+  state.counters["self_amb"] = static_cast<double>(a.caster_ambiguous);
+  state.counters["build_ms"] = build_ms;
+  state.counters["vol_tris"] = static_cast<double>(volume.triangles.size());
+}
+
+void run_pixels(benchmark::State& state, const Shape& shape, std::string_view light_name, const Light& light,
+                gpu::ShadowMethod method, double epsilon) {
+  Case& c = case_for(shape, light_name, light);
+  SilhouetteOptions options;
+  options.epsilon = epsilon;
+  options.near_plane = c.drawn.camera.near_plane;
+  const auto start = Clock::now();
+  const SilhouetteVolumes volumes = silhouette_volumes(c.drawn.meshes, c.drawn.lights, method, options);
+  const double build_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+  measure(state, c, method, volumes.per_light[0], build_ms);
+  state.counters["truth_s"] = c.truth.seconds;
+}
+
+void run_offset(benchmark::State& state, const Shape& shape, std::string_view light_name, const Light& light,
+                gpu::ShadowMethod method, double offset) {
+  Case& c = case_for(shape, light_name, light);
+  const SilhouetteMethod kind = method == gpu::ShadowMethod::accurate ? SilhouetteMethod::accurate : SilhouetteMethod::smooth;
+  const auto start = Clock::now();
+  const HomogeneousMesh volume = volume_with_offset(c, kind, kDefaultContourEpsilon, offset);
+  measure(state, c, method, volume, std::chrono::duration<double, std::milli>(Clock::now() - start).count());
+}
+
+// tests/pipeline/scene_comparison_test.cpp's framing of a shared mesh: its vertex box (centre
+// c, half-diagonal r), a floor 6r wide just under it (receiving only), a point light at
+// c + r (1.5, 3, 1), the eye at c + r (2.4, 1.6, 3.2).
+Scene shared_mesh_scene(const Soup& mesh, const std::string& name) {
+  Vec3 lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
+  for (const Triangle& t : mesh.triangles)
+    for (std::uint32_t v : t)
+      for (std::size_t k = 0; k < 3; ++k) {
+        lo[k] = std::min(lo[k], mesh.vertices[v][k]);
+        hi[k] = std::max(hi[k], mesh.vertices[v][k]);
+      }
+  const Vec3 c{0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]), 0.5 * (lo[2] + hi[2])};
+  const double r = 0.5 * std::sqrt(dot(difference(hi, lo), difference(hi, lo)));
+  const auto at = [&](double x, double y, double z) { return Vec3{c[0] + r * x, c[1] + r * y, c[2] + r * z}; };
+  SceneMesh floor;
+  floor.name = "floor";
+  const double y = lo[1] - 0.01 * r;
+  floor.soup.vertices = {{c[0] - 3 * r, y, c[2] - 3 * r}, {c[0] - 3 * r, y, c[2] + 3 * r},
+                         {c[0] + 3 * r, y, c[2] + 3 * r}, {c[0] + 3 * r, y, c[2] - 3 * r}};
+  floor.soup.triangles = {{0, 1, 2}, {0, 2, 3}};
+  floor.casts = false;
+  SceneMesh caster;
+  caster.name = name;
+  caster.soup = mesh;
+  Scene scene;
+  scene.meshes.push_back(std::move(caster));
+  scene.meshes.push_back(std::move(floor));
+  const Vec3 light = at(1.5, 3.0, 1.0);
+  scene.lights = {Light{{light[0], light[1], light[2], 1.0}}};
+  scene.camera.eye = at(2.4, 1.6, 3.2);
+  scene.camera.target = c;
+  scene.camera.width = g_settings.mesh_width;
+  scene.camera.height = g_settings.mesh_height;
+  scene.camera = camera_fitted_to(scene);
+  return scene;
+}
+
+void run_mesh(benchmark::State& state, const std::string& relative) {
+  const std::filesystem::path file = std::filesystem::path(SHADOWCERT_SHARED_DATA) / relative;
+  if (!std::filesystem::exists(file)) {
+    state.SkipWithError((file.string() + " is not here (../shared/data/ is a dev checkout's)").c_str());
+    return;
+  }
+  const Scene scene = shared_mesh_scene(read_soup(file), relative);
+  SceneComparisonOptions options;
+  options.timed_frames = kFrames;
+  const std::vector<gpu::ShadowMethod> methods{gpu::ShadowMethod::discrete, gpu::ShadowMethod::accurate,
+                                               gpu::ShadowMethod::smooth};
+  std::optional<SceneComparison> c;
+  for (auto _ : state) c = compare_scene(scene, methods, options);
+  for (const MethodRun& run : c->runs) {
+    const std::string name(gpu::shadow_method_name(run.method));
+    state.counters[name + "_dis"] = static_cast<double>(run.sum(&PixelComparison::hard_errors));
+    state.counters[name + "_agree"] = static_cast<double>(run.sum(&PixelComparison::agree));
+    state.counters[name + "_ms"] = run.gl_ms();
+    state.counters["ambiguous"] = static_cast<double>(run.sum(&PixelComparison::ambiguous));
+  }
+  const SilhouetteCaster& caster = c->silhouettes.front().casters.front();
+  state.counters["qualified"] = caster.cast_by ? 1.0 : 0.0;
+  state.counters["tris"] = static_cast<double>(caster.triangles);
+  state.SetLabel(caster.cast_by ? "qualifies" : caster.qualification);
+}
+
+void register_benchmarks() {
+  struct Method {
+    std::string name;
+    gpu::ShadowMethod method;
+    double epsilon;
+  };
+  const std::vector<Method> methods{{"discrete", gpu::ShadowMethod::discrete, kDefaultContourEpsilon},
+                                    {"accurate", gpu::ShadowMethod::accurate, kDefaultContourEpsilon},
+                                    {"smooth0.1", gpu::ShadowMethod::smooth, 0.1},
+                                    {"smooth0.03", gpu::ShadowMethod::smooth, 0.03},
+                                    {"smooth0.01", gpu::ShadowMethod::smooth, 0.01},
+                                    {"smooth0.003", gpu::ShadowMethod::smooth, 0.003}};
+  const std::vector<Shape> all = shapes();
+  // Light-major, then shape: one analytic image per (light, shape).
+  for (const auto& [light_name, light] : {std::pair{"point", kPointLight}, {"sun", kSun}})
+    for (const Shape& shape : all)
+      for (const Method& m : methods)
+        benchmark::RegisterBenchmark(("pixels/" + m.name + "/" + shape.name + "/" + light_name).c_str(), run_pixels,
+                                     shape, std::string_view(light_name), light, m.method, m.epsilon)
+            ->Iterations(kFrames)
+            ->UseManualTime()
+            ->Unit(benchmark::kMillisecond);
+  const std::vector<std::pair<std::string, double>> offsets{{"0", 0.0}, {"band", -1.0}, {"0.15", kPaperCapOffset}};
+  for (const auto& [light_name, light] : {std::pair{"point", kPointLight}, {"sun", kSun}})
+    for (const Shape& shape : all) {
+      if (shape.name != "sphere12x6" && shape.name != "sphere32x16" && shape.name != "sphere128x64" &&
+          shape.name != "ellipsoid32x16")
+        continue;
+      for (gpu::ShadowMethod method : {gpu::ShadowMethod::accurate, gpu::ShadowMethod::smooth})
+        for (const auto& [offset_name, offset] : offsets)
+          benchmark::RegisterBenchmark(("offset/" + std::string(gpu::shadow_method_name(method)) + "/" + offset_name +
+                                        "/" + shape.name + "/" + light_name)
+                                           .c_str(),
+                                       run_offset, shape, std::string_view(light_name), light, method, offset)
+              ->Iterations(kFrames)
+              ->UseManualTime()
+              ->Unit(benchmark::kMillisecond);
+    }
+  for (const std::string mesh : {"closed_manifold/spot.obj", "closed_manifold/nefertiti.obj", "soups/stanford-bunny.obj",
+                                 "soups/trimesh_bunny.ply", "closed_manifold/thingi10k_65004.stl",
+                                 "edge_cases/trimesh_featuretype.STL"}) {
+    const std::string short_name = std::filesystem::path(mesh).stem().string();
+    benchmark::RegisterBenchmark(("mesh/" + short_name).c_str(), run_mesh, mesh)
+        ->Iterations(1)
+        ->Unit(benchmark::kSecond);
+  }
+}
+
+// Parses and removes this program's own flags (Google Benchmark rejects flags it does not know).
+void take_settings(int& argc, char** argv) {
+  int kept = 1;
+  const auto size = [](std::string_view value, std::uint32_t& w, std::uint32_t& h) {
+    const std::size_t x = value.find('x');
+    if (x == std::string_view::npos) throw std::invalid_argument("a size is WxH, e.g. 1024x768");
+    w = static_cast<std::uint32_t>(std::stoul(std::string(value.substr(0, x))));
+    h = static_cast<std::uint32_t>(std::stoul(std::string(value.substr(x + 1))));
+  };
+  for (int i = 1; i < argc; ++i) {
+    const std::string_view arg = argv[i];
+    if (arg.rfind("--resolution=", 0) == 0) {
+      size(arg.substr(13), g_settings.width, g_settings.height);
+    } else if (arg.rfind("--mesh-resolution=", 0) == 0) {
+      size(arg.substr(18), g_settings.mesh_width, g_settings.mesh_height);
+    } else {
+      argv[kept++] = argv[i];
+    }
+  }
+  argc = kept;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    take_settings(argc, argv);
+  } catch (const std::exception& e) {
+    std::cerr << "analytic_shadow_bench: " << e.what() << '\n';
+    return 2;
+  }
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 2;
+  std::optional<gpu::EglContext> context;
+  try {
+    context.emplace(gpu::EglContextOptions{});
+  } catch (const gpu::GlEnvironmentError& e) {
+    std::cerr << "analytic_shadow_bench: needs OpenGL 4.5 core through headless EGL: " << e.what() << '\n';
+    return 2;
+  }
+  benchmark::AddCustomContext("renderer", context->renderer());
+  benchmark::AddCustomContext("resolution", fmt::format("{}x{}", g_settings.width, g_settings.height));
+  benchmark::AddCustomContext("mesh_resolution", fmt::format("{}x{}", g_settings.mesh_width, g_settings.mesh_height));
+  register_benchmarks();
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
