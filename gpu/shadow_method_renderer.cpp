@@ -199,6 +199,7 @@ StencilShadowFrame ShadowMethodRenderer::draw(const OffscreenTarget& target, con
   o.method = options_.stencil;
   o.light_colour = light_colour_;
   o.read_back = read_back;
+  o.count_fragments = read_back && options_.count_fragments;  // render() only: never in timed frames
   o.timer = timer;
   return stencil_renderer_->render(target, receivers_, camera, light_volumes_, o);
 }

@@ -125,6 +125,8 @@ struct ShadowMethodOptions {
   std::uint32_t shadow_map_size = kDefaultShadowMapSize;
   float shadow_map_bias = kDefaultShadowMapBias;
   float shadow_map_slope = kDefaultShadowMapSlope;
+  // Volume methods: count the first light's volume fragments in render() (StencilShadowFrame).
+  bool count_fragments = false;
 };
 
 // A GPU-built volume needed more vertices than its buffers hold: drawing it would draw an

@@ -116,6 +116,37 @@ ShadedSoupMesh::ShadedSoupMesh(std::span<const ShadedSoupPart> parts)
   check_gl_errors("ShadedSoupMesh upload");
 }
 
+namespace {
+
+// The light's volume: its given mesh, its GPU-built triangles, or both (LightVolume).
+void draw_volume(const LightVolume& lv) {
+  if (lv.volume != nullptr) {
+    glBindVertexArray(lv.volume->vertex_array());
+    glDrawElements(GL_TRIANGLES, lv.volume->index_count(), GL_UNSIGNED_INT, nullptr);
+  }
+  if (lv.indirect.vertex_array != 0 && lv.indirect.command != 0) {
+    glBindVertexArray(lv.indirect.vertex_array);
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, lv.indirect.command);
+    glDrawArraysIndirect(GL_TRIANGLES, nullptr);
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+  }
+}
+
+// The fragments of the volume that pass the depth test `depth_func` against the receivers'
+// depths (the stencil test passes: GL_ALWAYS), by an occlusion query; synchronises.
+std::uint64_t samples_passed(GLenum depth_func, const LightVolume& lv) {
+  const Query query = Query::create(GL_SAMPLES_PASSED);
+  glDepthFunc(depth_func);
+  glBeginQuery(GL_SAMPLES_PASSED, query.name());
+  draw_volume(lv);
+  glEndQuery(GL_SAMPLES_PASSED);
+  GLuint64 samples = 0;
+  glGetQueryObjectui64v(query.name(), GL_QUERY_RESULT, &samples);  // waits for the draw
+  return samples;
+}
+
+}  // namespace
+
 StencilShadowRenderer::StencilShadowRenderer() {
   const Shader vertex = compile_shader(GL_VERTEX_SHADER, shaders::shadow_scene_vert, "shadow_scene.vert.glsl");
   const Shader fragment = compile_shader(GL_FRAGMENT_SHADER, shaders::shadow_scene_frag, "shadow_scene.frag.glsl");
@@ -180,18 +211,19 @@ StencilShadowFrame StencilShadowRenderer::render(const OffscreenTarget& target, 
     glDepthMask(GL_FALSE);
     glDepthFunc(GL_LESS);  // a cap at the visible point's own depth fails: "behind" it
     glEnable(GL_DEPTH_CLAMP);  // w = 0 caps reach depth 1 exactly; rounding must not clip them
-    if (lv.volume != nullptr) {
-      glBindVertexArray(lv.volume->vertex_array());
-      glDrawElements(GL_TRIANGLES, lv.volume->index_count(), GL_UNSIGNED_INT, nullptr);
-    }
-    if (lv.indirect.vertex_array != 0 && lv.indirect.command != 0) {
-      glBindVertexArray(lv.indirect.vertex_array);
-      glBindBuffer(GL_DRAW_INDIRECT_BUFFER, lv.indirect.command);
-      glDrawArraysIndirect(GL_TRIANGLES, nullptr);
-      glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+    draw_volume(lv);
+    stage.reset();
+    if (i == 0 && options.count_fragments) {
+      // Nothing written: all fragments (depth test always passes), then those whose count
+      // changed in the pass above (z-fail: depth test fails, i.e. GEQUAL; z-pass: LESS).
+      glStencilMask(0);
+      const bool zfail = lv.stencil.value_or(options.method) == StencilMethod::zfail;
+      frame.first_volume_fragments = samples_passed(GL_ALWAYS, lv);
+      frame.first_stencil_updates = samples_passed(zfail ? GL_GEQUAL : GL_LESS, lv);
+      glStencilMask(0xFF);
+      glDepthFunc(GL_LESS);
     }
     glDisable(GL_DEPTH_CLAMP);
-    stage.reset();
     if (i == 0 && options.read_back) {
       frame.first_stencil = target.read_stencil();
       frame.first_lit_mask = lit_mask(frame.first_stencil);

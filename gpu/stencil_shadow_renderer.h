@@ -108,6 +108,10 @@ struct StencilShadowOptions {
   // Each light's colour; several lights share 1 so that the sum stays in range.
   std::array<float, 3> light_colour{0.85f, 0.85f, 0.85f};
   bool read_back = true;  // off for timing: render() returns only what was drawn
+  // The first light's volume fill, counted with occlusion queries after its volume pass
+  // (StencilShadowFrame::first_volume_fragments): two more draws of that volume, outside the
+  // timed stages. Off by default.
+  bool count_fragments = false;
   // When set (and a frame of it open), the depth, stencil and lit passes are timed as its
   // stages (gpu/gpu_stage_timer.h); readbacks stay outside them.
   GpuStageTimer* timer = nullptr;
@@ -117,6 +121,11 @@ struct StencilShadowFrame {
   RgbaImage colour;           // alpha 255 where a receiver covers the pixel, 0 elsewhere
   GrayImage first_stencil;    // the first light's counts modulo 256 (after its volume pass)
   GrayImage first_lit_mask;   // lit_mask(first_stencil): 255 where the count is 0
+  // With StencilShadowOptions::count_fragments: the fragments the first light's volume
+  // rasterises (its fill rate: every one runs the stencil test), and those that change the
+  // stencil (their depth test fails under z-fail, passes under z-pass). 0 otherwise.
+  std::uint64_t first_volume_fragments = 0;
+  std::uint64_t first_stencil_updates = 0;
 };
 
 class StencilShadowRenderer {

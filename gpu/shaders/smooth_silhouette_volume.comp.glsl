@@ -750,8 +750,32 @@ void emit_triangle(Tri x, uint t, bool casts) {
     if (x.across[k] == kBorder) border_sides(x, t, k);
 }
 
+// Most triangles: every corner on one side of the light (none on it), no crease, no border.
+// Such a triangle's parts are the whole triangle and nothing, with nothing inserted, and it
+// owns no edge of X's boundary: emit_triangle would give just its cap (reversed where unlit)
+// and back cap. Emitted here at once, without that general machinery twice over.
+bool plain_triangle(Tri x) {
+  const bool state = lit(x.f[0]);
+  return x.crease == 0u && x.across[0] != kBorder && x.across[1] != kBorder && x.across[2] != kBorder &&
+         x.f[0] != 0.0 && x.f[1] != 0.0 && x.f[2] != 0.0 && lit(x.f[1]) == state && lit(x.f[2]) == state;
+}
+
 void triangle_pass(uint t) {
   const Tri x = load_triangle(t);
+  if (plain_triangle(x)) {
+    const uint base = reserve(light.w != 0.0 ? 6u : 3u);
+    if (base == kNoRoom) return;
+    volume_cursor = base;
+    g_counting = false;
+    // Written whole, even without area (x_triangle would skip it): every reserved vertex is
+    // written, and such a triangle rasterises nothing and cancels its own edges.
+    const vec3 a = vertices[x.v[0]].xyz;
+    const vec3 b = vertices[x.v[lit(x.f[0]) ? 1 : 2]].xyz;
+    const vec3 c = vertices[x.v[lit(x.f[0]) ? 2 : 1]].xyz;
+    put_triangle(vec4(a, 1.0), vec4(b, 1.0), vec4(c, 1.0));
+    if (light.w != 0.0) put_triangle(far_point(a), far_point(c), far_point(b));
+    return;
+  }
   const bool casts = casts_caps(x);
   g_casts = casts;
   g_cap_offset = x.cap_offset;
