@@ -21,8 +21,8 @@ std::size_t corner_index(const Triangle& t, std::uint32_t v) {
 
 // Step (b): the loop point moved onto its mesh edge's Hermite curve.
 ContourPoint displaced(const SmoothCaster& c, const SilhouettePoint& s) {
-  ContourPoint p{s.position, s.normal, s.position};
-  if (s.edge_from == s.edge_to) return p;  // at a mesh vertex
+  ContourPoint p{s.position, s.normal, s.position, s.edge_from == s.edge_to};
+  if (p.at_vertex) return p;  // at a mesh vertex
   const Triangle& t = c.triangles[s.triangle];
   const Vec3& vi = c.vertices[s.edge_from];
   const Vec3& vj = c.vertices[s.edge_to];

@@ -28,6 +28,7 @@ struct ContourPoint {
   Vec3 position{};  // p, on the smooth surface (within epsilon)
   Vec3 normal{};    // unit
   Vec3 partner{};   // p', on the mesh (the accurate silhouette)
+  bool at_vertex = false;  // p' is a mesh vertex (then p = p'): caps never move it (cap_offset)
 };
 
 struct SmoothContour {

@@ -16,27 +16,32 @@ namespace {
 using detail::PointKey;
 
 // Finite vertices by their exact doubles (two names of one point are one vertex), and their
-// far vertices.
+// far vertices. A cut point set behind the surface is another vertex than the same point on it
+// (a contour point without displacement, whose sides stay on the surface).
 class VertexTable {
  public:
   explicit VertexTable(double cap_offset) : cap_offset_(cap_offset) {}
   // The vertex named by the point p; a cut point (on a triangle's edge or cut, with its unit
-  // normal n) is stored cap_offset behind the surface, at p - cap_offset n (SmoothVolumeOptions).
+  // normal n; never a mesh vertex) is stored cap_offset behind the surface, at
+  // p - cap_offset n (SmoothVolumeOptions).
   std::uint32_t finite(const Vec3& p, const Vec3* cut_normal = nullptr) {
-    const auto [it, added] = finite_.emplace(p, static_cast<std::uint32_t>(points_.size()));
+    const bool behind = cut_normal != nullptr && cap_offset_ > 0.0;
+    const auto [it, added] = finite_.emplace(std::pair{p, behind}, static_cast<std::uint32_t>(points_.size()));
     if (added) {
       Vec3 stored = p;
-      if (cut_normal != nullptr && cap_offset_ > 0.0)
+      if (behind)
         for (std::size_t k = 0; k < 3; ++k) stored[k] -= cap_offset_ * (*cut_normal)[k];
       points_.push_back(stored);
     }
     return it->second;
   }
+  // A contour point's partner: a cut point, unless it is a mesh vertex.
+  std::uint32_t partner(const ContourPoint& p) { return finite(p.partner, p.at_vertex ? nullptr : &p.normal); }
   [[nodiscard]] const std::vector<Vec3>& points() const { return points_; }
 
  private:
   double cap_offset_;
-  std::map<Vec3, std::uint32_t> finite_;
+  std::map<std::pair<Vec3, bool>, std::uint32_t> finite_;
   std::vector<Vec3> points_;
 };
 
@@ -150,6 +155,18 @@ SmoothVolume smooth_shadow_volume(const SmoothCaster& caster, const Light& light
   const std::vector<detail::KeyedLoop> keyed = detail::chain(boundary);
   volume.loops = detail::loops_of(boundary, keyed);
   if (smooth) volume.contours = smooth_contour(caster, volume.loops, options.epsilon);
+  // accurate with its cut caps set behind the surface: its "contour" is the loop itself, on the
+  // surface, and a strip of no displacement joins it to the caps, so the shadow's boundary stays
+  // the accurate silhouette (offsetting the sides with the caps would shrink the shadow).
+  if (options.method == SilhouetteMethod::accurate && options.cap_offset > 0.0)
+    for (const SilhouetteLoop& loop : volume.loops) {
+      SmoothContour& contour = volume.contours.emplace_back();
+      contour.closed = loop.closed;
+      for (const SilhouettePoint& s : loop.points) {
+        contour.loop_points.push_back(contour.points.size());
+        contour.points.push_back({s.position, s.normal, s.position, s.edge_from == s.edge_to});
+      }
+    }
 
   // The partners the subdivision added, by the piece of the lit part's boundary they lie on.
   Insertions insertions;
@@ -193,7 +210,7 @@ SmoothVolume smooth_shadow_volume(const SmoothCaster& caster, const Light& light
         ring.push_back(vertices.finite(v.position, v.cut_normal ? &*v.cut_normal : nullptr));
         if (const std::vector<ContourPoint>* between =
                 partners_between(insertions, v.key, polygon[(i + 1) % polygon.size()].key, reversed))
-          for (const ContourPoint& p : *between) ring.push_back(vertices.finite(p.partner, &p.normal));
+          for (const ContourPoint& p : *between) ring.push_back(vertices.partner(p));
       }
       ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
       while (ring.size() > 1 && ring.front() == ring.back()) ring.pop_back();
@@ -208,7 +225,7 @@ SmoothVolume smooth_shadow_volume(const SmoothCaster& caster, const Light& light
     for (std::size_t i = 0; i + 1 < n + (contour.closed ? 1 : 0); ++i) {
       const ContourPoint& p = contour.points[i];
       const ContourPoint& q = contour.points[(i + 1) % n];
-      const std::uint32_t p0 = vertices.finite(p.partner, &p.normal), q0 = vertices.finite(q.partner, &q.normal);
+      const std::uint32_t p0 = vertices.partner(p), q0 = vertices.partner(q);
       const std::uint32_t p1 = vertices.finite(p.position), q1 = vertices.finite(q.position);
       for (int copy = 0; copy < 2; ++copy) {  // once for the lit part, once for the unlit one
         x.add(q0, p0, p1);

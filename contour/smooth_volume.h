@@ -48,13 +48,17 @@ struct SmoothVolumeOptions {
   // caster's own shadow stripes near the terminator; set behind by the depth buffer's band
   // (gpu/depth_precision.h), every cap is behind or at the surface, as whole triangles are. The
   // paper offsets by 0.15 along -n for the same kind of leak; 0 leaves the caps on the surface.
+  // Only the caps move: the sides are extruded from the contour (accurate's: its loops) on the
+  // surface, a strip joining the two, so the shadow's boundary does not move.
   double cap_offset = 0.0;
 };
 
 struct SmoothVolume {
   HomogeneousMesh mesh;
   std::vector<SilhouetteLoop> loops;     // discrete or accurate loops the volume was built on
-  std::vector<SmoothContour> contours;   // smooth only
+  // smooth: the smooth contours; accurate with a cap offset: the loops themselves (on the surface,
+  // joined by a strip to the caps set behind it); else empty.
+  std::vector<SmoothContour> contours;
   std::size_t cap_triangles = 0;         // X's triangles (front cap and gap strip)
   std::size_t side_triangles = 0;
 };
