@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <random>
@@ -257,6 +258,93 @@ TEST(SmoothShadowVolume, SilhouetteThroughAVertex_CapsCoverEveryTriangleOnce) {
   }
   const SmoothVolume away = smooth_shadow_volume(c, Light{{0.3, 0.2, 4.0, 1.0}}, {.method = SilhouetteMethod::accurate});
   EXPECT_NEAR(cap_area(away, away.cap_triangles), soup_area(c), 1e-5);
+}
+
+// The smooth contour follows the caster: relabelling its vertices, reversing the order of its
+// triangles, or moving caster and light together by a rigid motion (a rotation about a skew axis,
+// then a translation) moves every contour point with it, up to rounding; the volume keeps its
+// size and stays closed. Checked on a sphere and on the crease box, point and directional light.
+TEST(SmoothShadowVolume, RelabellingAndRigidMotion_MoveTheContourWithTheCaster) {
+  // Rotation by 0.7 rad about the unit axis (1, 2, 2) / 3 (Rodrigues), then a translation.
+  const Vec3 axis{1.0 / 3.0, 2.0 / 3.0, 2.0 / 3.0};
+  const double c = std::cos(0.7), sn = std::sin(0.7);
+  const auto rotate = [&](const Vec3& v) {
+    const Vec3 k_cross_v = cross(axis, v);
+    const double k_dot_v = dot(axis, v);
+    Vec3 r{};
+    for (std::size_t i = 0; i < 3; ++i) r[i] = v[i] * c + k_cross_v[i] * sn + axis[i] * k_dot_v * (1.0 - c);
+    return r;
+  };
+  const Vec3 shift{3.25, -1.5, 0.75};
+  const auto move = [&](const Vec3& v) {
+    Vec3 r = rotate(v);
+    for (std::size_t i = 0; i < 3; ++i) r[i] += shift[i];
+    return r;
+  };
+  const auto moved_light = [&](const Light& l) {
+    const Vec3 p{l.position[0], l.position[1], l.position[2]};
+    const Vec3 q = l.directional() ? rotate(p) : move(p);
+    return Light{{q[0], q[1], q[2], l.position[3]}};
+  };
+  const auto contour_points = [](const SmoothVolume& v) {
+    std::vector<Vec3> points;
+    for (const SmoothContour& contour : v.contours)
+      for (const ContourPoint& p : contour.points) points.push_back(p.position);
+    std::sort(points.begin(), points.end());
+    return points;
+  };
+  const auto expect_same_points = [](std::vector<Vec3> a, std::vector<Vec3> b, const std::string& what) {
+    ASSERT_EQ(a.size(), b.size()) << what;
+    std::sort(a.begin(), a.end());
+    std::sort(b.begin(), b.end());
+    for (std::size_t i = 0; i < a.size(); ++i)
+      for (std::size_t k = 0; k < 3; ++k) EXPECT_NEAR(a[i][k], b[i][k], 1e-9) << what << ", point " << i;
+  };
+  for (const bool crease_box : {false, true}) {
+    const Soup soup = crease_box ? box({-0.5, -0.5, -0.5}, {0.5, 0.5, 0.5}) : uv_sphere({0, 0, 0}, 1.0, 12, 6);
+    for (const Light& light : {Light{{0.3, 0.2, 4.0, 1.0}}, Light{{0.4, 1.0, -0.3, 0.0}}}) {
+      const std::string what = std::string(crease_box ? "box" : "sphere") + (light.directional() ? ", sun" : ", point");
+      const SmoothVolume original = smooth_shadow_volume(caster_of(soup), light, {.epsilon = 0.003});
+      ASSERT_FALSE(original.contours.empty()) << what;
+
+      // Relabelled vertices, triangles in reverse order (each keeps its orientation).
+      Soup relabelled = soup;
+      const std::size_t n = soup.vertices.size();
+      for (std::size_t i = 0; i < n; ++i) {
+        relabelled.vertices[n - 1 - i] = soup.vertices[i];
+        if (!soup.normals.empty()) relabelled.normals[n - 1 - i] = soup.normals[i];
+      }
+      for (Triangle& t : relabelled.triangles)
+        for (std::uint32_t& v : t) v = static_cast<std::uint32_t>(n - 1 - v);
+      std::reverse(relabelled.triangles.begin(), relabelled.triangles.end());
+      const SmoothVolume r = smooth_shadow_volume(caster_of(relabelled), light, {.epsilon = 0.003});
+      expect_same_points(contour_points(original), contour_points(r), what + ", relabelled");
+      EXPECT_EQ(r.mesh.triangles.size(), original.mesh.triangles.size()) << what;
+
+      // Rigid motion of caster, normals and light.
+      Soup moved = soup;
+      for (Vec3& v : moved.vertices) v = move(v);
+      for (auto& nrm : moved.normals) {
+        const Vec3 q = rotate(Vec3{nrm[0], nrm[1], nrm[2]});
+        nrm = {float(q[0]), float(q[1]), float(q[2])};
+      }
+      const SmoothVolume m = smooth_shadow_volume(caster_of(moved), moved_light(light), {.epsilon = 0.003});
+      std::vector<Vec3> expected;
+      for (const Vec3& p : contour_points(original)) expected.push_back(move(p));
+      // Float normals rotated and rounded move the Hermite curves by a float ulp: 1e-6 bounds it.
+      std::vector<Vec3> got = contour_points(m);
+      ASSERT_EQ(got.size(), expected.size()) << what << ", moved";
+      std::sort(expected.begin(), expected.end());
+      std::sort(got.begin(), got.end());
+      for (const Vec3& p : got) {
+        double nearest = 1e9;
+        for (const Vec3& q : expected) nearest = std::min(nearest, std::sqrt(dot(difference(p, q), difference(p, q))));
+        EXPECT_LT(nearest, 1e-6) << what << ", moved";
+      }
+      EXPECT_EQ(m.mesh.triangles.size(), original.mesh.triangles.size()) << what;
+      expect_closed(m, what + ", moved");
+    }
+  }
 }
 
 TEST(SmoothShadowVolume, BadArguments_ThrowNamingTheFunction) {
