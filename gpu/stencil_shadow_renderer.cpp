@@ -89,12 +89,19 @@ ShadedSoupMesh::ShadedSoupMesh(std::span<const ShadedSoupPart> parts)
   // (GL_LESS fails). With one order only, the plane where the two roundings cross shaded a line
   // across the caster (tests/regressions/gl/own_cap_depth_line.json: 16 hard pixels at
   // 256x192). The lit pass draws both copies too; its stencil op lets only the first through.
+  // The copy faces the other way, so its normals are negated: the shader turns a normal towards
+  // the viewer by gl_FrontFacing, and the copy's flipped facing must flip it back. (Unnegated,
+  // wherever the copy won the depth pre-pass the lit pass lit it from behind: 0. A floor seen
+  // at a shallow angle showed dark striped wedges in every method's colour frame, never in the
+  // masks: tests/gpu/stencil_shadow_renderer_test.cpp, ReversedCopyWinsTheDepthPass_IsLitAlike.)
   const std::size_t forward = vertices.size();
   vertices.reserve(2 * forward);
   for (std::size_t i = 0; i < forward; i += 3) {
-    vertices.push_back(vertices[i]);
-    vertices.push_back(vertices[i + 2]);
-    vertices.push_back(vertices[i + 1]);
+    for (const std::size_t k : {i, i + 2, i + 1}) {
+      ShadedVertex copy = vertices[k];
+      for (float& x : copy.normal) x = -x;
+      vertices.push_back(copy);
+    }
   }
   if (vertices.size() > static_cast<std::size_t>(std::numeric_limits<GLsizei>::max())) {
     throw std::invalid_argument("ShadedSoupMesh: too many triangles for one draw call");

@@ -3,6 +3,7 @@
 // computed analytically: pixels well inside it must count 1 and stay unlit, pixels well
 // outside must count 0 and be lit; z-fail must survive an eye inside the volume where z-pass
 // cannot; counts wrap modulo 256 (docs/definitions.md#pixel-protocol).
+#include "core/homogeneous_mesh.h"
 #include "core/vector3.h"
 #include "gpu/stencil_shadow_renderer.h"
 
@@ -149,6 +150,42 @@ TEST_F(StencilShadowRendererTest, CountsWrapModulo256) {
   for (const Vec3& p : kSideLit) EXPECT_EQ(stencil_at(frame, pixel_of(camera, p)), 0);
   const StencilShadowFrame two = render(camera, kSideLight, StencilMethod::zfail, 2);
   EXPECT_EQ(stencil_at(two, pixel_of(camera, kSideShadowed[0])), 2);
+}
+
+// Regression: each receiver triangle is drawn twice, the second copy reversed, and the copy
+// that wins the depth pre-pass is the one the lit pass shades. The copy kept the first one's
+// normals, so where it won, the shader (which turns the normal towards the viewer by
+// gl_FrontFacing) lit it from behind: a floor seen at a shallow angle showed dark striped wedges
+// in the colour frame of every method, while the masks were right. No occluder here: every
+// covered pixel must be lit, clearly above the ambient term.
+TEST_F(StencilShadowRendererTest, ReversedCopyWinsTheDepthPass_IsLitAlike) {
+  Soup floor;
+  floor.vertices = {{-8.0, -1.5, -8.0}, {-8.0, -1.5, 8.0}, {8.0, -1.5, 8.0}, {8.0, -1.5, -8.0}};
+  floor.normals = {{0.0f, 1.0f, 0.0f}, {0.0f, 1.0f, 0.0f}, {0.0f, 1.0f, 0.0f}, {0.0f, 1.0f, 0.0f}};
+  floor.triangles = {{0, 1, 2}, {0, 2, 3}};
+  Camera camera;
+  camera.eye = {-2.5, 5.5, 6.5};
+  camera.target = {-0.4, -0.9, -0.3};
+  camera.width = 256;
+  camera.height = 192;
+  const Light light{{1.2, 4.0, 0.8, 1.0}};
+  const ShadowVolumeMesh nothing{HomogeneousMesh{}};
+  const ShadedSoupMesh receivers(floor);
+  const StencilShadowRenderer renderer;
+  const OffscreenTarget target(camera.width, camera.height);
+  const std::array<LightVolume, 1> lights{{{light, &nothing}}};
+  const StencilShadowFrame frame = renderer.render(target, receivers, camera, lights);
+  // Albedo 0.8: ambient alone is 0.8 * 0.15 * 255 = 31; the light adds 0.8 * 0.85 * 255 times
+  // a Lambert term of at least 0.4 over this floor (the light is 5.5 above it, at most 13 away).
+  constexpr std::uint8_t kAboveAmbient = 80;
+  std::size_t covered = 0, dark = 0;
+  for (std::size_t i = 0; i < frame.colour.pixels.size() / 4; ++i) {
+    if (frame.colour.pixels[4 * i + 3] == 0) continue;
+    ++covered;
+    dark += frame.colour.pixels[4 * i] < kAboveAmbient;
+  }
+  EXPECT_GT(covered, 10000u);
+  EXPECT_EQ(dark, 0u);
 }
 
 TEST_F(StencilShadowRendererTest, LightWithoutVolumeIsRejected) {
