@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -53,6 +54,11 @@ struct DiffOptions {
   std::optional<int> device;
   long long shadowmap_size = gpu::kDefaultShadowMapSize;
   SilhouetteOptions silhouette;  // --epsilon, --crease-angle
+  // The soft shadow-map methods' parameters (docs/smoothies.md), as render takes them.
+  std::optional<long long> pcf;             // pcf: K
+  std::optional<double> light_radius;       // pcss: R
+  std::optional<double> smoothie_width;     // smoothie: D
+  std::string smoothie_space = "world";     // smoothie: world | light
 };
 
 // The method's lit mask, gated by coverage (the frame's alpha).
@@ -173,7 +179,8 @@ nlohmann::json method_json(const MethodRun& run, const DiffOptions& options) {
                    {"gl_ms", run.gl_ms()},
                    {"failed", run.failed()}};
   if (const std::optional<bool> closed = run.closed()) j["closed"] = *closed;
-  if (run.method == gpu::ShadowMethod::shadowmap) j["shadow_map_size"] = options.shadowmap_size;
+  if (gpu::uses_shadow_map(run.method)) j["shadow_map_size"] = options.shadowmap_size;
+  if (run.method == gpu::ShadowMethod::pcf) j["pcf_kernel"] = options.pcf.value_or(gpu::kDefaultPcfKernel);
   nlohmann::json per_light = nlohmann::json::array();
   for (const LightRun& l : run.lights) {
     nlohmann::json lj = comparison_json(l.comparison);
@@ -222,6 +229,15 @@ int run_diff(const DiffOptions& options) {
   if (options.shadowmap_size < 1 || options.shadowmap_size > gpu::kMaxShadowMapSize)
     throw CLI::ValidationError("--shadowmap-size", fmt::format("must be in [1, {}], got {}", gpu::kMaxShadowMapSize,
                                                                options.shadowmap_size));
+  if (options.pcf && (*options.pcf < 1 || *options.pcf > gpu::kMaxPcfKernel || *options.pcf % 2 == 0))
+    throw CLI::ValidationError("--pcf", fmt::format("K must be odd and in [1, {}], got {}", gpu::kMaxPcfKernel,
+                                                    *options.pcf));
+  if (options.light_radius && (!std::isfinite(*options.light_radius) || !(*options.light_radius > 0.0)))
+    throw CLI::ValidationError("--light-radius",
+                               fmt::format("must be finite and > 0 (world units), got {}", *options.light_radius));
+  if (options.smoothie_width && (!std::isfinite(*options.smoothie_width) || !(*options.smoothie_width > 0.0)))
+    throw CLI::ValidationError("--smoothie-width",
+                               fmt::format("must be finite and > 0 (world units), got {}", *options.smoothie_width));
   Scene scene = load_scene_or_mesh(options.input);
   if (scene.lights.empty()) throw InputError(options.input, "the scene has no light");
   apply_image_size(options.size, scene.camera);
@@ -238,6 +254,10 @@ int run_diff(const DiffOptions& options) {
   comparison_options.method_options.sign = *gpu::parse_sign_mode(options.sign);  // CLI11 checked the name
   comparison_options.timed_frames = kTimedFrames;
   comparison_options.silhouette = options.silhouette;
+  comparison_options.method_options.pcf_kernel = static_cast<std::uint32_t>(options.pcf.value_or(gpu::kDefaultPcfKernel));
+  comparison_options.method_options.light_radius = options.light_radius.value_or(0.0);  // 0: the default
+  comparison_options.smoothie.width = options.smoothie_width.value_or(0.0);            // 0: the default
+  comparison_options.smoothie.space = *parse_smoothie_space(options.smoothie_space);  // CLI11 checked it
   // A progress bar only on a terminal: logs and pipes get no carriage returns.
   comparison_options.progress = isatty(fileno(stderr)) != 0;
   const SceneComparison comparison = compare_scene(scene, methods, comparison_options);
@@ -327,7 +347,7 @@ int run_diff(const DiffOptions& options) {
       report.rows.push_back({std::string(gpu::shadow_method_name(run.method)), run.held_robust,
                              run.sum(&PixelComparison::hard_errors), run.sum(&PixelComparison::ambiguous),
                              run.sum(&PixelComparison::agree), run.closed(), run.gl_ms(),
-                             run.method == gpu::ShadowMethod::shadowmap
+                             gpu::uses_shadow_map(run.method)
                                  ? fmt::format("{0}x{0} depth map", options.shadowmap_size)
                                  : std::string()});
     for (std::size_t k = 0; k < light_count; ++k) {
@@ -362,7 +382,7 @@ int run_diff(const DiffOptions& options) {
                run.sum(&PixelComparison::agree), closed ? (*closed ? "yes" : "NO") : "-", run.gl_ms(),
                run.failed() ? "  FAILED"
                : run.held_robust ? ""
-               : run.method == gpu::ShadowMethod::shadowmap ? "  (baseline)"
+               : gpu::uses_shadow_map(run.method) ? "  (baseline)"
                                                            : "  (smooth surface: its error)");
   }
   if (comparison.analytic) print_analytic(*comparison.analytic, scene, runs);
@@ -383,7 +403,9 @@ void add_diff_command(CLI::App& app, int& exit_code) {
   cmd->add_option("input", options->input, "Mesh file (.obj .off .ply .stl) or scene (.json)")->required();
   cmd->add_option("--methods", options->methods,
                   "Comma-separated methods to compare: cpu, cs, gs, ts, pertri, shadowmap, and the smooth-silhouette "
-                  "methods discrete, accurate, smooth, smooth-gpu (docs/smooth-silhouettes.md; default: all, the first six)");
+                  "methods discrete, accurate, smooth, smooth-gpu (docs/smooth-silhouettes.md), and the soft "
+                  "shadow-map methods pcf, pcss, smoothie (docs/smoothies.md; baselines like shadowmap, their lit "
+                  "mask where the light is at least 1/2); default: all, the first six");
   add_silhouette_options(*cmd, options->silhouette);
   cmd->add_option("--stencil", options->stencil,
                   "Stencil counting of the volume methods: zfail (default; faces behind the visible point), zpass "
@@ -405,6 +427,14 @@ void add_diff_command(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   cmd->add_option("--sign", options->sign, "cs, gs, ts, pertri: each triangle's light side as the exact sign of its float inputs (exact: a proven float filter, integer arithmetic where it cannot decide) or the float formula's sign (float: Milet 2014 refedge, wrong where the light is within rounding of a plane)")
       ->check(CLI::IsMember({"exact", "float"}))
+      ->capture_default_str();
+  cmd->add_option("--pcf", options->pcf, "pcf: K x K taps, K odd in [1, 15] (default 3)");
+  cmd->add_option("--light-radius", options->light_radius,
+                  "pcss: the light's radius R in world units (default 1% of the scene's bounding-box diagonal)");
+  cmd->add_option("--smoothie-width", options->smoothie_width,
+                  "smoothie: the width D in world units (default 2% of the scene's bounding-box diagonal)");
+  cmd->add_option("--smoothie-space", options->smoothie_space, "smoothie: world or light (render --help)")
+      ->check(CLI::IsMember({"world", "light"}))
       ->capture_default_str();
   cmd->add_option("--device", options->device, "Use EGL device N (default: a hardware device, else llvmpipe)");
   cmd->callback([options, &exit_code] { exit_code = run_diff(*options); });

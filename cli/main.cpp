@@ -16,6 +16,8 @@
 #include "cli/fuzz_command.h"
 #include "cli/inspect_command.h"
 #include "cli/render_command.h"
+#include "cli/soft_command.h"
+#include "cli/track_command.h"
 #include "core/input_error.h"
 #include "gpu/gl_environment_error.h"
 #include "gpu/gl_error.h"
@@ -32,6 +34,8 @@ int main(int argc, char** argv) {
   add_render_command(app, exit_code);
   add_diff_command(app, exit_code);
   add_fuzz_command(app, exit_code);
+  add_soft_command(app, exit_code);
+  add_track_command(app, exit_code);
 
   try {
     app.parse(argc, argv);

@@ -35,6 +35,7 @@ gpu::ShadowMethod shadow_method_option(const std::string& name, const std::strin
   std::string names;
   for (gpu::ShadowMethod m : gpu::kShadowMethods) names += (names.empty() ? "" : ", ") + std::string(gpu::shadow_method_name(m));
   for (gpu::ShadowMethod m : gpu::kSilhouetteMethods) names += ", " + std::string(gpu::shadow_method_name(m));
+  for (gpu::ShadowMethod m : gpu::kSoftShadowMethods) names += ", " + std::string(gpu::shadow_method_name(m));
   throw CLI::ValidationError(option, "unknown method '" + name + "': use " + names);
 }
 

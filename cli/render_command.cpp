@@ -4,6 +4,7 @@
 
 #include <array>
 #include <chrono>
+#include <cmath>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <numeric>
@@ -12,6 +13,7 @@
 #include <vector>
 
 #include "cli/exit_code.h"
+#include "cli/light_image_output.h"
 #include "cli/option_values.h"
 #include "cli/silhouette_output.h"
 #include "cli/stencil_output.h"
@@ -27,6 +29,7 @@
 #include "gpu/png_image.h"
 #include "gpu/shadow_method_renderer.h"
 #include "pipeline/method_inputs.h"
+#include "pipeline/scene_smoothies.h"
 #include "pipeline/stencil_choice.h"
 #include "scene/merged_soup.h"
 
@@ -44,6 +47,7 @@ constexpr std::size_t kDefaultTimingFrames = 20;
 struct RenderOptions {
   std::string input;
   std::string method = "cpu";
+  bool method_given = false;  // --method on the command line (--pcf and --pcss then must agree)
   std::string sign = "exact";  // --sign exact|float (gpu/sign_mode.h)
   std::string stencil;  // --stencil auto|zpass|zfail; empty: not given (the aliases, else zfail)
   bool zpass = false;
@@ -60,6 +64,14 @@ struct RenderOptions {
   long long shadowmap_size = gpu::kDefaultShadowMapSize;
   float shadowmap_bias = gpu::kDefaultShadowMapBias;
   float shadowmap_slope = gpu::kDefaultShadowMapSlope;
+  // The soft shadow-map methods (docs/smoothies.md): --pcf K and --pcss pick pcf and pcss (and
+  // give their parameters), --light-radius is pcss's R, --smoothie-* the smoothies' geometry.
+  std::optional<long long> pcf;
+  bool pcss = false;
+  std::optional<double> light_radius;
+  std::optional<double> smoothie_width;
+  std::optional<std::string> smoothie_space;
+  std::string light_image;  // --light-image FILE.png (and FILE.pfm, cli/light_image_output.h)
   bool timing = false;  // GPU stage times (gpu/gpu_stage_timer.h) over `frames` frames
   std::size_t frames = kDefaultTimingFrames;
   SilhouetteOptions silhouette;  // --epsilon, --crease-angle
@@ -73,18 +85,57 @@ struct Validated {
   StencilChoice stencil;
 };
 
+// --pcf and --pcss name their method: alone they choose it, with --method they must agree.
+gpu::ShadowMethod method_of(const RenderOptions& options) {
+  gpu::ShadowMethod method = shadow_method_option(options.method, "--method");
+  if (options.pcf && options.pcss) throw CLI::ValidationError("--pcf", "excludes --pcss (two filters)");
+  const auto implied = [&](bool given, gpu::ShadowMethod implied_method, const char* option) {
+    if (!given) return;
+    if (options.method_given && method != implied_method)
+      throw CLI::ValidationError(option, fmt::format("picks the {} method; it contradicts --method {}",
+                                                     gpu::shadow_method_name(implied_method), options.method));
+    method = implied_method;
+  };
+  implied(options.pcf.has_value(), gpu::ShadowMethod::pcf, "--pcf");
+  implied(options.pcss, gpu::ShadowMethod::pcss, "--pcss");
+  return method;
+}
+
 // The method and the stencil choice, after the checks that need no input file.
 Validated validate(const RenderOptions& options) {
-  const gpu::ShadowMethod method = shadow_method_option(options.method, "--method");
+  const gpu::ShadowMethod method = method_of(options);
   const StencilChoice stencil = stencil_option(options.stencil, options.zpass, options.zfail);
-  if (method == gpu::ShadowMethod::shadowmap) {
+  if (options.pcf && (*options.pcf < 1 || *options.pcf > gpu::kMaxPcfKernel || *options.pcf % 2 == 0))
+    throw CLI::ValidationError("--pcf", fmt::format("K must be odd and in [1, {}] (K x K taps centred on the "
+                                                    "point's texel), got {}",
+                                                    gpu::kMaxPcfKernel, *options.pcf));
+  if (options.light_radius) {
+    if (method != gpu::ShadowMethod::pcss)
+      throw CLI::ValidationError("--light-radius", "is pcss's light size: use it with --pcss or --method pcss");
+    if (!std::isfinite(*options.light_radius) || !(*options.light_radius > 0.0))
+      throw CLI::ValidationError("--light-radius",
+                                 fmt::format("must be finite and > 0 (world units), got {}", *options.light_radius));
+  }
+  if (options.smoothie_width) {
+    if (method != gpu::ShadowMethod::smoothie)
+      throw CLI::ValidationError("--smoothie-width", "is the smoothie method's: use it with --method smoothie");
+    if (!std::isfinite(*options.smoothie_width) || !(*options.smoothie_width > 0.0))
+      throw CLI::ValidationError("--smoothie-width", fmt::format("must be finite and > 0 (world units), got {}",
+                                                                 *options.smoothie_width));
+  }
+  if (options.smoothie_space && method != gpu::ShadowMethod::smoothie)
+    throw CLI::ValidationError("--smoothie-space", "is the smoothie method's: use it with --method smoothie");
+  if (gpu::uses_shadow_map(method)) {
     if (options.shadowmap_size < 1 || options.shadowmap_size > gpu::kMaxShadowMapSize)
       throw CLI::ValidationError("--shadowmap-size", fmt::format("must be in [1, {}] (a {}^2 depth texture), got {}",
                                                                  gpu::kMaxShadowMapSize, gpu::kMaxShadowMapSize,
                                                                  options.shadowmap_size));
+    const std::string_view name = gpu::shadow_method_name(method);
     if (stencil != StencilChoice::zfail)
-      throw CLI::ValidationError(options.zpass ? "--zpass" : "--stencil", "is a stencil option; shadowmap counts no volume");
-    if (!options.capture.empty()) throw CLI::ValidationError("--capture", "shadowmap draws no volume to capture");
+      throw CLI::ValidationError(options.zpass ? "--zpass" : "--stencil",
+                                 fmt::format("is a stencil option; {} counts no volume", name));
+    if (!options.capture.empty())
+      throw CLI::ValidationError("--capture", fmt::format("{} draws no volume to capture", name));
   }
   return {method, stencil};
 }
@@ -142,7 +193,7 @@ void print_timing(const gpu::FrameTiming& timing) {
 int run_render(const RenderOptions& options) {
   const auto start = Clock::now();
   const auto [method, stencil_choice] = validate(options);
-  const bool shadowmap = method == gpu::ShadowMethod::shadowmap;
+  const bool shadowmap = gpu::uses_shadow_map(method);  // shadowmap, pcf, pcss, smoothie
   Scene scene = load_scene_or_mesh(options.input);
   if (scene.lights.empty()) throw InputError(options.input, "the scene has no light");
   apply_image_size(options.size, scene.camera);
@@ -172,6 +223,18 @@ int run_render(const RenderOptions& options) {
     inputs.smooth_casters = silhouette->gpu_casters;
   }
   const double chain_seconds = seconds_since(stage);
+  // smoothie: every light's smoothies on the CPU (pipeline/scene_smoothies.h), once.
+  const gpu::SceneBounds bounds = gpu::soup_bounds(merged);
+  stage = Clock::now();
+  if (method == gpu::ShadowMethod::smoothie) {
+    SceneSmoothieOptions smoothie;
+    smoothie.width = options.smoothie_width.value_or(0.0);
+    smoothie.space = *parse_smoothie_space(options.smoothie_space.value_or("world"));  // CLI11 checked it
+    add_smoothies(inputs, scene.lights, bounds, smoothie);
+  }
+  const double smoothie_seconds = seconds_since(stage);
+  const double light_radius =
+      method == gpu::ShadowMethod::pcss ? options.light_radius.value_or(gpu::default_light_radius(bounds)) : 0.0;
 
   // Each light's stencil method (pipeline/stencil_choice.h); auto proves z-pass per light at
   // the camera, exactly, on the float-rounded casters.
@@ -193,6 +256,8 @@ int run_render(const RenderOptions& options) {
   method_options.shadow_map_bias = options.shadowmap_bias;
   method_options.sign = *gpu::parse_sign_mode(options.sign);  // CLI11 checked the name
   method_options.shadow_map_slope = options.shadowmap_slope;
+  method_options.pcf_kernel = static_cast<std::uint32_t>(options.pcf.value_or(gpu::kDefaultPcfKernel));
+  method_options.light_radius = light_radius;
   // The first light's volume fill in the first frame (two occlusion queries; the timed frames
   // do without): what a method costs the rasteriser, whatever the machine.
   method_options.count_fragments = !shadowmap;
@@ -231,6 +296,8 @@ int run_render(const RenderOptions& options) {
   }
 
   for (const std::string& file : {options.out, options.counts, options.mask}) create_parent_directories(file);
+  if (!options.light_image.empty())
+    write_light_image(options.light_image, scene.camera.width, scene.camera.height, frame.first_light);
   if (!options.out.empty()) gpu::write_png(options.out, frame.colour);
   if (!options.counts.empty()) gpu::write_png(options.counts, frame.first_stencil);
   if (!options.mask.empty()) gpu::write_png(options.mask, frame.first_lit_mask);
@@ -248,10 +315,32 @@ int run_render(const RenderOptions& options) {
       casters.triangles.size() == merged.triangles.size()
           ? fmt::format("{} triangles", merged.triangles.size())
           : fmt::format("{} triangles ({} cast)", merged.triangles.size(), casters.triangles.size());
+  // The shadow-map methods' lights whose frustum could not hold the scene (a point light inside
+  // or next to its bounds): the map's half angle is capped there and receivers outside are lit.
+  std::vector<std::size_t> capped_lights;
+  if (shadowmap)
+    for (std::size_t k = 0; k < scene.lights.size(); ++k)
+      if (gpu::light_frustum(scene.lights[k], bounds).capped) capped_lights.push_back(k);
   if (shadowmap) {
-    fmt::print("{}: {}, {} lights, {}x{}, shadowmap {}^2 (bias {}, slope {}) on {}\n", options.input, triangles,
-               scene.lights.size(), scene.camera.width, scene.camera.height, options.shadowmap_size,
-               options.shadowmap_bias, options.shadowmap_slope, context.renderer());
+    std::string filter;
+    if (method == gpu::ShadowMethod::pcf) filter = fmt::format(", pcf {}x{}", method_options.pcf_kernel, method_options.pcf_kernel);
+    if (method == gpu::ShadowMethod::pcss) filter = fmt::format(", pcss light radius {:.6g}", light_radius);
+    if (method == gpu::ShadowMethod::smoothie)
+      filter = fmt::format(", smoothies {:.6g} wide in {} space", inputs.smoothies.width,
+                           smoothie_space_name(inputs.smoothies.space));
+    fmt::print("{}: {}, {} lights, {}x{}, {} {}^2 (bias {}, slope {}){} on {}\n", options.input, triangles,
+               scene.lights.size(), scene.camera.width, scene.camera.height, gpu::shadow_method_name(method),
+               options.shadowmap_size, options.shadowmap_bias, options.shadowmap_slope, filter, context.renderer());
+    for (std::size_t k : capped_lights)
+      fmt::print("  light {}: inside or next to the scene's bounds: the map's field of view is capped at "
+                 "2 atan(8), receivers outside it are lit (a cube map would be needed)\n", k);
+    if (method == gpu::ShadowMethod::smoothie && !inputs.smoothies.stats.empty()) {
+      const SmoothieStats& st = inputs.smoothies.stats.front();
+      fmt::print("  smoothies (first light): {} silhouette edges, {} quads, {} linked and {} shrunk corners, "
+                 "{} zero-length and {} edge-on edges skipped, {} bisector fallbacks; {:.3f} s\n",
+                 st.edges, st.smoothies, st.linked_corners, st.shrunk_corners, st.zero_length_edges,
+                 st.edge_on_edges, st.bisector_fallbacks, smoothie_seconds);
+    }
   } else {
     fmt::print("{}: {}, {} lights, {}x{}, {}/{} on {}\n", options.input, triangles, scene.lights.size(),
                scene.camera.width, scene.camera.height, options.method, stencil, context.renderer());
@@ -268,7 +357,7 @@ int run_render(const RenderOptions& options) {
 
   if (!options.json_file.empty()) {
     nlohmann::json report{{"input", options.input},
-                          {"method", options.method},
+                          {"method", gpu::shadow_method_name(method)},
                           {"size", {scene.camera.width, scene.camera.height}},
                           {"renderer", context.renderer()},
                           {"device", context.device()},
@@ -277,10 +366,31 @@ int run_render(const RenderOptions& options) {
                           {"shadowed_pixels", shadowed},
                           {"frame_ms", frame_ms},
                           {"seconds", seconds}};
+    if (!options.light_image.empty())
+      report["light_image"] = {{"png", options.light_image},
+                               {"pfm", light_image_float_path(options.light_image).string()}};
     if (shadowmap) {
       report["shadowmap"] = {
           {"size", options.shadowmap_size}, {"bias", options.shadowmap_bias}, {"slope", options.shadowmap_slope}};
       report["stage_seconds"] = {{"upload", upload_seconds}, {"first_frame", first_frame_seconds}};
+      report["capped_lights"] = capped_lights;
+      if (method == gpu::ShadowMethod::pcf) report["pcf_kernel"] = method_options.pcf_kernel;
+      if (method == gpu::ShadowMethod::pcss) report["light_radius"] = light_radius;
+      if (method == gpu::ShadowMethod::smoothie) {
+        nlohmann::json per_light = nlohmann::json::array();
+        for (const SmoothieStats& st : inputs.smoothies.stats)
+          per_light.push_back({{"silhouette_edges", st.edges},
+                               {"smoothies", st.smoothies},
+                               {"linked_corners", st.linked_corners},
+                               {"shrunk_corners", st.shrunk_corners},
+                               {"zero_length_edges", st.zero_length_edges},
+                               {"edge_on_edges", st.edge_on_edges},
+                               {"bisector_fallbacks", st.bisector_fallbacks}});
+        report["smoothie"] = {{"width", inputs.smoothies.width},
+                              {"space", smoothie_space_name(inputs.smoothies.space)},
+                              {"per_light", per_light}};
+        report["stage_seconds"]["smoothies"] = smoothie_seconds;
+      }
     } else {
       report["stencil"] = stencil;
       report["stencil_per_light"] = stencil_json(stencils);
@@ -316,7 +426,9 @@ void add_render_command(CLI::App& app, int& exit_code) {
                   "multiplicities, captured by transform feedback, rebuilt every frame; "
                   "gpu/geometry_shader_volume.h) or ts (tessellation over edge-record patches, the same "
                   "multiplicities and capture; gpu/tessellation_volume.h). shadowmap (no volume: a depth map "
-                  "from each light, --shadowmap-size/-bias/-slope; gpu/shadow_map_renderer.h). discrete, accurate, "
+                  "from each light, --shadowmap-size/-bias/-slope; gpu/shadow_map_renderer.h); pcf, pcss (the map "
+                  "filtered: --pcf K, --pcss, --light-radius) and smoothie (the map, then smoothies along the "
+                  "silhouette edges: --smoothie-width, --smoothie-space; docs/smoothies.md). discrete, accurate, "
                   "smooth: smooth-silhouette volumes of every mesh that is an oriented 2-manifold (the others by "
                   "the robust chain, named in the output; docs/smooth-silhouettes.md); smooth-gpu: smooth's "
                   "volume built on the GPU every frame (gpu/smooth_silhouette_volume.h)")
@@ -338,17 +450,18 @@ void add_render_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--capture", options->capture,
                   "Write the first light's volume as drawn (.vol text; check it with certify --volume FILE)");
   cmd->add_option("--shadowmap-size", options->shadowmap_size,
-                  "shadowmap: side of the square depth map in texels, at most 16384")
+                  "shadowmap, pcf, pcss, smoothie: side of the square depth map (and smoothie map) in texels, at "
+                  "most 16384")
       ->capture_default_str();
   cmd->add_option("--sign", options->sign, "cs, gs, ts, pertri: each triangle's light side as the exact sign of its float inputs (exact: a proven float filter, integer arithmetic where it cannot decide) or the float formula's sign (float: Milet 2014 refedge, wrong where the light is within rounding of a plane)")
       ->check(CLI::IsMember({"exact", "float"}))
       ->capture_default_str();
   cmd->add_option("--shadowmap-bias", options->shadowmap_bias,
-                  "shadowmap: constant bias subtracted from the light-space depth (window units, [0, 1]) "
+                  "shadowmap, pcf, pcss, smoothie: constant bias subtracted from the light-space depth (window units, [0, 1]) "
                   "before the comparison; larger trades acne for detached shadows")
       ->capture_default_str();
   cmd->add_option("--shadowmap-slope", options->shadowmap_slope,
-                  "shadowmap: glPolygonOffset slope factor of the depth pass (for surfaces edge-on to the light)")
+                  "shadowmap, pcf, pcss, smoothie: glPolygonOffset slope factor of the depth pass (for surfaces edge-on to the light)")
       ->capture_default_str();
   CLI::Option* timing = cmd->add_flag(
       "--timing", options->timing,
@@ -359,8 +472,32 @@ void add_render_command(CLI::App& app, int& exit_code) {
       ->check(CLI::Range(std::size_t{1}, std::size_t{100000}))
       ->needs(timing)
       ->capture_default_str();
+  cmd->add_option("--pcf", options->pcf,
+                  "Percentage-closer filtering: K x K depth comparisons centred on the point's texel, K odd in "
+                  "[1, 15] (1: the hard map). Picks --method pcf (which alone uses K = 3)");
+  cmd->add_flag("--pcss", options->pcss,
+                "Percentage-closer soft shadows (Fernando 2005: blocker search, then PCF over the predicted "
+                "penumbra) for a disk light of radius --light-radius around the point light. Same as --method pcss");
+  cmd->add_option("--light-radius", options->light_radius,
+                  "pcss: the light's radius R in world units (the soft reference's disk light; directional "
+                  "lights: the tangent of the angular radius); default 1% of the scene's bounding-box diagonal");
+  cmd->add_option("--smoothie-width", options->smoothie_width,
+                  "smoothie: the smoothies' width D in world units (light space: at the distance from the light to "
+                  "the scene's centre); default 2% of the scene's bounding-box diagonal");
+  cmd->add_option("--smoothie-space", options->smoothie_space,
+                  "smoothie: world (Chen & Tsai: along the bisector of the edge's faces, D wide) or light (Chan & "
+                  "Durand: perpendicular to the light's rays, a constant width in the light's image); default world")
+      ->check(CLI::IsMember({"world", "light"}));
+  cmd->add_option("--light-image", options->light_image,
+                  "Write the first light's amount of light per pixel: FILE.png (8-bit gray, 255 lit, 0 shadowed, "
+                  "between in a penumbra, 0 where no surface) and FILE.pfm beside it (32-bit floats, -1 where no "
+                  "surface); every method");
   cmd->add_option("--device", options->device, "Use EGL device N (default: a hardware device, else llvmpipe)");
-  cmd->callback([options, &exit_code] { exit_code = run_render(*options); });
+  CLI::Option* method_option = cmd->get_option("--method");
+  cmd->callback([options, method_option, &exit_code] {
+    options->method_given = method_option->count() > 0;
+    exit_code = run_render(*options);
+  });
 }
 
 }  // namespace shadowcert::cli

@@ -174,6 +174,14 @@ def point_seeds():
     write(h, "four_values.txt", "1 2 3 4\n")
 
 
+def light_path_seeds():
+    h = "light_path_file"
+    write(h, "orbit.txt", "# a path\n3 1 0 1\n0 1 3 1\n\n  -3\t1 0 1\r\n0.3 1 0.2 0\n")
+    write(h, "no_final_newline.txt", "1 2 3 1")
+    write(h, "bad_w.txt", "1 2 3 0.5\n")
+    write(h, "zero_direction.txt", "0 0 0 0\n")
+
+
 def scene_seeds():
     h = "scene_file"
     for folder in [ROOT / "data" / "scenes", ROOT / "data" / "scenes" / "hard", ROOT / "tests" / "data" / "scenes",
@@ -198,5 +206,5 @@ def scene_seeds():
 
 
 if __name__ == "__main__":
-    for seeds in (obj_seeds, off_seeds, ply_seeds, stl_seeds, vol_seeds, point_seeds, scene_seeds):
+    for seeds in (obj_seeds, off_seeds, ply_seeds, stl_seeds, vol_seeds, point_seeds, light_path_seeds, scene_seeds):
         seeds()

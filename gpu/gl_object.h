@@ -5,6 +5,7 @@
 //   auto buffer = Buffer::create();
 //   auto texture = Texture::create(GL_TEXTURE_2D);
 //   auto shader = Shader::create(GL_VERTEX_SHADER);
+//   auto sampler = Sampler::create();
 //
 // A default-constructed or moved-from owner holds name 0 and deletes nothing. Owners must
 // be destroyed while their context is current (the name belongs to that context).
@@ -81,6 +82,10 @@ struct Query {
   static GLuint create(GLenum target) { GLuint n = 0; glCreateQueries(target, 1, &n); return n; }
   static void destroy(GLuint n) { glDeleteQueries(1, &n); }
 };
+struct Sampler {
+  static GLuint create() { GLuint n = 0; glCreateSamplers(1, &n); return n; }
+  static void destroy(GLuint n) { glDeleteSamplers(1, &n); }
+};
 
 }  // namespace gl_traits
 
@@ -92,5 +97,6 @@ using Framebuffer = GlObject<gl_traits::Framebuffer>;
 using Renderbuffer = GlObject<gl_traits::Renderbuffer>;
 using Texture = GlObject<gl_traits::Texture>;          // create(GL_TEXTURE_2D ...)
 using Query = GlObject<gl_traits::Query>;              // create(GL_SAMPLES_PASSED ...)
+using Sampler = GlObject<gl_traits::Sampler>;          // a texture unit's own sampling state
 
 }  // namespace shadowcert::gpu

@@ -33,6 +33,7 @@ std::string_view render_stage_name(RenderStage stage) {
     case RenderStage::stencil: return "stencil";
     case RenderStage::lit: return "lit";
     case RenderStage::shadow_map: return "shadow_map";
+    case RenderStage::smoothie_map: return "smoothie_map";
   }
   throw std::invalid_argument("render_stage_name: unknown stage " + std::to_string(static_cast<int>(stage)));
 }

@@ -38,13 +38,16 @@ namespace shadowcert::gpu {
 // The stages a frame is split into. volume: building the shadow volumes on the GPU (compute,
 // transform-feedback or tessellation passes); depth: the receivers' depth pre-pass; stencil:
 // the volume pass; lit: the lighting pass; shadow_map: the shadow map method's depth pass from
-// the light.
-enum class RenderStage : std::uint8_t { volume, depth, stencil, lit, shadow_map };
-inline constexpr std::size_t kRenderStageCount = 5;
+// the light; smoothie_map: the smoothie method's pass of the smoothies from the light
+// (gpu/smoothie_map.h).
+enum class RenderStage : std::uint8_t { volume, depth, stencil, lit, shadow_map, smoothie_map };
+inline constexpr std::size_t kRenderStageCount = 6;
 inline constexpr std::array<RenderStage, kRenderStageCount> kRenderStages{
-    RenderStage::volume, RenderStage::depth, RenderStage::stencil, RenderStage::lit, RenderStage::shadow_map};
+    RenderStage::volume, RenderStage::depth,      RenderStage::stencil,
+    RenderStage::lit,    RenderStage::shadow_map, RenderStage::smoothie_map};
 
-// "volume", "depth", "stencil", "lit", "shadow_map": the JSON keys and table columns.
+// "volume", "depth", "stencil", "lit", "shadow_map", "smoothie_map": the JSON keys and table
+// columns.
 [[nodiscard]] std::string_view render_stage_name(RenderStage stage);
 
 // One frame's times in milliseconds, per stage the sum of that stage's intervals (0 for a

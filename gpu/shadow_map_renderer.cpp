@@ -7,6 +7,8 @@
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
@@ -27,8 +29,17 @@ constexpr GLint kLightLocation = 2;
 constexpr GLint kLambertWeightLocation = 3;
 constexpr GLint kLightToClipLocation = 4;
 constexpr GLint kDepthBiasLocation = 5;
+constexpr GLint kFilterModeLocation = 6;  // shadow_filter.glsl
+constexpr GLint kPcfKernelLocation = 7;
+constexpr GLint kLightViewLocation = 8;
+constexpr GLint kLightFrustumLocation = 9;
+constexpr GLint kOrthographicLocation = 10;
+constexpr GLint kLightRadiusLocation = 11;
+constexpr GLint kLightImagePassLocation = 12;  // shadow_map_scene.frag.glsl
 constexpr GLint kDepthLightToClipLocation = 0;  // shadow_map_depth.vert.glsl
 constexpr GLuint kShadowMapUnit = 0;             // layout(binding = 0) of the sampler
+constexpr GLuint kDepthValuesUnit = 1;           // binding 1: the map without comparison (pcss)
+constexpr GLuint kSmoothieMapUnit = 2;           // binding 2: the smoothie map
 
 // Stencil marks of the first light (the frame's "counts", see the header).
 constexpr GLint kShadowedMark = 1;
@@ -77,12 +88,23 @@ SceneBounds soup_bounds(const Soup& soup) {
   return b;
 }
 
+double default_light_radius(const SceneBounds& bounds) {
+  const glm::dvec3 diagonal = to_glm(bounds.hi) - to_glm(bounds.lo);
+  return kDefaultLightRadiusFraction * glm::length(diagonal);
+}
+
 glm::dmat4 light_to_clip(const Light& light, const SceneBounds& bounds) {
+  const LightFrustum f = light_frustum(light, bounds);
+  return f.projection * f.view;
+}
+
+LightFrustum light_frustum(const Light& light, const SceneBounds& bounds) {
   const glm::dvec3 lo = to_glm(bounds.lo), hi = to_glm(bounds.hi);
   const glm::dvec3 centre = 0.5 * (lo + hi);
   // A flat box (a lone floor) still needs a non-zero extent for the fit below.
   const double radius = std::max(0.5 * glm::length(hi - lo), 1.0e-6);
   const glm::dvec3 l(light.position[0], light.position[1], light.position[2]);
+  LightFrustum frustum;
   if (light.directional()) {
     if (glm::length(l) == 0.0) throw std::invalid_argument("light_to_clip: directional light with l = 0");
     const glm::dvec3 towards = glm::normalize(l);
@@ -95,9 +117,14 @@ glm::dmat4 light_to_clip(const Light& light, const SceneBounds& bounds) {
     }
     const glm::dvec3 mid = 0.5 * (vmin + vmax), half = 0.5 * kFitMargin * (vmax - vmin) + radius * 1.0e-6;
     // View space looks down -z: near = -max z, far = -min z.
-    return glm::orthoRH_NO(mid.x - half.x, mid.x + half.x, mid.y - half.y, mid.y + half.y, -(mid.z + half.z),
-                           -(mid.z - half.z)) *
-           view;
+    frustum.view = view;
+    frustum.projection = glm::orthoRH_NO(mid.x - half.x, mid.x + half.x, mid.y - half.y, mid.y + half.y,
+                                         -(mid.z + half.z), -(mid.z - half.z));
+    frustum.near = -(mid.z + half.z);
+    frustum.far = -(mid.z - half.z);
+    frustum.half_extent = {half.x, half.y};
+    frustum.orthographic = true;
+    return frustum;
   }
   if (glm::length(centre - l) == 0.0) throw std::invalid_argument("light_to_clip: point light at the bounds' centre");
   const glm::dmat4 view = glm::lookAt(l, centre, up_for(centre - l));
@@ -114,13 +141,19 @@ glm::dmat4 light_to_clip(const Light& light, const SceneBounds& bounds) {
     nearest = std::min(nearest, depth);
     tangent = std::max({tangent, std::abs(v.x) / depth, std::abs(v.y) / depth});
   }
+  frustum.capped = tangent * kFitMargin >= kMaxPointLightHalfAngleTangent;
   tangent = std::min(tangent * kFitMargin, kMaxPointLightHalfAngleTangent);
   const double z_far = farthest * kFitMargin;
   const double z_near = std::max(nearest / kFitMargin, z_far * kMinNearFraction);
-  return glm::perspectiveRH_NO(2.0 * std::atan(tangent), 1.0, z_near, z_far) * view;
+  frustum.view = view;
+  frustum.projection = glm::perspectiveRH_NO(2.0 * std::atan(tangent), 1.0, z_near, z_far);
+  frustum.near = z_near;
+  frustum.far = z_far;
+  frustum.tangent = tangent;
+  return frustum;
 }
 
-ShadowMapRenderer::ShadowMapRenderer(std::uint32_t size) : size_(size) {
+ShadowMapRenderer::ShadowMapRenderer(std::uint32_t size, ShadowFilter filter) : size_(size), filter_(filter) {
   if (size == 0 || size > kMaxShadowMapSize) {
     throw std::invalid_argument("ShadowMapRenderer: shadow map size " + std::to_string(size) + " is not in [1, " +
                                 std::to_string(kMaxShadowMapSize) + "]");
@@ -149,7 +182,16 @@ ShadowMapRenderer::ShadowMapRenderer(std::uint32_t size) : size_(size) {
   if (glCheckNamedFramebufferStatus(framebuffer_.name(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
     throw GlError("ShadowMapRenderer: the " + std::to_string(size) + "^2 depth framebuffer is incomplete");
   }
+  // pcss reads the stored depths themselves through this sampler (the texture's own state
+  // compares): nearest, clamped, no comparison.
+  depth_values_ = Sampler::create();
+  glSamplerParameteri(depth_values_.name(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glSamplerParameteri(depth_values_.name(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glSamplerParameteri(depth_values_.name(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glSamplerParameteri(depth_values_.name(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  glSamplerParameteri(depth_values_.name(), GL_TEXTURE_COMPARE_MODE, GL_NONE);
   check_gl_errors("ShadowMapRenderer: depth texture");
+  if (filter == ShadowFilter::smoothie) smoothie_map_.emplace(size);
 
   const Shader depth_vertex =
       compile_shader(GL_VERTEX_SHADER, shaders::shadow_map_depth_vert, "shadow_map_depth.vert.glsl");
@@ -162,14 +204,52 @@ ShadowMapRenderer::ShadowMapRenderer(std::uint32_t size) : size_(size) {
   scene_program_ = link_program({&vertex, &fragment}, "shadow_map_scene");
 }
 
+namespace {
+
+int filter_mode(ShadowFilter filter) {
+  switch (filter) {
+    case ShadowFilter::hard: return 0;  // the kFilter* constants of shadow_filter.glsl
+    case ShadowFilter::pcf: return 1;
+    case ShadowFilter::pcss: return 2;
+    case ShadowFilter::smoothie: return 3;
+  }
+  return 0;
+}
+
+void validate(ShadowFilter filter, std::span<const Light> lights, const ShadowMapOptions& options) {
+  const std::string where = "ShadowMapRenderer::render: ";
+  if (filter == ShadowFilter::pcf &&
+      (options.pcf_kernel < 1 || options.pcf_kernel > kMaxPcfKernel || options.pcf_kernel % 2 == 0))
+    throw std::invalid_argument(where + "the pcf kernel must be odd and in [1, " + std::to_string(kMaxPcfKernel) +
+                                "], got " + std::to_string(options.pcf_kernel));
+  if (filter == ShadowFilter::pcss && (!std::isfinite(options.light_radius) || !(options.light_radius > 0.0)))
+    throw std::invalid_argument(where + "the pcss light radius must be finite and > 0, got " +
+                                std::to_string(options.light_radius));
+  if (filter == ShadowFilter::smoothie) {
+    if (options.smoothies.size() != lights.size())
+      throw std::invalid_argument(where + "smoothie needs one smoothie mesh per light (" +
+                                  std::to_string(options.smoothies.size()) + " for " + std::to_string(lights.size()) +
+                                  " lights)");
+    for (const SmoothieQuads* quads : options.smoothies)
+      if (quads == nullptr) throw std::invalid_argument(where + "a null smoothie mesh");
+  }
+}
+
+}  // namespace
+
 StencilShadowFrame ShadowMapRenderer::render(const OffscreenTarget& target, const ShadedSoupMesh& receivers,
                                              const SceneBounds& bounds, const Camera& camera,
                                              std::span<const Light> lights, const ShadowMapOptions& options) const {
+  validate(filter_, lights, options);
   const GLuint scene = scene_program_.name();
   const GLuint depth = depth_program_.name();
   const glm::mat4 world_to_clip(projection_matrix(camera) * view_matrix(camera));
   glProgramUniformMatrix4fv(scene, kWorldToClipLocation, 1, GL_FALSE, glm::value_ptr(world_to_clip));
   glProgramUniform1f(scene, kDepthBiasLocation, options.depth_bias);
+  glProgramUniform1i(scene, kFilterModeLocation, filter_mode(filter_));
+  glProgramUniform1i(scene, kPcfKernelLocation, static_cast<GLint>(options.pcf_kernel));
+  glProgramUniform1f(scene, kLightRadiusLocation, static_cast<float>(options.light_radius));
+  glProgramUniform1i(scene, kLightImagePassLocation, 0);
 
   target.bind();
   target.clear(options.background);
@@ -196,8 +276,11 @@ StencilShadowFrame ShadowMapRenderer::render(const OffscreenTarget& target, cons
     glDrawArrays(GL_TRIANGLES, 0, receivers.single_order_vertex_count());
   }
 
+  std::vector<float> first_light;
   for (std::size_t i = 0; i < lights.size(); ++i) {
-    const glm::mat4 to_light_clip(light_to_clip(lights[i], bounds));
+    const LightFrustum frustum = light_frustum(lights[i], bounds);
+    const glm::mat4 to_light_clip(frustum.projection * frustum.view);
+    const glm::mat4 light_view(frustum.view);
 
     // 2. Depth pass from the light. Only the slope term of glPolygonOffset: the constant
     //    bias is applied in the comparison (depth_bias), in depth units the user can read.
@@ -220,12 +303,24 @@ StencilShadowFrame ShadowMapRenderer::render(const OffscreenTarget& target, cons
     glDisable(GL_POLYGON_OFFSET_FILL);
     stage.reset();
 
+    // 2b. smoothie: the light's smoothies into the smoothie map (nearest alpha and depth).
+    if (smoothie_map_) {
+      stage.emplace(options.timer, RenderStage::smoothie_map);
+      smoothie_map_->render(*options.smoothies[i], to_light_clip, light_view);
+      stage.reset();
+    }
+
     // 3. Lit pass on the visible surface only; the first light clears the shadowed mark
     //    where its comparison says lit (shadowed fragments are discarded in the shader).
     stage.emplace(options.timer, RenderStage::lit);
     target.bind();
     glUseProgram(scene);
     glBindTextureUnit(kShadowMapUnit, depth_.name());
+    if (filter_ == ShadowFilter::pcss) {
+      glBindTextureUnit(kDepthValuesUnit, depth_.name());
+      glBindSampler(kDepthValuesUnit, depth_values_.name());
+    }
+    if (smoothie_map_) glBindTextureUnit(kSmoothieMapUnit, smoothie_map_->texture());
     glEnable(GL_STENCIL_TEST);
     glStencilFunc(GL_ALWAYS, kLitMark, 0xFF);
     glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
@@ -238,13 +333,38 @@ StencilShadowFrame ShadowMapRenderer::render(const OffscreenTarget& target, cons
     glProgramUniform4f(scene, kLightLocation, static_cast<float>(l[0]), static_cast<float>(l[1]),
                        static_cast<float>(l[2]), static_cast<float>(l[3]));
     glProgramUniformMatrix4fv(scene, kLightToClipLocation, 1, GL_FALSE, glm::value_ptr(to_light_clip));
+    glProgramUniformMatrix4fv(scene, kLightViewLocation, 1, GL_FALSE, glm::value_ptr(light_view));
+    glProgramUniform4f(scene, kLightFrustumLocation, static_cast<float>(frustum.near), static_cast<float>(frustum.far),
+                       static_cast<float>(frustum.orthographic ? frustum.half_extent[0] : frustum.tangent),
+                       static_cast<float>(frustum.orthographic ? frustum.half_extent[1] : frustum.tangent));
+    glProgramUniform1i(scene, kOrthographicLocation, frustum.orthographic ? 1 : 0);
     glProgramUniform1f(scene, kLambertWeightLocation, 1.0f);
     glProgramUniform4f(scene, kColourLocation, options.light_colour[0], options.light_colour[1],
                        options.light_colour[2], 1.0f);
+    glBindVertexArray(receivers.vertex_array());  // the smoothie map bound its own
     glDrawArrays(GL_TRIANGLES, 0, receivers.single_order_vertex_count());
     glDisable(GL_BLEND);
-    glBindTextureUnit(kShadowMapUnit, 0);
     stage.reset();
+
+    // 4. The first light's amount of light per pixel (readback frames only): the receivers once
+    //    more into the light image, nearest surface per pixel, the filter's amount as colour.
+    if (i == 0 && options.read_back) {
+      if (!light_image_ || light_image_->width() != target.width() || light_image_->height() != target.height())
+        light_image_.emplace(target.width(), target.height());
+      light_image_->bind();
+      light_image_->clear();
+      glDisable(GL_STENCIL_TEST);
+      glDepthFunc(GL_LESS);
+      glDepthMask(GL_TRUE);
+      glProgramUniform1i(scene, kLightImagePassLocation, 1);
+      glDrawArrays(GL_TRIANGLES, 0, receivers.single_order_vertex_count());
+      glProgramUniform1i(scene, kLightImagePassLocation, 0);
+      first_light = light_image_->read_light();
+    }
+    glBindTextureUnit(kShadowMapUnit, 0);
+    glBindTextureUnit(kDepthValuesUnit, 0);
+    glBindSampler(kDepthValuesUnit, 0);
+    glBindTextureUnit(kSmoothieMapUnit, 0);
   }
 
   glBindVertexArray(0);
@@ -258,6 +378,16 @@ StencilShadowFrame ShadowMapRenderer::render(const OffscreenTarget& target, cons
   if (options.read_back) {
     frame.colour = target.read_colour();
     frame.first_stencil = target.read_stencil();
+    frame.first_light = std::move(first_light);
+    if (filter_ != ShadowFilter::hard) {
+      // A soft amount: shadowed where below the middle of the penumbra (kLitThreshold); the
+      // stencil marked every pixel with any light at all.
+      for (std::size_t p = 0; p < frame.first_stencil.pixels.size(); ++p) {
+        const bool covered = frame.colour.pixels[4 * p + 3] != 0;
+        frame.first_stencil.pixels[p] =
+            static_cast<std::uint8_t>(covered && frame.first_light[p] < kLitThreshold ? kShadowedMark : kLitMark);
+      }
+    }
     frame.first_lit_mask = lit_mask(frame.first_stencil);
   }
   return frame;

@@ -13,8 +13,21 @@
 // Frame output is StencilShadowFrame, as the stencil methods give: there are no counts, so
 // first_stencil holds 0 where the first light's comparison says lit and 1 where it says
 // shadowed (0 where no receiver covers the pixel), and first_lit_mask = lit_mask(first_stencil).
+//
+// Filters (docs/smoothies.md; ShadowFilter, chosen at construction; shaders/shadow_filter.glsl):
+//   hard      the above, unchanged (the `shadowmap` method);
+//   pcf       percentage-closer filtering, K x K comparisons at whole-texel offsets (`pcf`);
+//   pcss      percentage-closer soft shadows (Fernando 2005): blocker search, then PCF over the
+//             penumbra the blockers' mean depth predicts for a disk light of radius R (`pcss`);
+//   smoothie  the hard comparison, then the nearest smoothie in front of the point, its alpha
+//             remapped (Chen & Tsai §3; gpu/smoothie_map.h) (`smoothie`).
+// The soft filters give an amount of light in [0, 1]: the lit pass adds the Lambert term times
+// it, and first_stencil marks a pixel shadowed where the amount is below kLitThreshold.
+// Every readback frame also holds the first light's amount per pixel (StencilShadowFrame::
+// first_light), drawn in one more pass of the receivers into a LightImageTarget.
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <span>
 
 #include <glm/glm.hpp>
@@ -24,7 +37,9 @@
 #include "core/soup.h"
 #include "gpu/gl_object.h"
 #include "gpu/gpu_stage_timer.h"
+#include "gpu/light_image_target.h"
 #include "gpu/offscreen_target.h"
+#include "gpu/smoothie_map.h"
 #include "gpu/stencil_shadow_renderer.h"
 
 namespace shadowcert::gpu {
@@ -46,6 +61,15 @@ inline constexpr float kDefaultShadowMapBias = 1.0e-4f;
 // edge-on from the light (where the constant bias alone would have to be large).
 inline constexpr float kDefaultShadowMapSlope = 2.0f;
 
+enum class ShadowFilter { hard, pcf, pcss, smoothie };
+
+// pcf: K x K taps, K odd, from 1 (the hard map, pixel for pixel) to this (225 taps).
+inline constexpr std::uint32_t kDefaultPcfKernel = 3;
+inline constexpr std::uint32_t kMaxPcfKernel = 15;
+// Soft filters: first_stencil marks a pixel lit (0) where the first light's amount is at least
+// this, the middle of the penumbra, so the lit mask stays comparable with the hard boundary.
+inline constexpr float kLitThreshold = 0.5f;
+
 // Axis-aligned bounds of the scene, what the light's frustum or box is fitted to.
 struct SceneBounds {
   Vec3 lo{0.0, 0.0, 0.0};
@@ -54,10 +78,32 @@ struct SceneBounds {
 // The bounds of a soup's referenced vertices; throws std::invalid_argument when it has none.
 [[nodiscard]] SceneBounds soup_bounds(const Soup& soup);
 
-// World to the light's clip space, fitted to `bounds` (see the top of this file). A point
-// light too close to or inside the box gets a capped field of view (receivers outside it are
-// lit; kMaxPointLightHalfAngleTangent in the .cpp). Throws std::invalid_argument for a
-// directional l = 0 or a point light at the bounds' centre.
+// pcss without a light radius (ShadowMethodOptions::light_radius = 0): this fraction of the
+// diagonal of the scene's bounds, about 0.17 on default.json (diagonal about 17).
+inline constexpr double kDefaultLightRadiusFraction = 0.01;
+[[nodiscard]] double default_light_radius(const SceneBounds& bounds);
+
+// The light's view of the scene, fitted to `bounds` (see the top of this file).
+struct LightFrustum {
+  glm::dmat4 view{1.0};        // world to the light's view (looking down -z)
+  glm::dmat4 projection{1.0};  // view to clip
+  double near = 0.0, far = 0.0;  // linear depths along the light's axis
+  // Point light: the tangent of the half field of view (both axes); directional light: the
+  // box's half width and half height. Texture coordinates span 2 * that (* depth) world units.
+  double tangent = 0.0;
+  std::array<double, 2> half_extent{0.0, 0.0};
+  bool orthographic = false;  // directional light
+  // A point light inside the bounds (a corner behind it) or so near them that the half angle
+  // was capped at kMaxPointLightHalfAngleTangent (in the .cpp, atan(8)): receivers outside the
+  // frustum are lit. render reports it (docs/gpu.md, "Shadow map baseline").
+  bool capped = false;
+};
+// Throws std::invalid_argument for a directional l = 0 or a point light at the bounds' centre.
+[[nodiscard]] LightFrustum light_frustum(const Light& light, const SceneBounds& bounds);
+
+// World to the light's clip space: light_frustum's projection * view. A point light too close
+// to or inside the box gets a capped field of view (receivers outside it are lit). Throws as
+// light_frustum.
 [[nodiscard]] glm::dmat4 light_to_clip(const Light& light, const SceneBounds& bounds);
 
 struct ShadowMapOptions {
@@ -67,31 +113,52 @@ struct ShadowMapOptions {
   std::array<float, 3> ambient{0.15f, 0.15f, 0.15f};
   std::array<float, 3> light_colour{0.85f, 0.85f, 0.85f};
   bool read_back = true;  // off for timing: render() returns only what was drawn
-  // When set (and a frame of it open), the depth pre-pass, each light's shadow_map pass and
-  // lit pass are timed as its stages (gpu/gpu_stage_timer.h); readbacks stay outside them.
+  // When set (and a frame of it open), the depth pre-pass, each light's shadow_map pass,
+  // smoothie_map pass and lit pass are timed as its stages (gpu/gpu_stage_timer.h); readbacks
+  // and the light-image pass stay outside them.
   GpuStageTimer* timer = nullptr;
+  // pcf: K, odd, in [1, kMaxPcfKernel].
+  std::uint32_t pcf_kernel = kDefaultPcfKernel;
+  // pcss: the light's radius R, finite and > 0: world units for a point light (a disk of radius
+  // R around it, as the soft reference's, docs/smoothies.md); for a directional light the
+  // tangent of its angular radius.
+  double light_radius = 0.0;
+  // smoothie: one mesh per light, in the lights' order (gpu/smoothie_map.h).
+  std::span<const SmoothieQuads* const> smoothies;
 };
 
 class ShadowMapRenderer {
  public:
-  // Allocates the size x size depth texture. Throws std::invalid_argument for size 0 or over
-  // kMaxShadowMapSize, GlError when the driver cannot hold it.
-  explicit ShadowMapRenderer(std::uint32_t size = kDefaultShadowMapSize);
+  // Allocates the size x size depth texture (and for `smoothie` the smoothie map of the same
+  // size). Throws std::invalid_argument for size 0 or over kMaxShadowMapSize, GlError when the
+  // driver cannot hold it.
+  explicit ShadowMapRenderer(std::uint32_t size = kDefaultShadowMapSize, ShadowFilter filter = ShadowFilter::hard);
 
-  // Renders into `target` (bound and cleared here), one depth pass and one lit pass per
-  // light. Throws GlError on a GL error, std::invalid_argument from light_to_clip.
+  // Renders into `target` (bound and cleared here), one depth pass (smoothie: and one smoothie
+  // map pass) and one lit pass per light; with read_back, the light-image pass of the first
+  // light too. Throws GlError on a GL error, std::invalid_argument from light_to_clip, and
+  // std::invalid_argument("ShadowMapRenderer::render: ...") for a pcf kernel that is even or out
+  // of range, a pcss light radius that is not finite and > 0, or smoothie meshes that are not
+  // one per light.
   StencilShadowFrame render(const OffscreenTarget& target, const ShadedSoupMesh& receivers, const SceneBounds& bounds,
                             const Camera& camera, std::span<const Light> lights,
                             const ShadowMapOptions& options = {}) const;
 
   [[nodiscard]] std::uint32_t size() const { return size_; }
+  [[nodiscard]] ShadowFilter filter() const { return filter_; }
 
  private:
   std::uint32_t size_;
+  ShadowFilter filter_;
   Texture depth_;
   Framebuffer framebuffer_;
+  Sampler depth_values_;  // the map without comparison: pcss's blocker search
+  std::optional<SmoothieMap> smoothie_map_;
   Program depth_program_;
   Program scene_program_;
+  // The first light's amount of light per pixel, reallocated when the target's size changes (a
+  // cache of the const render(), hence mutable).
+  mutable std::optional<LightImageTarget> light_image_;
 };
 
 }  // namespace shadowcert::gpu

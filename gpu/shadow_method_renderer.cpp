@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <string>
 
 #include "gpu/compute_volume.h"
@@ -51,6 +52,9 @@ std::unique_ptr<ShadowMethodRenderer::BuiltVolume> make_built_volume(ShadowMetho
     case ShadowMethod::pertri: return std::make_unique<BuiltVolumeOf<PerTriangleShadowVolume>>(soup, sign);
     case ShadowMethod::cpu:
     case ShadowMethod::shadowmap:
+    case ShadowMethod::pcf:
+    case ShadowMethod::pcss:
+    case ShadowMethod::smoothie:
     case ShadowMethod::discrete:
     case ShadowMethod::accurate:
     case ShadowMethod::smooth:
@@ -95,6 +99,9 @@ std::string_view shadow_method_name(ShadowMethod method) {
     case ShadowMethod::accurate: return "accurate";
     case ShadowMethod::smooth: return "smooth";
     case ShadowMethod::smooth_gpu: return "smooth-gpu";
+    case ShadowMethod::pcf: return "pcf";
+    case ShadowMethod::pcss: return "pcss";
+    case ShadowMethod::smoothie: return "smoothie";
   }
   throw std::invalid_argument("shadow_method_name: unknown method " + std::to_string(static_cast<int>(method)));
 }
@@ -104,11 +111,15 @@ std::optional<ShadowMethod> parse_shadow_method(std::string_view name) {
     if (shadow_method_name(m) == name) return m;
   for (ShadowMethod m : kSilhouetteMethods)
     if (shadow_method_name(m) == name) return m;
+  for (ShadowMethod m : kSoftShadowMethods)
+    if (shadow_method_name(m) == name) return m;
   return std::nullopt;
 }
 
 std::vector<RenderStage> method_stages(ShadowMethod method) {
-  if (method == ShadowMethod::shadowmap) return {RenderStage::depth, RenderStage::shadow_map, RenderStage::lit};
+  if (method == ShadowMethod::smoothie)
+    return {RenderStage::depth, RenderStage::shadow_map, RenderStage::smoothie_map, RenderStage::lit};
+  if (uses_shadow_map(method)) return {RenderStage::depth, RenderStage::shadow_map, RenderStage::lit};
   return {RenderStage::volume, RenderStage::depth, RenderStage::stencil, RenderStage::lit};
 }
 
@@ -123,8 +134,28 @@ ShadowMethodRenderer::ShadowMethodRenderer(ShadowMethod method, const ShadowMeth
   light_colour_ = StencilShadowOptions{}.light_colour;
   for (float& c : light_colour_) c /= static_cast<float>(lights_.size());
 
-  if (method == ShadowMethod::shadowmap) {
-    shadow_map_renderer_.emplace(options.shadow_map_size);
+  if (uses_shadow_map(method)) {
+    if (method == ShadowMethod::pcf &&
+        (options.pcf_kernel < 1 || options.pcf_kernel > kMaxPcfKernel || options.pcf_kernel % 2 == 0))
+      throw std::invalid_argument("ShadowMethodRenderer: the pcf kernel must be odd and in [1, " +
+                                  std::to_string(kMaxPcfKernel) + "], got " + std::to_string(options.pcf_kernel));
+    if (method == ShadowMethod::pcss) {
+      if (!std::isfinite(options.light_radius) || options.light_radius < 0.0)
+        throw std::invalid_argument("ShadowMethodRenderer: the pcss light radius must be finite and >= 0 (0: the "
+                                    "default), got " + std::to_string(options.light_radius));
+      if (options.light_radius == 0.0) options_.light_radius = default_light_radius(bounds_);
+    }
+    if (method == ShadowMethod::smoothie) {
+      if (scene.smoothies.size() != lights_.size())
+        throw std::invalid_argument("ShadowMethodRenderer: smoothie needs one smoothie mesh per light (" +
+                                    std::to_string(scene.smoothies.size()) + " for " +
+                                    std::to_string(lights_.size()) + " lights)");
+      for (const SmoothieMesh& mesh : scene.smoothies) {
+        smoothies_.push_back(std::make_unique<SmoothieQuads>(mesh));
+        smoothie_views_.push_back(smoothies_.back().get());
+      }
+    }
+    shadow_map_renderer_.emplace(options.shadow_map_size, shadow_filter(method));
     return;
   }
   if (draws_given_volume(method)) {
@@ -192,6 +223,9 @@ StencilShadowFrame ShadowMethodRenderer::draw(const OffscreenTarget& target, con
     o.light_colour = light_colour_;
     o.read_back = read_back;
     o.timer = timer;
+    o.pcf_kernel = options_.pcf_kernel;
+    o.light_radius = options_.light_radius;
+    o.smoothies = smoothie_views_;
     return shadow_map_renderer_->render(target, receivers_, bounds_, camera, lights_, o);
   }
   build_volumes(timer);
@@ -254,7 +288,8 @@ std::uint64_t ShadowMethodRenderer::volume_triangles() const {
 
 HomogeneousMesh ShadowMethodRenderer::first_volume() const {
   if (cpu_meshes_.empty() && built_volumes_.empty())
-    throw std::logic_error("ShadowMethodRenderer::first_volume: shadowmap draws no volume");
+    throw std::logic_error("ShadowMethodRenderer::first_volume: " + std::string(shadow_method_name(method_)) +
+                           " draws no volume");
   HomogeneousMesh mesh;
   if (!cpu_meshes_.empty()) mesh = cpu_meshes_.front();
   if (built_volumes_.empty()) return mesh;

@@ -10,6 +10,11 @@
 //   ts         tessellation over edge-record patches (gpu/tessellation_volume.h)
 //   pertri     every triangle's own closed volume (gpu/per_triangle_volume.h)
 //   shadowmap  no volume: one depth map per light (gpu/shadow_map_renderer.h)
+//   pcf, pcss  the shadow map filtered: K x K percentage-closer filtering, and Fernando's
+//              percentage-closer soft shadows for a disk light of radius R (ShadowFilter)
+//   smoothie   the shadow map, then the smoothie map of the caller's smoothies per light
+//              (Chen & Tsai; core/smoothie_mesh.h from pipeline/scene_smoothies.h, drawn by
+//              gpu/smoothie_map.h); docs/smoothies.md
 //   discrete, accurate, smooth
 //              smooth-silhouette volumes (docs/smooth-silhouettes.md), built by the caller
 //              (pipeline/ with contour/) and drawn as cpu's are
@@ -39,6 +44,7 @@
 #include "core/camera.h"
 #include "core/homogeneous_mesh.h"
 #include "core/light.h"
+#include "core/smoothie_mesh.h"
 #include "core/soup.h"
 #include "gpu/frame_timing.h"
 #include "gpu/gpu_stage_timer.h"
@@ -54,7 +60,7 @@ class ComputeVolumeSoup;  // gpu/compute_volume.h
 class SmoothCasterBuffers;  // gpu/smooth_silhouette_volume.h
 struct SmoothCasterArrays;
 
-enum class ShadowMethod { cpu, cs, gs, ts, pertri, shadowmap, discrete, accurate, smooth, smooth_gpu };
+enum class ShadowMethod { cpu, cs, gs, ts, pertri, shadowmap, discrete, accurate, smooth, smooth_gpu, pcf, pcss, smoothie };
 // The chain methods and the shadow map: what `--methods all` means (the smooth-silhouette
 // methods are asked for by name: they need casters that qualify, docs/smooth-silhouettes.md).
 inline constexpr std::array<ShadowMethod, 6> kShadowMethods{ShadowMethod::cpu, ShadowMethod::cs,
@@ -62,15 +68,32 @@ inline constexpr std::array<ShadowMethod, 6> kShadowMethods{ShadowMethod::cpu, S
                                                            ShadowMethod::pertri, ShadowMethod::shadowmap};
 inline constexpr std::array<ShadowMethod, 4> kSilhouetteMethods{ShadowMethod::discrete, ShadowMethod::accurate,
                                                                ShadowMethod::smooth, ShadowMethod::smooth_gpu};
+// The soft shadow-map methods (docs/smoothies.md), asked for by name as well: the filtered maps
+// and the smoothies.
+inline constexpr std::array<ShadowMethod, 3> kSoftShadowMethods{ShadowMethod::pcf, ShadowMethod::pcss,
+                                                              ShadowMethod::smoothie};
 
-// "cpu", "cs", "gs", "ts", "pertri", "shadowmap", "discrete", "accurate", "smooth", "smooth-gpu"
-// (the CLI's --method values).
+// "cpu", "cs", "gs", "ts", "pertri", "shadowmap", "discrete", "accurate", "smooth", "smooth-gpu",
+// "pcf", "pcss", "smoothie" (the CLI's --method values).
 [[nodiscard]] std::string_view shadow_method_name(ShadowMethod method);
 // The method of that name; nullopt for any other string.
 [[nodiscard]] std::optional<ShadowMethod> parse_shadow_method(std::string_view name);
-// Whether the method counts a shadow volume in the stencil (all but shadowmap), and whether
-// the GPU builds it from the canonical soup (cs, gs, ts, pertri).
-[[nodiscard]] constexpr bool draws_volume(ShadowMethod m) { return m != ShadowMethod::shadowmap; }
+// Whether the method is the shadow map or one of its filters (shadowmap, pcf, pcss, smoothie):
+// no volume, one depth map per light (gpu/shadow_map_renderer.h).
+[[nodiscard]] constexpr bool uses_shadow_map(ShadowMethod m) {
+  return m == ShadowMethod::shadowmap || m == ShadowMethod::pcf || m == ShadowMethod::pcss ||
+         m == ShadowMethod::smoothie;
+}
+// The shadow-map filter of such a method (hard for shadowmap).
+[[nodiscard]] constexpr ShadowFilter shadow_filter(ShadowMethod m) {
+  return m == ShadowMethod::pcf        ? ShadowFilter::pcf
+         : m == ShadowMethod::pcss     ? ShadowFilter::pcss
+         : m == ShadowMethod::smoothie ? ShadowFilter::smoothie
+                                       : ShadowFilter::hard;
+}
+// Whether the method counts a shadow volume in the stencil (all but the shadow-map methods), and
+// whether the GPU builds it from the canonical soup (cs, gs, ts, pertri).
+[[nodiscard]] constexpr bool draws_volume(ShadowMethod m) { return !uses_shadow_map(m); }
 [[nodiscard]] constexpr bool builds_volume_on_gpu(ShadowMethod m) {
   return m == ShadowMethod::cs || m == ShadowMethod::gs || m == ShadowMethod::ts || m == ShadowMethod::pertri;
 }
@@ -93,7 +116,8 @@ inline constexpr std::array<ShadowMethod, 4> kSilhouetteMethods{ShadowMethod::di
   return m == ShadowMethod::cpu || is_silhouette_method(m);
 }
 // The stages a frame of the method runs, in order: volume, depth, stencil, lit for the
-// volume methods (cpu's volume stage is empty: 0), depth, shadow_map, lit for shadowmap.
+// volume methods (cpu's volume stage is empty: 0), depth, shadow_map, lit for shadowmap, pcf
+// and pcss, depth, shadow_map, smoothie_map, lit for smoothie.
 [[nodiscard]] std::vector<RenderStage> method_stages(ShadowMethod method);
 
 // What the methods need of a scene. Everything is read (uploaded) during construction only,
@@ -113,6 +137,9 @@ struct ShadowMethodScene {
   // smooth-gpu: the casters whose smooth volume the GPU builds (pipeline/smooth_caster_arrays.h);
   // null or empty: none. Ignored by the other methods.
   const SmoothCasterArrays* smooth_casters = nullptr;
+  // smoothie: one smoothie mesh per light, in the lights' order (pipeline/scene_smoothies.h),
+  // uploaded on construction. Ignored by the other methods.
+  std::span<const SmoothieMesh> smoothies;
 };
 
 struct ShadowMethodOptions {
@@ -125,6 +152,10 @@ struct ShadowMethodOptions {
   std::uint32_t shadow_map_size = kDefaultShadowMapSize;
   float shadow_map_bias = kDefaultShadowMapBias;
   float shadow_map_slope = kDefaultShadowMapSlope;
+  // pcf: K (odd, [1, kMaxPcfKernel]); pcss: the light's radius R (finite, > 0; ShadowMapOptions),
+  // 0: default_light_radius of the receivers' bounds.
+  std::uint32_t pcf_kernel = kDefaultPcfKernel;
+  double light_radius = 0.0;
   // Volume methods: count the first light's volume fragments in render() (StencilShadowFrame).
   bool count_fragments = false;
 };
@@ -141,7 +172,8 @@ class ShadowMethodRenderer {
   // Uploads the receivers and the method's inputs and compiles its shaders; needs a current
   // context. Throws std::invalid_argument("ShadowMethodRenderer: ...") when the scene lacks
   // what the method needs (no light, no receiver triangle, no canonical soup or edge table for
-  // a GPU-built method, not one cpu volume per light), GlError / GlEnvironmentError from the
+  // a GPU-built method, not one cpu volume per light, not one smoothie mesh per light), or for
+  // a pcf kernel or pcss light radius out of range, GlError / GlEnvironmentError from the
   // driver, and whatever the method's own constructor throws (e.g. a shadow map size out of
   // range).
   ShadowMethodRenderer(ShadowMethod method, const ShadowMethodScene& scene, const ShadowMethodOptions& options = {});
@@ -152,8 +184,8 @@ class ShadowMethodRenderer {
   [[nodiscard]] ShadowMethod method() const { return method_; }
 
   // One frame into `target` (bound and cleared here): builds the GPU volumes, draws, reads
-  // back colour, the first light's counts and mask. With `timer` (a frame of it open), the
-  // build and the passes are timed as its stages.
+  // back colour, the first light's counts, mask and amount of light (first_light). With `timer`
+  // (a frame of it open), the build and the passes are timed as its stages.
   StencilShadowFrame render(const OffscreenTarget& target, const Camera& camera, GpuStageTimer* timer = nullptr);
 
   // `frames` frames without readback, each ended by glFinish; returns each frame's wall time
@@ -201,6 +233,8 @@ class ShadowMethodRenderer {
   std::vector<LightVolume> light_volumes_;
   std::optional<StencilShadowRenderer> stencil_renderer_;
   std::optional<ShadowMapRenderer> shadow_map_renderer_;
+  std::vector<std::unique_ptr<SmoothieQuads>> smoothies_;  // smoothie: per light
+  std::vector<const SmoothieQuads*> smoothie_views_;       // the same, as ShadowMapOptions takes them
 };
 
 }  // namespace shadowcert::gpu

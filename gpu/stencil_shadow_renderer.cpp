@@ -264,7 +264,15 @@ StencilShadowFrame StencilShadowRenderer::render(const OffscreenTarget& target, 
   glDepthFunc(GL_LESS);
   glDepthMask(GL_TRUE);
   check_gl_errors("StencilShadowRenderer::render");
-  if (options.read_back) frame.colour = target.read_colour();
+  if (options.read_back) {
+    frame.colour = target.read_colour();
+    // The first light's amount of light: all (count 0) or nothing, where a receiver is seen.
+    frame.first_light.resize(frame.first_lit_mask.pixels.size());
+    for (std::size_t p = 0; p < frame.first_light.size(); ++p)
+      frame.first_light[p] = frame.colour.pixels[4 * p + 3] == 0  ? kUncoveredLight
+                             : frame.first_lit_mask.pixels[p] != 0 ? 1.0f
+                                                                   : 0.0f;
+  }
   return frame;
 }
 

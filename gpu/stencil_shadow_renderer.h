@@ -33,6 +33,7 @@
 #include "gpu/gl_object.h"
 #include "gpu/gpu_stage_timer.h"
 #include "gpu/image.h"
+#include "gpu/light_image_target.h"
 #include "gpu/offscreen_target.h"
 #include "gpu/shadow_volume_geometry.h"
 
@@ -121,6 +122,11 @@ struct StencilShadowFrame {
   RgbaImage colour;           // alpha 255 where a receiver covers the pixel, 0 elsewhere
   GrayImage first_stencil;    // the first light's counts modulo 256 (after its volume pass)
   GrayImage first_lit_mask;   // lit_mask(first_stencil): 255 where the count is 0
+  // The first light's amount of light per pixel (docs/smoothies.md, "The light image"): width x
+  // height floats, row 0 at the TOP, in [0, 1] where a receiver covers the pixel (stencil
+  // methods: 1 where the count is 0, else 0; the shadow map family: its filter's amount) and
+  // kUncoveredLight (-1) where none does. Empty without readback.
+  std::vector<float> first_light;
   // With StencilShadowOptions::count_fragments: the fragments the first light's volume
   // rasterises (its fill rate: every one runs the stencil test), and those that change the
   // stencil (their depth test fails under z-fail, passes under z-pass). 0 otherwise.

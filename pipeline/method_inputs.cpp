@@ -11,7 +11,8 @@ namespace shadowcert {
 MethodInputs prepare_method_inputs(const Soup& casters, std::span<const Light> lights,
                                    std::span<const gpu::ShadowMethod> methods) {
   MethodInputs inputs;
-  if (std::any_of(methods.begin(), methods.end(), gpu::draws_volume)) {
+  if (std::any_of(methods.begin(), methods.end(), gpu::draws_volume) ||
+      std::find(methods.begin(), methods.end(), gpu::ShadowMethod::smoothie) != methods.end()) {
     inputs.canonical = canonical_soup(casters);
     inputs.table = build_edge_table(inputs.canonical.soup);
   }
@@ -27,6 +28,12 @@ void add_cpu_volumes(MethodInputs& inputs, std::span<const Light> lights) {
     inputs.cpu_volumes.push_back(cpu_volume_mesh(inputs.canonical.soup, inputs.table, light));
 }
 
+void add_smoothies(MethodInputs& inputs, std::span<const Light> lights, const gpu::SceneBounds& bounds,
+                   const SceneSmoothieOptions& options) {
+  if (!inputs.smoothies.per_light.empty()) throw std::logic_error("add_smoothies: the inputs have smoothies already");
+  inputs.smoothies = scene_smoothies(inputs.canonical.soup, inputs.table, lights, bounds, options);
+}
+
 gpu::ShadowMethodScene method_scene(const MethodInputs& inputs, std::span<const gpu::ShadedSoupPart> receivers,
                                     std::span<const Light> lights) {
   gpu::ShadowMethodScene scene;
@@ -36,6 +43,7 @@ gpu::ShadowMethodScene method_scene(const MethodInputs& inputs, std::span<const 
   scene.table = &inputs.table;
   scene.cpu_volumes = inputs.cpu_volumes;
   scene.smooth_casters = &inputs.smooth_casters;
+  scene.smoothies = inputs.smoothies.per_light;
   return scene;
 }
 
@@ -52,6 +60,10 @@ gpu::ShadowMethodScene light_scene(const MethodInputs& inputs, std::span<const g
   else
     scene.cpu_volumes = {};
   if (smooth != nullptr) scene.smooth_casters = smooth;
+  if (k < inputs.smoothies.per_light.size())
+    scene.smoothies = std::span<const SmoothieMesh>(&inputs.smoothies.per_light[k], 1);
+  else
+    scene.smoothies = {};
   return scene;
 }
 

@@ -146,7 +146,9 @@ SceneComparison compare_scene(const Scene& scene, const std::vector<gpu::ShadowM
   // The GL methods draw the scene in its eye's frame (core/eye_frame.h), which the reference's
   // float-rounded image models.
   const Scene drawn = eye_relative_scene(scene);
-  const MethodInputs inputs = prepare_method_inputs(merged_casters(drawn), drawn.lights, methods);
+  MethodInputs inputs = prepare_method_inputs(merged_casters(drawn), drawn.lights, methods);
+  if (std::find(methods.begin(), methods.end(), gpu::ShadowMethod::smoothie) != methods.end())
+    add_smoothies(inputs, drawn.lights, gpu::soup_bounds(merged_soup(drawn)), options.smoothie);
   const std::vector<gpu::ShadedSoupPart> parts = shaded_parts(drawn);
   const gpu::OffscreenTarget target(scene.camera.width, scene.camera.height);
   if (std::any_of(methods.begin(), methods.end(), gpu::draws_volume)) {

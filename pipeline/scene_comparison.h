@@ -25,19 +25,22 @@
 #include "gpu/offscreen_target.h"
 #include "gpu/shadow_method_renderer.h"
 #include "pipeline/analytic_comparison.h"
+#include "pipeline/scene_smoothies.h"
 #include "pipeline/silhouette_volumes.h"
 #include "pipeline/stencil_choice.h"
 
 namespace shadowcert {
 
 // Robust methods must show zero hard errors and closed volumes (docs/definitions.md#pixel-protocol); the shadow map
-// is the baseline whose errors are its speed-against-error figures (docs/definitions.md#speed-against-error).
+// is the baseline whose errors are its speed-against-error figures (docs/definitions.md#speed-against-error), and
+// so are its filters pcf, pcss and smoothie (docs/smoothies.md: their lit mask is where the light
+// is at least kLitThreshold): reported, never a failure.
 // `discrete` is held to the robust rule (on a qualifying caster it draws the exact chain's
 // shadow); `accurate`, `smooth` and `smooth-gpu` shadow a smooth surface that is not the polyhedral one, so
 // their disagreement with the exact image is their error, never a failure
 // (docs/smooth-silhouettes.md). Every volume must be closed all the same.
 [[nodiscard]] constexpr bool robust(gpu::ShadowMethod method) {
-  return method != gpu::ShadowMethod::shadowmap && !gpu::shadows_smooth_surface(method);
+  return !gpu::uses_shadow_map(method) && !gpu::shadows_smooth_surface(method);
 }
 
 // One method against one light.
@@ -82,6 +85,7 @@ struct SceneComparisonOptions {
   std::size_t timed_frames = 0;
   bool progress = false;  // the exact image's progress bar on stderr
   SilhouetteOptions silhouette;  // discrete, accurate, smooth (pipeline/silhouette_volumes.h)
+  SceneSmoothieOptions smoothie;  // smoothie (pipeline/scene_smoothies.h)
   // When a smooth-silhouette method runs and a mesh casts as a known ellipsoid
   // (has_analytic_caster): the analytic shadow image too, and each such run against it.
   bool analytic = true;

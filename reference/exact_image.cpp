@@ -9,6 +9,8 @@
 //      triangle is a terminator, is ambiguous whatever its corners count);
 //   4. per pixel and light: the lit mask and the ambiguity bits, the light pyramid over the
 //      footprint (silhouette edges) and, with a depth band, the volume faces near P.
+// With ExactImageOptions::footprints false, only the centre rays are traced and counted, and
+// steps 2 and 4's footprint, pyramid and band tests are skipped.
 // Every decision is an exact sign; the only doubles that are not inputs are interval bounds
 // that enclose exact values (filters and box-tree queries), never a decision by themselves,
 // and the depth band's end points, which its caller's model defines.
@@ -519,11 +521,15 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
 
   ImageGeometry g{soup, options.casts, {}, {}, {}, {}, detail::BoxTree(triangle_boxes(soup), detail::LeafTest::exact)};
   // Every triangle is seen (the box tree above); the volumes are the casting triangles' alone.
-  const CanonicalSoup canonical = canonical_soup(options.casts.empty() ? soup : casting_soup(soup, options.casts));
+  // The silhouettes and volume faces serve only the footprint tests (options.footprints).
+  const bool footprints = options.footprints;
+  const CanonicalSoup canonical =
+      canonical_soup(!footprints ? Soup{} : options.casts.empty() ? soup : casting_soup(soup, options.casts));
   const EdgeTable table = build_edge_table(canonical.soup);
   for (const Light& light : lights) {
     g.lights.push_back(light.position);
     g.light_sides.push_back(light_sides(soup, light));
+    if (!footprints) continue;
     g.silhouettes.push_back(silhouette(canonical.soup, table, light));
     if (options.depth_band)
       g.casting_edges.push_back(casting_edges(canonical.soup, table, casting_sides(g.light_sides.back(), options.casts)));
@@ -537,8 +543,9 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
   auto stage = Clock::now();
   std::vector<RayHit> hits(grid.size());
   {
-    Progress progress(options, "hits", hits.size());
-    const std::uint32_t rows = grid.height + (grid.height + 1);  // centre rows, then corner rows
+    Progress progress(options, "hits", footprints ? hits.size() : grid.centres());
+    // Centre rows, then (for the footprints) corner rows.
+    const std::uint32_t rows = grid.height + (footprints ? grid.height + 1 : 0);
     tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, rows, 1), [&](const tbb::blocked_range<std::uint32_t>& r) {
       std::vector<std::uint32_t> in_plane;
       for (std::uint32_t row = r.begin(); row != r.end(); ++row) {
@@ -550,7 +557,7 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
       }
     });
   }
-  image.stats.rays = hits.size();
+  image.stats.rays = footprints ? hits.size() : grid.centres();
   image.stats.hit_seconds = seconds_since(stage);
 
   // 2. and 3., light by light.
@@ -561,7 +568,9 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
   tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, grid.height), [&](const auto& r) {
     for (std::uint32_t row = r.begin(); row != r.end(); ++row)
       for (std::uint32_t i = 0; i < grid.width; ++i)
-        geometric[std::size_t{row} * grid.width + i] = footprint_ambiguity(hits, grid.footprint(i, row));
+        geometric[std::size_t{row} * grid.width + i] =
+            footprints ? footprint_ambiguity(hits, grid.footprint(i, row))
+                       : static_cast<std::uint8_t>(hits[std::size_t{row} * grid.width + i].degenerate ? kZeroSign : 0);
   });
   image.stats.count_seconds = seconds_since(stage);
 
@@ -570,7 +579,7 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
   // Where they agree on no triangle, the eye pyramid runs to the backdrop plane beyond the scene.
   stage = Clock::now();
   const std::optional<Backdrop> backdrop = Backdrop::behind(g.soup, grid.frame);
-  {
+  if (footprints) {
     Progress progress(options, "footprints", grid.height);
     tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, grid.height), [&](const auto& r) {
       for (std::uint32_t row = r.begin(); row != r.end(); ++row) {
@@ -610,7 +619,7 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
         const RayHit& centre = hits[rays[0]];
         if (!countable(centre)) continue;
         needed[rays[0]] = 1;
-        if (geometric[rays[0]] == 0 && !terminator(g, light, centre))
+        if (footprints && geometric[rays[0]] == 0 && !terminator(g, light, centre))
           for (std::size_t k = 1; k < rays.size(); ++k) needed[rays[k]] = 1;
       }
     std::vector<std::size_t> work;
@@ -639,15 +648,15 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
             n = counts[pixel];
             if (n == kUndefinedCount) bits |= kZeroSign;
             if (terminator(g, light, centre)) bits |= kTerminator;
-            if (bits == 0)
+            if (bits == 0 && footprints)
               for (std::size_t k = 1; k < rays.size(); ++k) {
                 if (counts[rays[k]] == kUndefinedCount) bits |= kZeroSign;
                 else if (counts[rays[k]] != n) bits |= kFootprintCounts;
               }
             // The corners agree: n must still be constant between them (a shadow sliver).
-            if (bits == 0 && footprint_shadow_varies(g, light, corner_hits(g, grid, hits, i, row)))
+            if (bits == 0 && footprints && footprint_shadow_varies(g, light, corner_hits(g, grid, hits, i, row)))
               bits |= kFootprintCounts;
-            if (bits == 0 && options.depth_band &&
+            if (bits == 0 && footprints && options.depth_band &&
                 band_meets_volume(g, light, depth_band(g, grid.frame, grid.ray(pixel), centre, options.depth_band)))
               bits |= kDepthBand;
           } else if (centre.triangle != kNoHit) {

@@ -107,6 +107,13 @@ struct ExactImageOptions {
   // empty: every triangle casts. Only casting triangles are counted in n(P), and only they
   // make the silhouettes and the depth band's volume faces; every triangle is seen.
   std::vector<std::uint8_t> casts;
+
+  // false: only what the centre rays decide, for callers that read nothing else (the soft
+  // reference, reference/soft_shadow_image.h, about 3x faster): no corner ray is traced and no
+  // footprint, light pyramid or depth band is tested (depth_band is not read); the counts and
+  // lit masks are the same, and the ambiguity keeps only kZeroSign (at the centre) and
+  // kTerminator.
+  bool footprints = true;
 };
 
 // The exact image of `soup` (every triangle receives; those options.casts allows, all by

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <limits>
 #include <numbers>
+#include <numeric>
 #include <random>
 #include <stdexcept>
 #include <string>
@@ -263,6 +264,61 @@ Soup torus(const Vec3& center, double major_radius, double minor_radius, std::ui
       s.triangles.push_back({p10, p01, p11});
     }
   }
+  return s;
+}
+
+Soup torus_knot(const Vec3& center, std::uint32_t p, std::uint32_t q, double major_radius, double knot_radius,
+                double tube_radius, std::uint32_t segments, std::uint32_t tube_segments) {
+  require_finite(center, "torus_knot", "center");
+  require(p >= 1 && q >= 1, "torus_knot", "p and q must be >= 1");
+  require(std::gcd(p, q) == 1, "torus_knot", "p and q must be coprime, got " + std::to_string(p) + " and " + std::to_string(q));
+  require_positive_finite(major_radius, "torus_knot", "major_radius");
+  require_positive_finite(knot_radius, "torus_knot", "knot_radius");
+  require_positive_finite(tube_radius, "torus_knot", "tube_radius");
+  require(knot_radius < major_radius, "torus_knot", "knot_radius must be < major_radius");
+  require(segments >= 3, "torus_knot", "segments must be >= 3, got " + std::to_string(segments));
+  require(tube_segments >= 3, "torus_knot", "tube_segments must be >= 3, got " + std::to_string(tube_segments));
+  require(std::uint64_t{segments} * tube_segments <= kMaxIndex, "torus_knot", "too many vertices for 32-bit indices");
+
+  const double R = major_radius, r = knot_radius, dp = p, dq = q;
+  Soup s;
+  const std::size_t n = std::size_t{segments} * tube_segments;
+  s.vertices.reserve(n);
+  s.normals.reserve(n);
+  for (std::uint32_t i = 0; i < segments; ++i) {
+    const double t = 2.0 * std::numbers::pi * static_cast<double>(i) / static_cast<double>(segments);
+    const double cp = std::cos(dp * t), sp = std::sin(dp * t), cq = std::cos(dq * t), sq = std::sin(dq * t);
+    const double rho = R + r * cq, drho = -r * dq * sq, ddrho = -r * dq * dq * cq;
+    const Vec3 c{rho * cp, r * sq, rho * sp};
+    const Vec3 d1{drho * cp - rho * dp * sp, r * dq * cq, drho * sp + rho * dp * cp};
+    const Vec3 d2{ddrho * cp - 2.0 * drho * dp * sp - rho * dp * dp * cp, -r * dq * dq * sq,
+                  ddrho * sp + 2.0 * drho * dp * cp - rho * dp * dp * sp};
+    // The Frenet frame: tangent, binormal c' x c'', normal b x t (a torus knot never goes straight).
+    const Vec3 tangent = normalized(d1);
+    const Vec3 binormal = normalized({d1[1] * d2[2] - d1[2] * d2[1], d1[2] * d2[0] - d1[0] * d2[2],
+                                      d1[0] * d2[1] - d1[1] * d2[0]});
+    const Vec3 normal{binormal[1] * tangent[2] - binormal[2] * tangent[1],
+                      binormal[2] * tangent[0] - binormal[0] * tangent[2],
+                      binormal[0] * tangent[1] - binormal[1] * tangent[0]};
+    for (std::uint32_t j = 0; j < tube_segments; ++j) {
+      const auto [cf, sf] = circle_point(j, tube_segments);
+      const Vec3 out{cf * normal[0] + sf * binormal[0], cf * normal[1] + sf * binormal[1], cf * normal[2] + sf * binormal[2]};
+      s.vertices.push_back({center[0] + c[0] + tube_radius * out[0], center[1] + c[1] + tube_radius * out[1],
+                            center[2] + c[2] + tube_radius * out[2]});
+      s.normals.push_back(to_normal(out));
+    }
+  }
+  auto id = [segments, tube_segments](std::uint32_t i, std::uint32_t j) {
+    return (i % segments) * tube_segments + j % tube_segments;
+  };
+  s.triangles.reserve(2 * n);
+  // d/dphi x d/dt is the outward direction cos(phi) n + sin(phi) b: (P, P+dphi, P+dt) faces out.
+  for (std::uint32_t i = 0; i < segments; ++i)
+    for (std::uint32_t j = 0; j < tube_segments; ++j) {
+      const std::uint32_t p00 = id(i, j), p10 = id(i + 1, j), p01 = id(i, j + 1), p11 = id(i + 1, j + 1);
+      s.triangles.push_back({p00, p01, p10});
+      s.triangles.push_back({p10, p01, p11});
+    }
   return s;
 }
 

@@ -3,10 +3,13 @@
 // pass rasterise to identical depths and GL_EQUAL holds).
 // Ambient pass (lambert_weight = 0): albedo * colour, alpha 1 marks covered pixels.
 // Lit pass (lambert_weight = 1): the visible point's light-space depth, less depth_bias, is
-// compared with the map (GL_COMPARE_REF_TO_TEXTURE, GL_LEQUAL: 1 = lit); shadowed fragments,
-// and those of a side facing away from the light,
-// are discarded so that neither their colour nor their stencil mark is written, lit ones add
-// albedo * colour * max(n . d, 0) (two-sided, as shadow_scene.frag.glsl).
+// compared with the map (GL_COMPARE_REF_TO_TEXTURE, GL_LEQUAL: 1 = lit) by the filter of
+// shadow_filter.glsl (hard: one comparison; pcf, pcss, smoothie: an amount in [0, 1]);
+// fragments that get no light, and those of a side facing away from the light, are discarded so
+// that neither their colour nor their stencil mark is written, the others add
+// albedo * colour * max(n . d, 0) * amount (two-sided, as shadow_scene.frag.glsl).
+// Light-image pass (light_image_pass = 1, into an R32F target, gpu/light_image_target.h): the
+// amount itself, 0 on a side facing away from the light; nothing is discarded.
 layout(location = 0) in vec3 world_position;
 layout(location = 1) in vec3 world_normal;
 layout(location = 2) in vec3 surface_albedo;
@@ -15,8 +18,11 @@ layout(location = 2) uniform vec4 light;       // (l, w): w = 1 point, w = 0 dir
 layout(location = 3) uniform float lambert_weight;
 layout(location = 4) uniform mat4 light_to_clip;
 layout(location = 5) uniform float depth_bias;
+layout(location = 12) uniform int light_image_pass;
 layout(binding = 0) uniform sampler2DShadow shadow_map;
 layout(location = 0) out vec4 fragment;
+
+#include "shadow_filter.glsl"
 
 void main() {
   if (lambert_weight == 0.0) {
@@ -34,8 +40,15 @@ void main() {
     // The side of a surface turned away from the light is in its own shadow. The map cannot
     // say so (that side is as near the light as the lit one), the volume methods do (the
     // point is behind its own triangle's cap), and the lit masks must mean the same thing.
-    if (lambert <= 0.0) discard;
+    if (lambert <= 0.0) {
+      if (light_image_pass == 1) {
+        fragment = vec4(0.0);
+        return;
+      }
+      discard;
+    }
   }
+  float amount = 1.0;
   vec4 clip = light_to_clip * vec4(world_position, 1.0);
   // The frustum is fitted to the scene's bounds, so every receiver point is inside it; a
   // point outside (w <= 0 or beyond [-1, 1]) has nothing in the map to hide it: lit.
@@ -43,9 +56,14 @@ void main() {
     vec3 ndc = clip.xyz / clip.w;
     if (all(lessThanEqual(abs(ndc), vec3(1.0)))) {
       vec3 window = ndc * 0.5 + 0.5;  // glDepthRange(0, 1), the default
-      // textureLod: no derivatives needed (one level) in this non-uniform branch.
-      if (textureLod(shadow_map, vec3(window.xy, window.z - depth_bias), 0.0) < 0.5) discard;
+      // textureLod inside: no derivatives needed (one level) in this non-uniform branch.
+      amount = filtered_light(window, world_position);
     }
   }
-  fragment = vec4(surface_albedo * colour.rgb * lambert * lambert_weight, 0.0);
+  if (light_image_pass == 1) {
+    fragment = vec4(amount, 0.0, 0.0, 0.0);
+    return;
+  }
+  if (amount <= 0.0) discard;
+  fragment = vec4(surface_albedo * colour.rgb * lambert * lambert_weight * amount, 0.0);
 }

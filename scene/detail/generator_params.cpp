@@ -61,6 +61,13 @@ GeneratedMesh torus_from(const JsonField& p) {
                 u32_or(p, "major_segments", 48), u32_or(p, "minor_segments", 24)), std::nullopt};
 }
 
+GeneratedMesh torus_knot_from(const JsonField& p) {
+  p.require_keys_within({"center", "p", "q", "major_radius", "knot_radius", "tube_radius", "segments", "tube_segments"});
+  return {torus_knot(vec3_or(p, "center", {0, 0, 0}), u32_or(p, "p", 2), u32_or(p, "q", 3), number_or(p, "major_radius", 1.0),
+                     number_or(p, "knot_radius", 0.4), number_or(p, "tube_radius", 0.12), u32_or(p, "segments", 128),
+                     u32_or(p, "tube_segments", 12)), std::nullopt};
+}
+
 GeneratedMesh sphere_grid_from(const JsonField& p) {
   p.require_keys_within({"triangles"});
   return {sphere_grid(unsigned_or(p, "triangles", kSphereGridMaxTriangles, 1'000'000)), std::nullopt};
@@ -87,11 +94,12 @@ struct Generator {
   GeneratedMesh (*make)(const JsonField& params);
 };
 
-constexpr std::array<Generator, 9> kGenerators{{{"floor", floor_from},
+constexpr std::array<Generator, 10> kGenerators{{{"floor", floor_from},
                                                 {"box", box_from},
                                                 {"uv_sphere", uv_sphere_from},
                                                 {"icosphere", icosphere_from},
                                                 {"torus", torus_from},
+                                                {"torus_knot", torus_knot_from},
                                                 {"sphere_grid", sphere_grid_from},
                                                 {"random_soup", random_soup_from},
                                                 {"nonmanifold_fan", nonmanifold_fan_from},

@@ -818,3 +818,286 @@ TEST(CliSilhouette, CertifyAndRenderSmoothGpu_ClosedAndAShadow) {
   ASSERT_EQ(render.exit_code, 0) << render.output;
   EXPECT_GT(read_json(render_json)["shadowed_pixels"].get<int>(), 200);
 }
+
+// shadowcert soft: the exact soft reference's figures in JSON, its light as PNG and PFM, and
+// the hard shadow for R = 0 (docs/smoothies.md#the-exact-soft-reference).
+TEST(CliSoft, SphereOverFloor_JsonRegionsAndLightFiles) {
+  const fs::path dir = temp_dir();
+  const fs::path json = dir / "soft.json", png = dir / "soft_light.png";
+  const RunResult r = run_cli("soft " + kSource + "/data/scenes/sphere_over_floor.json --size 64x48 --radius 0.5 "
+                              "--samples 16 --json " + json.string() + " --out " + png.string() + " --regions " +
+                              (dir / "soft_regions.png").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const nlohmann::json j = read_json(json);
+  EXPECT_EQ(j["samples"], 16);
+  EXPECT_EQ(j["sample_lights"].size(), 16u);
+  EXPECT_EQ(j["radius"], 0.5);
+  const nlohmann::json& px = j["pixels"];
+  EXPECT_EQ(px["no_hit"].get<int>() + px["undefined"].get<int>() + px["umbra"].get<int>() +
+                px["penumbra"].get<int>() + px["lit"].get<int>(),
+            64 * 48);
+  EXPECT_GT(px["penumbra"].get<int>(), 0);
+  EXPECT_TRUE(fs::exists(png));
+  EXPECT_TRUE(fs::exists(dir / "soft_regions.png"));
+  // The float copy beside the PNG: a little-endian gray PFM, one float per pixel.
+  const fs::path pfm = dir / "soft_light.pfm";
+  ASSERT_TRUE(fs::exists(pfm));
+  std::ifstream in(pfm, std::ios::binary);
+  std::string magic, scale;
+  int width = 0, height = 0;
+  in >> magic >> width >> height >> scale;
+  EXPECT_EQ(magic, "Pf");
+  EXPECT_EQ(width, 64);
+  EXPECT_EQ(height, 48);
+  EXPECT_EQ(scale, "-1.0");
+  EXPECT_EQ(fs::file_size(pfm), std::string("Pf\n64 48\n-1.0\n").size() + 64u * 48u * 4u);
+
+  const fs::path hard = dir / "soft_hard.json";
+  const RunResult h = run_cli("soft " + kSource + "/data/scenes/sphere_over_floor.json --size 64x48 --radius 0 --json " +
+                              hard.string());
+  ASSERT_EQ(h.exit_code, 0) << h.output;
+  EXPECT_EQ(read_json(hard)["samples"], 1);
+  EXPECT_EQ(read_json(hard)["pixels"]["penumbra"], 0);
+}
+
+TEST(CliSoft, BadOptions_ExitTwo) {
+  const std::string scene = kSource + "/data/scenes/sphere_over_floor.json --size 16x12";
+  EXPECT_EQ(run_cli("soft " + scene + " --samples 10").exit_code, 2);
+  EXPECT_EQ(run_cli("soft " + scene + " --radius -1").exit_code, 2);
+  EXPECT_EQ(run_cli("soft " + scene + " --light 1").exit_code, 2);
+  EXPECT_EQ(run_cli("soft " + scene + " --contact-pixels -2").exit_code, 2);
+  EXPECT_EQ(run_cli("soft " + kSource + "/data/scenes/missing.json").exit_code, 2);
+}
+
+// `shadowcert track` (docs/smoothies.md, "Silhouette tracking"): the bifurcation case of
+// tests/contour/silhouette_tracker_test.cpp, a torus of 8 x 8 segments lit from its own plane.
+TEST(CliTrack, Torus_JsonHasSummariesAndFramesPerVariant) {
+  const fs::path dir = temp_dir();
+  const fs::path scene = dir / "track_torus.json";
+  std::ofstream(scene) << R"({"meshes": [{"generator": "torus", "params": {"minor_radius": 0.3, "major_segments": 8,
+                              "minor_segments": 8}}]})";
+  const fs::path json = dir / "track_torus_out.json";
+  const RunResult r = run_cli("track " + scene.string() + " --orbit-radius 3 --orbit-height 0 --frames 36 " +
+                              "--variant one-way,continue,periodic:4 --per-frame --json " + json.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("one-way per frame"), std::string::npos) << r.output;
+  const nlohmann::json j = read_json(json);
+  EXPECT_EQ(j["frames"], 36);
+  EXPECT_EQ(j["path"]["kind"], "orbit");
+  EXPECT_EQ(j["path"]["radius"], 3.0);
+  EXPECT_EQ(j["lights"].size(), 36u);
+  ASSERT_EQ(j["meshes"].size(), 1u);
+  EXPECT_EQ(j["meshes"][0]["tracked"], true);
+  EXPECT_EQ(j["meshes"][0]["qualification"], "qualifies");
+  ASSERT_EQ(j["variants"].size(), 3u);
+  EXPECT_EQ(j["variants"][0]["variant"], "one-way");
+  EXPECT_EQ(j["variants"][2]["variant"], "periodic:4");
+  for (const auto& v : j["variants"]) {
+    ASSERT_EQ(v["frames"].size(), 36u);
+    for (const char* key : {"frames", "mean_miss_rate", "max_miss_rate", "frames_with_misses", "missed", "false_positives",
+                            "oldest_miss", "mean_edges_checked", "mean_found", "mean_exact", "mean_ms"})
+      EXPECT_TRUE(v["summary"].contains(key)) << key;
+    for (const char* key : {"frame", "edges_checked", "faces_evaluated", "ms", "full_search", "found", "exact", "missed",
+                            "false_positives", "miss_rate", "oldest_miss"})
+      EXPECT_TRUE(v["frames"][1].contains(key)) << key;
+    EXPECT_EQ(v["frames"][0]["full_search"], true);
+  }
+  EXPECT_GT(j["variants"][0]["summary"]["missed"].get<int>(), 0);
+  EXPECT_GT(j["variants"][0]["frames"][1]["missed"].get<int>(), 0);
+  EXPECT_EQ(j["variants"][1]["summary"]["missed"], 0);
+  EXPECT_LT(j["variants"][2]["summary"]["oldest_miss"].get<int>(), 4);
+  EXPECT_EQ(j["exact"]["frames"].size(), 36u);
+}
+
+// Soups are not tracked: named with the reason, their silhouette the exact full search's.
+TEST(CliTrack, DefaultScene_SoupsNamedWithTheirReason) {
+  const fs::path json = temp_dir() / "track_default.json";
+  const RunResult r = run_cli("track " + kDefaultScene + " --frames 12 --json " + json.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("mesh fan: 16 triangles, 33 edges: not tracked (not an oriented 2-manifold: 1 non-manifold edge"),
+            std::string::npos)
+      << r.output;
+  const nlohmann::json j = read_json(json);
+  ASSERT_EQ(j["meshes"].size(), 4u);
+  EXPECT_EQ(j["meshes"][1]["tracked"], false);
+  EXPECT_NE(j["meshes"][1]["qualification"].get<std::string>().find("non-manifold edge"), std::string::npos);
+  EXPECT_GT(j["exact"]["mean_untracked_edges"].get<double>(), 0.0);
+  EXPECT_EQ(j["variants"].size(), 4u);  // all: full, one-way, continue, periodic:10
+  // A soup alone: nothing to track, the exact full search still runs.
+  const RunResult soup = run_cli("track " + kSource + "/data/scenes/hard/bow_ties.obj --frames 4");
+  ASSERT_EQ(soup.exit_code, 0) << soup.output;
+  EXPECT_NE(soup.output.find("no mesh qualifies for tracking"), std::string::npos) << soup.output;
+}
+
+TEST(CliTrack, PathFile_OneFramePerLightOrRepeated) {
+  const fs::path dir = temp_dir();
+  const fs::path path = dir / "track_path.txt";
+  std::ofstream(path) << "# three lights\n4 2 0 1\n0 2 4 1\n0.3 1 0.2 0\n";
+  const fs::path json = dir / "track_path.json";
+  ASSERT_EQ(run_cli("track " + kCube + " --path " + path.string() + " --json " + json.string()).exit_code, 0);
+  EXPECT_EQ(read_json(json)["frames"], 3);
+  EXPECT_EQ(read_json(json)["path"]["kind"], "file");
+  EXPECT_EQ(read_json(json)["lights"][2][3], 0.0);
+  ASSERT_EQ(run_cli("track " + kCube + " --path " + path.string() + " --frames 7 --json " + json.string()).exit_code, 0);
+  EXPECT_EQ(read_json(json)["frames"], 7);
+  EXPECT_EQ(read_json(json)["lights"][3], read_json(json)["lights"][0]);
+}
+
+TEST(CliTrack, BadInput_ExitsTwoNamingTheOptionOrFileAndLine) {
+  const fs::path dir = temp_dir();
+  const auto fails = [](const std::string& arguments, const std::string& expected) {
+    const RunResult r = run_cli("track " + arguments);
+    EXPECT_EQ(r.exit_code, 2) << arguments << "\n" << r.output;
+    EXPECT_NE(r.output.find(expected), std::string::npos) << arguments << "\n" << r.output;
+  };
+  fails(kCube + " --variant bogus", "--variant: unknown variant 'bogus'");
+  fails(kCube + " --variant one-way,periodic:0", "periodic:T needs a whole number T >= 1, got '0'");
+  fails(kCube + " --frames 0", "--frames: must be at least 1");
+  fails(kCube + " --frames -3", "--frames: must be at least 1");
+  fails(kCube + " --orbit-radius -1", "--orbit-radius: must be positive and finite");
+  const fs::path path = dir / "track_bad_path.txt";
+  std::ofstream(path) << "1 2 3 1\n\n1 2 3 2\n";
+  fails(kCube + " --path " + path.string(), path.string() + ":3: w must be 1");
+  fails(kCube + " --path " + path.string() + " --orbit-radius 2", "excludes");
+  fails(kCube + " --path " + (dir / "no_such_path.txt").string(), "cannot open light path file");
+  const fs::path nothing = dir / "track_nothing_casts.json";
+  std::ofstream(nothing) << R"({"meshes": [{"generator": "floor", "casts": false}]})";
+  fails(nothing.string(), "no casting triangle to track");
+}
+
+// The soft shadow-map methods and the light image (docs/smoothies.md): render --method smoothie,
+// --pcf K, --pcss, --light-image FILE.png (+ FILE.pfm), their usage errors, diff --methods.
+namespace {
+
+// A little-endian gray PFM's floats, rows as stored; empty when the header is not ours.
+std::vector<float> read_pfm_values(const fs::path& file, int& width, int& height) {
+  std::ifstream in(file, std::ios::binary);
+  std::string magic, scale;
+  in >> magic >> width >> height >> scale;
+  if (magic != "Pf" || scale != "-1.0") return {};
+  in.get();
+  std::vector<float> values(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
+  in.read(reinterpret_cast<char*>(values.data()), static_cast<std::streamsize>(values.size() * sizeof(float)));
+  return in ? values : std::vector<float>{};
+}
+
+}  // namespace
+
+TEST(CliSmoothie, RenderSmoothie_JsonAndLightImagePngAndPfm) {
+  const fs::path dir = temp_dir();
+  const fs::path json = dir / "smoothie.json", png = dir / "smoothie_light.png";
+  const RunResult r = run_cli("render " + kDefaultScene + " --size 128x96 --method smoothie --smoothie-width 0.3 "
+                              "--smoothie-space light --light-image " + png.string() + " --json " + json.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("smoothies (first light)"), std::string::npos) << r.output;
+  const nlohmann::json j = read_json(json);
+  EXPECT_EQ(j["method"], "smoothie");
+  EXPECT_EQ(j["smoothie"]["width"], 0.3);
+  EXPECT_EQ(j["smoothie"]["space"], "light");
+  ASSERT_EQ(j["smoothie"]["per_light"].size(), 1u);
+  EXPECT_GT(j["smoothie"]["per_light"][0]["smoothies"].get<int>(), 50);
+  EXPECT_EQ(j["light_image"]["pfm"], (dir / "smoothie_light.pfm").string());
+  EXPECT_TRUE(fs::exists(png));
+  int width = 0, height = 0;
+  const std::vector<float> light = read_pfm_values(dir / "smoothie_light.pfm", width, height);
+  ASSERT_EQ(width, 128);
+  ASSERT_EQ(height, 96);
+  ASSERT_EQ(light.size(), 128u * 96u);
+  std::size_t uncovered = 0, partial = 0;
+  for (float a : light) {
+    EXPECT_TRUE(a == -1.0f || (a >= 0.0f && a <= 1.0f)) << a;
+    uncovered += a < 0.0f ? 1 : 0;
+    partial += a > 0.0f && a < 1.0f ? 1 : 0;
+  }
+  EXPECT_GT(uncovered, 0u);
+  EXPECT_GT(partial, 20u) << "a penumbra";
+}
+
+TEST(CliSmoothie, PcfAndPcssFlags_PickTheirMethods) {
+  const fs::path dir = temp_dir();
+  const RunResult pcf = run_cli("render " + kDefaultScene + " --size 64x48 --pcf 5 --json " + (dir / "pcf.json").string());
+  ASSERT_EQ(pcf.exit_code, 0) << pcf.output;
+  EXPECT_EQ(read_json(dir / "pcf.json")["method"], "pcf");
+  EXPECT_EQ(read_json(dir / "pcf.json")["pcf_kernel"], 5);
+  const RunResult pcss = run_cli("render " + kDefaultScene + " --size 64x48 --pcss --light-radius 0.25 --json " +
+                                 (dir / "pcss.json").string());
+  ASSERT_EQ(pcss.exit_code, 0) << pcss.output;
+  EXPECT_EQ(read_json(dir / "pcss.json")["method"], "pcss");
+  EXPECT_EQ(read_json(dir / "pcss.json")["light_radius"], 0.25);
+  EXPECT_EQ(run_cli("render " + kDefaultScene + " --size 32x24 --method pcss").exit_code, 0);  // the default R
+}
+
+// A stencil method's light image is its lit mask: 1 on the lit receiver pixels, 0 on the shadowed.
+TEST(CliSmoothie, StencilMethodLightImage_IsTheLitMask) {
+  const fs::path dir = temp_dir();
+  const fs::path json = dir / "cs.json";
+  const RunResult r = run_cli("render " + kDefaultScene + " --size 96x72 --method cs --light-image " +
+                              (dir / "cs_light.png").string() + " --json " + json.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  int width = 0, height = 0;
+  const std::vector<float> light = read_pfm_values(dir / "cs_light.pfm", width, height);
+  ASSERT_EQ(light.size(), 96u * 72u);
+  std::size_t lit = 0, shadowed = 0;
+  for (float a : light) {
+    EXPECT_TRUE(a == -1.0f || a == 0.0f || a == 1.0f) << a;
+    lit += a == 1.0f ? 1 : 0;
+    shadowed += a == 0.0f ? 1 : 0;
+  }
+  const nlohmann::json j = read_json(json);
+  EXPECT_EQ(lit, j["lit_pixels"].get<std::size_t>());
+  EXPECT_EQ(shadowed, j["shadowed_pixels"].get<std::size_t>());
+}
+
+TEST(CliSmoothie, BadOptions_ExitTwoNamingTheOption) {
+  const std::string render = "render " + kDefaultScene + " --size 16x12 ";
+  const auto expect_usage = [&](const std::string& arguments, const std::string& option) {
+    const RunResult r = run_cli(render + arguments);
+    EXPECT_EQ(r.exit_code, 2) << arguments << "\n" << r.output;
+    EXPECT_NE(r.output.find(option), std::string::npos) << arguments << "\n" << r.output;
+  };
+  for (const char* width : {"0", "-1", "nan", "inf"})
+    expect_usage(std::string("--method smoothie --smoothie-width ") + width, "--smoothie-width");
+  expect_usage("--method pcf --smoothie-width 0.1", "--smoothie-width");
+  expect_usage("--method smoothie --smoothie-space image", "--smoothie-space");
+  expect_usage("--method cs --smoothie-space light", "--smoothie-space");
+  for (const char* k : {"0", "2", "17"}) expect_usage(std::string("--pcf ") + k, "--pcf");
+  expect_usage("--pcf 3 --method cs", "--pcf");
+  expect_usage("--pcf 3 --pcss", "--pcf");
+  expect_usage("--pcss --method smoothie", "--pcss");
+  expect_usage("--pcss --light-radius -1", "--light-radius");
+  expect_usage("--method cs --light-radius 1", "--light-radius");
+  expect_usage("--method smoothie --capture out.vol", "--capture");
+  expect_usage("--method pcf --stencil zpass", "--stencil");
+  expect_usage("--method smoothie --shadowmap-size 0", "--shadowmap-size");
+  const std::string diff = "diff " + kDefaultScene + " --size 16x12 --methods smoothie ";
+  EXPECT_EQ(run_cli(diff + "--smoothie-width -2").exit_code, 2);
+  EXPECT_EQ(run_cli(diff + "--pcf 4").exit_code, 2);
+  EXPECT_EQ(run_cli(diff + "--light-radius 0").exit_code, 2);
+}
+
+// diff takes the soft methods as baselines: reported, never a failure.
+TEST(CliSmoothie, DiffSoftMethods_ReportedAsBaselines) {
+  const fs::path json = temp_dir() / "diff_soft.json";
+  const RunResult r = run_cli("diff " + kDefaultScene + " --size 48x36 --methods pcf,pcss,smoothie --pcf 3 --json " +
+                              json.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const nlohmann::json j = read_json(json);
+  for (const char* m : {"pcf", "pcss", "smoothie"}) {
+    ASSERT_TRUE(j["methods"].contains(m)) << m;
+    EXPECT_EQ(j["methods"][m]["robust"], false) << m;
+    EXPECT_EQ(j["methods"][m]["failed"], false) << m;
+    EXPECT_TRUE(j["methods"][m]["closed"].is_null()) << m;
+  }
+  EXPECT_EQ(j["methods"]["pcf"]["pcf_kernel"], 3);
+}
+
+// A point light inside the scene's bounds: one map frustum cannot hold the scene; every
+// shadow-map method says so (text and JSON), as it draws what the capped frustum holds.
+TEST(CliSmoothie, LightInsideTheBounds_Reported) {
+  const fs::path json = temp_dir() / "capped.json";
+  const RunResult r = run_cli("render " + kHardScenes + "light_inside_closed_caster.json --size 32x24 --method smoothie "
+                              "--json " + json.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("light 0: inside or next to the scene's bounds"), std::string::npos) << r.output;
+  EXPECT_EQ(read_json(json)["capped_lights"], nlohmann::json::array({0}));
+}

@@ -7,6 +7,8 @@
 //     counts (re-created objects work alike); every GL name the cycle created is deleted when
 //     its owners go (glIs* false), no other name stays alive; the resident set grows by less
 //     than kMaxRssGrowthBytes from cycle 10 to cycle 100;
+//     The shadow-map methods (shadowmap, pcf, pcss, smoothie: depth and smoothie maps, the
+//     sampler, the light image target) run the same cycle kShadowMapCycles times each;
 //  2. 100 cycles of the EGL context itself around one cs frame (context, renderer, target):
 //     the same counts every time, every name created in the context deleted before it goes,
 //     the same RSS bound (a leaked llvmpipe context costs about 2.6 MiB, so 90 of them would
@@ -55,6 +57,15 @@ constexpr int kWarmUpCycles = 10;
 // leak of the method's buffers cannot hide under the bound; the name checks catch any GL
 // object that outlives its owner, however small.
 constexpr long kMaxRssGrowthBytes = 8L << 20;
+// The shadow-map methods allocate a 2048^2 depth map (and smoothie a 2048^2 RG32F map) per
+// cycle: fewer cycles keep the test short; a leaked map (16 MiB or more) still exceeds the RSS
+// bound at once, and the name checks catch any object.
+constexpr int kShadowMapCycles = 30;
+// Their RSS bound absorbs the allocator keeping or returning map-sized blocks between the
+// measured cycles (16 to 33 MiB measured both ways on llvmpipe with another test running; once
+// past 64 MiB under a parallel ctest); a map leaked per cycle grows it by at least 20 x 16 MiB
+// over those cycles, well past the bound.
+constexpr long kMaxShadowMapRssGrowthBytes = 128L << 20;
 
 long resident_bytes() {
   std::ifstream statm("/proc/self/statm");
@@ -122,6 +133,8 @@ const std::vector<NameKind>& name_kinds() {
        [](GLuint n) { return glIsQuery(n); }},
       {"transform feedback", [] { return probe_name(glCreateTransformFeedbacks, glDeleteTransformFeedbacks); },
        [](GLuint n) { return glIsTransformFeedback(n); }},
+      {"sampler", [] { return probe_name(glCreateSamplers, glDeleteSamplers); },
+       [](GLuint n) { return glIsSampler(n); }},
   };
   return kinds;
 }
@@ -264,6 +277,35 @@ TEST_F(GlResourceTest, HundredObjectCyclesPerMethod_NoGlErrorNoLeak) {
               << report.names_per_cycle << " GL names per cycle, RSS growth from cycle " << kWarmUpCycles << " to "
               << kCycles << ": " << report.rss_growth / 1024 << " KiB\n";
     EXPECT_LT(report.rss_growth, kMaxRssGrowthBytes);
+  }
+}
+
+// The resource scene with its smoothies, for the shadow-map methods.
+struct ShadowMapResourceScene : ResourceScene {
+  ShadowMapResourceScene() { add_smoothies(prepared, std::span(&kLight, 1), soup_bounds(soup)); }
+};
+
+TEST_F(GlResourceTest, ObjectCyclesPerShadowMapMethod_NoGlErrorNoLeak) {
+  const ShadowMapResourceScene scene;
+  const OffscreenTarget target(resource_camera().width, resource_camera().height);
+  NameScanner scanner;
+  LiveNames live = scanner.scan();
+  for (ShadowMethod method : {ShadowMethod::shadowmap, ShadowMethod::pcf, ShadowMethod::pcss, ShadowMethod::smoothie}) {
+    SCOPED_TRACE(std::string(shadow_method_name(method)));
+    CycleReport report;
+    const GrayImage first = object_cycle(method, scene, target, scanner, live, report);
+    ASSERT_GT(shadowed_pixels(first), 100u) << "the sphere's shadow should be in view";
+    long rss_after_warm_up = 0;
+    for (int cycle = 1; cycle < kShadowMapCycles; ++cycle) {
+      const GrayImage stencil = object_cycle(method, scene, target, scanner, live, report);
+      ASSERT_FALSE(HasFailure()) << "cycle " << cycle;
+      ASSERT_EQ(stencil.pixels, first.pixels) << "cycle " << cycle << " drew other marks";
+      if (cycle + 1 == kWarmUpCycles) rss_after_warm_up = resident_bytes();
+    }
+    report.rss_growth = resident_bytes() - rss_after_warm_up;
+    std::cout << shadow_method_name(method) << ": " << report.names_per_cycle << " GL names per cycle, RSS growth "
+              << report.rss_growth / 1024 << " KiB\n";
+    EXPECT_LT(report.rss_growth, kMaxShadowMapRssGrowthBytes);
   }
 }
 

@@ -47,6 +47,7 @@ bool runs(int frame, RenderStage stage) {
     case RenderStage::shadow_map: return (frame & 4) != 0;
     case RenderStage::lit: return true;
     case RenderStage::volume: return false;
+    case RenderStage::smoothie_map: return false;
   }
   return false;
 }

@@ -28,5 +28,21 @@ TEST(MethodStages, VolumeMethodsAndShadowMap_TheirStagesInFrameOrder) {
             (std::vector<RenderStage>{RenderStage::depth, RenderStage::shadow_map, RenderStage::lit}));
 }
 
+TEST(SoftShadowMethods, NamesFiltersAndStages) {
+  for (ShadowMethod m : kSoftShadowMethods) {
+    EXPECT_EQ(parse_shadow_method(shadow_method_name(m)), m);
+    EXPECT_TRUE(uses_shadow_map(m));
+    EXPECT_FALSE(draws_volume(m));
+  }
+  EXPECT_EQ(shadow_filter(ShadowMethod::shadowmap), ShadowFilter::hard);
+  EXPECT_EQ(shadow_filter(ShadowMethod::pcf), ShadowFilter::pcf);
+  EXPECT_EQ(shadow_filter(ShadowMethod::pcss), ShadowFilter::pcss);
+  EXPECT_EQ(shadow_filter(ShadowMethod::smoothie), ShadowFilter::smoothie);
+  EXPECT_EQ(method_stages(ShadowMethod::pcf), method_stages(ShadowMethod::shadowmap));
+  EXPECT_EQ(method_stages(ShadowMethod::smoothie),
+            (std::vector<RenderStage>{RenderStage::depth, RenderStage::shadow_map, RenderStage::smoothie_map,
+                                      RenderStage::lit}));
+}
+
 }  // namespace
 }  // namespace shadowcert::gpu

@@ -549,6 +549,29 @@ TEST(ExactImage, EachLightsImage_IsIndependentOfTheOthers) {
   EXPECT_GT(shadowed, 10u);
 }
 
+// ExactImageOptions::footprints = false (the soft reference's mode): the centres' answers
+// unchanged, only the ambiguity bits the centre decides, no corner ray traced.
+TEST(ExactImage, WithoutFootprints_CentreAnswersUnchanged) {
+  const InvarianceScene s = invariance_scene();
+  const ExactImage full = exact_image(s.soup, s.lights, s.camera);
+  ExactImageOptions centres;
+  centres.footprints = false;
+  centres.depth_band = [](double) { return 1.0; };  // not read
+  const ExactImage centre = exact_image(s.soup, s.lights, s.camera, centres);
+  EXPECT_EQ(centre.hit_triangles, full.hit_triangles);
+  EXPECT_EQ(centre.stats.rays, std::uint64_t{s.camera.width} * s.camera.height);
+  for (std::size_t l = 0; l < s.lights.size(); ++l) {
+    EXPECT_EQ(centre.lights[l].counts, full.lights[l].counts) << "light " << l;
+    EXPECT_EQ(centre.lights[l].lit, full.lights[l].lit) << "light " << l;
+    for (std::size_t p = 0; p < full.hit_triangles.size(); ++p) {
+      const std::uint8_t kept = full.lights[l].ambiguity[p] & (kZeroSign | kTerminator);
+      const bool zero_at_centre = full.lights[l].counts[p] == kUndefinedCount;
+      EXPECT_EQ(centre.lights[l].ambiguity[p] & ~kTerminator, zero_at_centre ? kZeroSign : 0) << "pixel " << p;
+      EXPECT_EQ(centre.lights[l].ambiguity[p] & kTerminator, kept & kTerminator) << "pixel " << p;
+    }
+  }
+}
+
 TEST(ExactImage, ProgressReports_CoverEachStage) {
   const InvarianceScene s = invariance_scene();
   ExactImageOptions options;

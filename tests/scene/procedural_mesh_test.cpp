@@ -219,6 +219,38 @@ TEST(Torus, SmallSegments_StillClosed) {
   EXPECT_TRUE(ClosedAndConsistent(shadowcert::torus({0, 0, 0}, 1.0, 0.5, 3, 3)));
 }
 
+// The (2, 3) knot of the defaults: closed, outward, its volume the tube's, and every vertex at
+// the tube radius from the curve and from no other strand nearer (the tube does not cross itself).
+TEST(TorusKnot, DefaultsClosedOutward_TubeClearOfOtherStrands) {
+  const Vec3 c{0.5, -1, 2};
+  const double tube = 0.12;
+  const Soup s = shadowcert::torus_knot(c, 2, 3, 1.0, 0.4, tube, 128, 12);
+  EXPECT_EQ(s.triangles.size(), 2u * 128 * 12);
+  EXPECT_EQ(s.vertices.size(), 128u * 12);
+  EXPECT_TRUE(ClosedAndConsistent(s));
+  EXPECT_TRUE(NoDuplicatePositions(s));
+  std::vector<Vec3> curve;
+  double length = 0.0;
+  const double pi = 3.141592653589793;
+  for (int i = 0; i < 4096; ++i) {
+    const double t = 2 * pi * i / 4096;
+    const double rho = 1.0 + 0.4 * std::cos(3 * t);
+    curve.push_back({c[0] + rho * std::cos(2 * t), c[1] + 0.4 * std::sin(3 * t), c[2] + rho * std::sin(2 * t)});
+    if (i > 0) length += std::sqrt(dot(sub(curve[i], curve[i - 1]), sub(curve[i], curve[i - 1])));
+  }
+  const double solid = pi * tube * tube * length;  // inscribed polygons: a little below
+  EXPECT_GT(signed_volume(s, c), 0.9 * solid);
+  EXPECT_LT(signed_volume(s, c), 1.01 * solid);
+  ASSERT_EQ(s.normals.size(), s.vertices.size());
+  for (std::size_t i = 0; i < s.vertices.size(); ++i) {
+    double nearest = 1e9;
+    for (const Vec3& q : curve) nearest = std::min(nearest, std::sqrt(dot(sub(s.vertices[i], q), sub(s.vertices[i], q))));
+    EXPECT_NEAR(nearest, tube, 2e-3) << "vertex " << i;
+    const Vec3 n{s.normals[i][0], s.normals[i][1], s.normals[i][2]};
+    EXPECT_NEAR(std::sqrt(dot(n, n)), 1.0, 1e-6);
+  }
+}
+
 TEST(SphereGridLayout, RequestedSizes_WithinTwoPercent) {
   for (std::uint64_t requested : {32'000ULL, 32'768ULL, 128'000ULL, 131'072ULL, 512'000ULL, 524'288ULL, 1'000'000ULL,
                                   1'048'576ULL, 4'000'000ULL, 4'194'304ULL}) {
@@ -358,6 +390,12 @@ TEST(Generators, BadParameters_ThrowNamingFunction) {
   EXPECT_TRUE(ThrowsNaming([] { (void)shadowcert::torus({0, 0, 0}, 1, 1, 8, 8); }, "torus"));
   EXPECT_TRUE(ThrowsNaming([] { (void)shadowcert::torus({0, 0, 0}, 1, 0.5, 2, 8); }, "torus"));
   EXPECT_TRUE(ThrowsNaming([] { (void)shadowcert::torus({0, 0, 0}, 1, 0.5, 8, 2); }, "torus"));
+  EXPECT_TRUE(ThrowsNaming([] { (void)shadowcert::torus_knot({0, 0, 0}, 2, 4, 1, 0.4, 0.1, 64, 8); }, "torus_knot"));
+  EXPECT_TRUE(ThrowsNaming([] { (void)shadowcert::torus_knot({0, 0, 0}, 0, 3, 1, 0.4, 0.1, 64, 8); }, "torus_knot"));
+  EXPECT_TRUE(ThrowsNaming([] { (void)shadowcert::torus_knot({0, 0, 0}, 2, 3, 1, 1.0, 0.1, 64, 8); }, "torus_knot"));
+  EXPECT_TRUE(ThrowsNaming([] { (void)shadowcert::torus_knot({0, 0, 0}, 2, 3, 1, 0.4, 0.0, 64, 8); }, "torus_knot"));
+  EXPECT_TRUE(ThrowsNaming([] { (void)shadowcert::torus_knot({0, 0, 0}, 2, 3, 1, 0.4, 0.1, 2, 8); }, "torus_knot"));
+  EXPECT_TRUE(ThrowsNaming([] { (void)shadowcert::torus_knot({0, 0, 0}, 2, 3, 1, 0.4, 0.1, 64, 2); }, "torus_knot"));
   EXPECT_TRUE(ThrowsNaming([] { (void)shadowcert::sphere_grid(599); }, "sphere_grid"));
   EXPECT_TRUE(ThrowsNaming([] { (void)shadowcert::sphere_grid(100'000'001); }, "sphere_grid"));
   EXPECT_TRUE(ThrowsNaming([] { (void)shadowcert::random_soup(1, 10, 0.0); }, "random_soup"));

@@ -86,7 +86,7 @@ TEST(ParseScene, AllGenerators_DefaultParams) {
   const std::map<std::string, std::size_t> triangles = {
       {"floor", 2},           {"box", 12},          {"uv_sphere", 2 * 32 * 15},    {"icosphere", 20 * 64},
       {"torus", 2 * 48 * 24}, {"sphere_grid", 1'000'000}, {"random_soup", 100}, {"nonmanifold_fan", 8},
-      {"open_box_with_fins", 14}};
+      {"open_box_with_fins", 14}, {"torus_knot", 2 * 128 * 12}};
   for (const auto& [name, count] : triangles) {
     const Scene s = parse(R"({"meshes": [{"generator": ")" + name + R"("}]})");
     ASSERT_EQ(s.meshes.size(), 1u);

@@ -1,0 +1,124 @@
+// How much of a light reaches a visible point, by the shadow map family's filters
+// (gpu/shadow_map_renderer.h, docs/smoothies.md): included by shadow_map_scene.frag.glsl after
+// its `shadow_map` (sampler2DShadow, GL_LEQUAL: 1 = lit) and `depth_bias` declarations.
+//   hard      one comparison at the point's texel (the `shadowmap` method, unchanged);
+//   pcf       K x K comparisons at whole-texel offsets around it, averaged;
+//   pcss      Fernando 2005: the blockers' mean depth in the region the light's disk (radius R)
+//             sees through the point, then PCF over the penumbra that depth predicts;
+//   smoothie  Chen & Tsai §3: the hard comparison (stage 1), then the nearest smoothie in front of
+//             the point (stage 2) gives its alpha remapped, a' = a / (1 - b / r), clamped.
+// Light-space lengths: z is the depth along the light's axis (-z of light_view), linear;
+// one unit of the map's texture coordinates spans 2 z tan(half angle) world units at depth z
+// under a point light, 2 half_width (2 half_height) under a directional light's box.
+layout(location = 6) uniform int filter_mode;      // 0 hard, 1 pcf, 2 pcss, 3 smoothie
+layout(location = 7) uniform int pcf_kernel;       // pcf: K, odd
+layout(location = 8) uniform mat4 light_view;      // world to the light's view
+layout(location = 9) uniform vec4 light_frustum;   // near, far, tan(half angle) or half width, half height
+layout(location = 10) uniform int orthographic;    // 1: directional light (orthographic map)
+layout(location = 11) uniform float light_radius;  // pcss: R (point: world units; directional: tangent)
+layout(binding = 1) uniform sampler2D depth_values;  // the same map read without comparison (pcss)
+layout(binding = 2) uniform sampler2D smoothie_map;  // (alpha, b) of the nearest smoothie; alpha < 0: none
+
+const int kFilterHard = 0;
+const int kFilterPcf = 1;
+const int kFilterPcss = 2;
+const int kFilterSmoothie = 3;
+// PCSS samples: a regular grid of this many taps per axis for the blocker search and for the
+// filter (Fernando's reference shader uses 16 to 32 Poisson taps; a grid repeats exactly).
+const int kPcssSearchTaps = 5;
+const int kPcssFilterTaps = 7;
+// The blocker search region, in texture coordinates, never exceeds this half width: a light
+// disk seen from far behind the near plane would otherwise search most of the map (a cost
+// bound, not a tolerance).
+const float kPcssMaxSearchRadius = 0.125;
+// A receiver counts as behind the nearest smoothie when r > b (1 + this): it absorbs the float
+// rounding of the two depths (about 1e-7 relative) and the texel-centre versus point difference
+// of b on a smoothie that touches the receiver, where b / r -> 1 would divide by rounding noise.
+const float kSmoothieBehindTolerance = 1.0e-4;
+
+// The light's window depth d in [0, 1] as a linear depth along the light's axis.
+float linear_depth(float d) {
+  float near = light_frustum.x, far = light_frustum.y;
+  if (orthographic == 1) return near + d * (far - near);
+  return 2.0 * near * far / (far + near - (2.0 * d - 1.0) * (far - near));
+}
+
+// World units per unit of texture coordinate at linear depth z, per axis.
+vec2 world_per_uv(float z) {
+  if (orthographic == 1) return 2.0 * light_frustum.zw;
+  return vec2(2.0 * z * light_frustum.z);
+}
+
+float hard_light(vec3 window) {
+  return textureLod(shadow_map, vec3(window.xy, window.z - depth_bias), 0.0) < 0.5 ? 0.0 : 1.0;
+}
+
+// taps x taps comparisons on a grid spanning [-radius, radius] around uv (one at uv when taps = 1).
+float grid_light(vec2 uv, float reference, vec2 radius, int taps) {
+  float lit = 0.0;
+  for (int i = 0; i < taps; ++i) {
+    for (int j = 0; j < taps; ++j) {
+      vec2 offset = taps == 1 ? vec2(0.0) : (vec2(i, j) * (2.0 / float(taps - 1)) - 1.0) * radius;
+      lit += textureLod(shadow_map, vec3(uv + offset, reference), 0.0);
+    }
+  }
+  return lit / float(taps * taps);
+}
+
+float pcf_light(vec3 window) {
+  vec2 texel = 1.0 / vec2(textureSize(shadow_map, 0));
+  int half_kernel = (pcf_kernel - 1) / 2;
+  float lit = 0.0;
+  for (int i = -half_kernel; i <= half_kernel; ++i)
+    for (int j = -half_kernel; j <= half_kernel; ++j)
+      lit += textureLod(shadow_map, vec3(window.xy + vec2(i, j) * texel, window.z - depth_bias), 0.0);
+  return lit / float(pcf_kernel * pcf_kernel);
+}
+
+float pcss_light(vec3 window, float receiver_depth) {
+  float near = light_frustum.x;
+  float reference = window.z - depth_bias;
+  // 1. Blocker search: the light's disk seen from the receiver, where the cone crosses the near
+  //    plane (the widest place a blocker can be).
+  float search_world = orthographic == 1 ? light_radius * (receiver_depth - near)
+                                         : light_radius * (receiver_depth - near) / receiver_depth;
+  vec2 search = min(vec2(search_world) / world_per_uv(near), vec2(kPcssMaxSearchRadius));
+  float blocker_sum = 0.0;
+  int blockers = 0;
+  for (int i = 0; i < kPcssSearchTaps; ++i) {
+    for (int j = 0; j < kPcssSearchTaps; ++j) {
+      vec2 offset = (vec2(i, j) * (2.0 / float(kPcssSearchTaps - 1)) - 1.0) * search;
+      float d = textureLod(depth_values, window.xy + offset, 0.0).r;
+      if (d < reference) {
+        blocker_sum += linear_depth(d);
+        ++blockers;
+      }
+    }
+  }
+  if (blockers == 0) return 1.0;
+  float blocker_depth = blocker_sum / float(blockers);
+  // 2. The penumbra's half width at the receiver (similar triangles), then PCF over it.
+  float penumbra_world = orthographic == 1 ? light_radius * (receiver_depth - blocker_depth)
+                                           : light_radius * (receiver_depth - blocker_depth) / blocker_depth;
+  vec2 radius = max(vec2(penumbra_world), vec2(0.0)) / world_per_uv(receiver_depth);
+  return grid_light(window.xy, reference, radius, kPcssFilterTaps);
+}
+
+float smoothie_light(vec3 window, float receiver_depth) {
+  if (hard_light(window) == 0.0) return 0.0;  // stage 1: the shadow map says shadowed
+  ivec2 size = textureSize(smoothie_map, 0);
+  ivec2 texel = clamp(ivec2(window.xy * vec2(size)), ivec2(0), size - 1);
+  vec2 smoothie = texelFetch(smoothie_map, texel, 0).rg;  // alpha, b
+  // Stage 2: no smoothie, or none in front of the point: lit.
+  if (smoothie.x < 0.0 || !(receiver_depth > smoothie.y * (1.0 + kSmoothieBehindTolerance))) return 1.0;
+  return clamp(smoothie.x / (1.0 - smoothie.y / receiver_depth), 0.0, 1.0);
+}
+
+// The amount of the light that reaches world point p, whose light window coordinates are `window`.
+float filtered_light(vec3 window, vec3 p) {
+  if (filter_mode == kFilterHard) return hard_light(window);
+  if (filter_mode == kFilterPcf) return pcf_light(window);
+  float receiver_depth = -(light_view * vec4(p, 1.0)).z;
+  if (filter_mode == kFilterPcss) return pcss_light(window, receiver_depth);
+  return smoothie_light(window, receiver_depth);
+}
