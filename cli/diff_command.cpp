@@ -17,12 +17,14 @@
 
 #include "cli/diff_report.h"
 #include "cli/exit_code.h"
+#include "cli/light_image_output.h"
 #include "cli/option_values.h"
 #include "cli/silhouette_output.h"
 #include "cli/stencil_output.h"
 #include "io/output_file.h"
 #include "pipeline/analytic_comparison.h"
 #include "pipeline/scene_comparison.h"
+#include "pipeline/soft_shadow_pictures.h"
 #include "io/scene_input.h"
 #include "core/input_error.h"
 #include "reference/analytic_shadow_image.h"
@@ -59,6 +61,10 @@ struct DiffOptions {
   std::optional<double> light_radius;       // pcss: R
   std::optional<double> smoothie_width;     // smoothie: D
   std::string smoothie_space = "world";     // smoothie: world | light
+  // --soft: every light's exact soft reference, every method's light image against it
+  // (docs/smoothies.md#the-error-table), with --samples K (a perfect square) and --light-radius.
+  bool soft = false;
+  long long samples = 64;
 };
 
 // The method's lit mask, gated by coverage (the frame's alpha).
@@ -134,6 +140,57 @@ nlohmann::json comparison_json(const PixelComparison& c) {
           {"coverage_errors", c.coverage_errors}, {"lit_errors", c.lit_errors}, {"count_errors", c.count_errors}};
 }
 
+// A method's light image against the exact soft reference (pipeline/soft_shadow_comparison.h).
+nlohmann::json soft_json(const SoftShadowErrors& e) {
+  return {{"compared", e.compared},
+          {"reference_only", e.reference_only},
+          {"method_only", e.method_only},
+          {"mean_error", e.mean_error},
+          {"max_error", e.max_error},
+          {"mean_signed_error", e.mean_signed_error},
+          {"umbra", e.umbra},
+          {"umbra_mean_error", e.umbra_mean_error},
+          {"penumbra", e.penumbra},
+          {"penumbra_mean_error", e.penumbra_mean_error},
+          {"outside_penumbra", e.outside_penumbra},
+          {"outside_penumbra_mean_error", e.outside_penumbra_mean_error},
+          {"contact", e.contact},
+          {"leaks", e.leaks},
+          {"lit_facing", e.lit_facing},
+          {"acne", e.acne},
+          {"turned_away", e.turned_away},
+          {"turned_away_mean_error", e.turned_away_mean_error}};
+}
+
+// The soft reference's own figures, per light.
+nlohmann::json soft_reference_json(const SoftReference& r) {
+  std::array<std::uint64_t, 5> regions{};
+  for (std::size_t p = 0; p < r.image.pixels(); ++p) ++regions[static_cast<std::size_t>(r.image.region(p))];
+  return {{"samples", r.image.samples.size()},
+          {"seconds", r.image.stats.seconds + r.contact_seconds},
+          {"umbra", regions[static_cast<std::size_t>(SoftRegion::umbra)]},
+          {"penumbra", regions[static_cast<std::size_t>(SoftRegion::penumbra)]},
+          {"lit", regions[static_cast<std::size_t>(SoftRegion::lit)]},
+          {"undefined", regions[static_cast<std::size_t>(SoftRegion::undefined)]},
+          {"contact", std::count(r.contact.begin(), r.contact.end(), std::uint8_t{1})}};
+}
+
+// One line of the soft table.
+std::string soft_line(const SoftShadowErrors& e) {
+  return fmt::format("{:9.4f} {:7.3f} {:8.4f} {:8.4f} {:8.4f} {:>11} {:>12} {:+9.4f}", e.mean_error, e.max_error,
+                     e.umbra_mean_error, e.penumbra_mean_error, e.outside_penumbra_mean_error,
+                     fmt::format("{}/{}", e.leaks, e.contact), fmt::format("{}/{}", e.acne, e.lit_facing),
+                     e.mean_signed_error);
+}
+
+// The report's line for a method against the soft reference.
+std::string soft_fact(const SoftShadowErrors& e) {
+  return fmt::format("mean |error| {:.4f} (max {:.3f}, signed {:+.4f}); umbra {:.4f}, penumbra {:.4f}, outside the "
+                     "penumbra {:.4f}; leaks {} of {} contact pixels, acne {} of {} lit pixels",
+                     e.mean_error, e.max_error, e.mean_signed_error, e.umbra_mean_error, e.penumbra_mean_error,
+                     e.outside_penumbra_mean_error, e.leaks, e.contact, e.acne, e.lit_facing);
+}
+
 // A silhouette run against the analytic shadow (pipeline/analytic_comparison.h).
 nlohmann::json analytic_json(const AnalyticCounts& a) {
   return {{"receiver_agree", a.receiver_agree},         {"receiver_disagree", a.receiver_disagree},
@@ -192,6 +249,7 @@ nlohmann::json method_json(const MethodRun& run, const DiffOptions& options) {
     }
     if (!l.capacity_error.empty()) lj["capacity_error"] = l.capacity_error;
     if (l.analytic) lj["analytic"] = analytic_json(*l.analytic);
+    if (l.soft) lj["soft"] = soft_json(*l.soft);
     per_light.push_back(lj);
   }
   j["per_light"] = per_light;
@@ -235,6 +293,13 @@ int run_diff(const DiffOptions& options) {
   if (options.light_radius && (!std::isfinite(*options.light_radius) || !(*options.light_radius > 0.0)))
     throw CLI::ValidationError("--light-radius",
                                fmt::format("must be finite and > 0 (world units), got {}", *options.light_radius));
+  if (options.samples < 1 || options.samples > 65536 ||
+      [&] {
+        const auto root = static_cast<long long>(std::llround(std::sqrt(static_cast<double>(options.samples))));
+        return root * root != options.samples;
+      }())
+    throw CLI::ValidationError("--samples", fmt::format("must be a perfect square in [1, 65536] (64 = 8 x 8 strata), "
+                                                        "got {}", options.samples));
   if (options.smoothie_width && (!std::isfinite(*options.smoothie_width) || !(*options.smoothie_width > 0.0)))
     throw CLI::ValidationError("--smoothie-width",
                                fmt::format("must be finite and > 0 (world units), got {}", *options.smoothie_width));
@@ -258,6 +323,13 @@ int run_diff(const DiffOptions& options) {
   comparison_options.method_options.light_radius = options.light_radius.value_or(0.0);  // 0: the default
   comparison_options.smoothie.width = options.smoothie_width.value_or(0.0);            // 0: the default
   comparison_options.smoothie.space = *parse_smoothie_space(options.smoothie_space);  // CLI11 checked it
+  if (options.soft) {
+    SoftReferenceOptions soft;
+    soft.sampling.radius = options.light_radius.value_or(0.0);  // 0: the pcss default
+    soft.sampling.samples = static_cast<std::uint32_t>(options.samples);
+    soft.progress = isatty(fileno(stderr)) != 0;
+    comparison_options.soft = soft;
+  }
   // A progress bar only on a terminal: logs and pipes get no carriage returns.
   comparison_options.progress = isatty(fileno(stderr)) != 0;
   const SceneComparison comparison = compare_scene(scene, methods, comparison_options);
@@ -285,6 +357,18 @@ int run_diff(const DiffOptions& options) {
         gpu::write_png((dir / (name + "_mask" + s + ".png")).string(), gl_mask(run.lights[k].frame));
         gpu::write_png((dir / (name + "_overlay" + s + ".png")).string(),
                        overlay(run.lights[k].frame.colour, run.lights[k].comparison));
+        if (!comparison.soft.empty()) {
+          gpu::write_png((dir / (name + "_soft_error" + s + ".png")).string(),
+                         soft_error_image(comparison.soft[k].image, run.lights[k].frame.first_light));
+          write_light_image(dir / (name + "_light" + s + ".png"), scene.camera.width, scene.camera.height,
+                            run.lights[k].frame.first_light);
+        }
+      }
+      if (!comparison.soft.empty()) {
+        const SoftReference& r = comparison.soft[k];
+        const std::string s = light_suffix(k, light_count);
+        write_light_image(dir / ("soft_reference_light" + s + ".png"), r.image.width, r.image.height, r.image.light);
+        gpu::write_png((dir / ("soft_reference_regions" + s + ".png")).string(), soft_region_image(r));
       }
     }
   }
@@ -322,6 +406,13 @@ int run_diff(const DiffOptions& options) {
   for (const SilhouetteVolumes& s : comparison.silhouettes)
     summary["methods"][std::string(gpu::shadow_method_name(s.method))]["casters"] = silhouette_casters_json(s);
   if (comparison.analytic) summary["analytic"] = analytic_truth_json(*comparison.analytic, scene);
+  if (!comparison.soft.empty()) {
+    nlohmann::json per_light = nlohmann::json::array();
+    for (const SoftReference& r : comparison.soft) per_light.push_back(soft_reference_json(r));
+    summary["soft_reference"] = {{"radius", comparison.soft_radius},
+                                 {"samples", options.samples},
+                                 {"per_light", per_light}};
+  }
   if (!options.out.empty()) write_json_file(std::filesystem::path(options.out) / "summary.json", summary);
   if (!options.json_file.empty()) write_json_file(options.json_file, summary);
 
@@ -343,6 +434,19 @@ int run_diff(const DiffOptions& options) {
       if (const std::optional<AnalyticCounts> analytic = run.analytic())
         report.facts.emplace_back("analytic shadow, " + std::string(gpu::shadow_method_name(run.method)),
                                   analytic_fact(*analytic));
+    for (std::size_t k = 0; k < comparison.soft.size(); ++k) {
+      const SoftReference& r = comparison.soft[k];
+      report.facts.emplace_back(
+          "soft reference" + (light_count > 1 ? fmt::format(", light {}", k) : std::string()),
+          fmt::format("disk light of radius {:.4g}, {} samples, {:.2f} s; error images: method minus reference, "
+                      "blue too dark, red too bright, green where coverage differs",
+                      comparison.soft_radius, r.image.samples.size(), r.image.stats.seconds + r.contact_seconds));
+      for (const MethodRun& run : runs)
+        if (run.lights[k].soft)
+          report.facts.emplace_back("soft error, " + std::string(gpu::shadow_method_name(run.method)) +
+                                        (light_count > 1 ? fmt::format(", light {}", k) : std::string()),
+                                    soft_fact(*run.lights[k].soft));
+    }
     for (const MethodRun& run : runs)
       report.rows.push_back({std::string(gpu::shadow_method_name(run.method)), run.held_robust,
                              run.sum(&PixelComparison::hard_errors), run.sum(&PixelComparison::ambiguous),
@@ -353,6 +457,15 @@ int run_diff(const DiffOptions& options) {
     for (std::size_t k = 0; k < light_count; ++k) {
       const std::string s = light_count > 1 ? fmt::format(", light {}", k) : std::string();
       for (const auto& [name, image] : exact_images(k)) report.exact_images.push_back({name + s, gpu::encode_png(image)});
+      if (!comparison.soft.empty()) {
+        const SoftReference& r = comparison.soft[k];
+        report.exact_images.push_back(
+            {"soft reference light" + s, gpu::encode_png(light_image_gray(r.image.width, r.image.height, r.image.light))});
+        report.exact_images.push_back({"soft reference regions (umbra black, penumbra gray, contact red)" + s,
+                                       gpu::encode_png(soft_region_image(r))});
+        report.exact_images.push_back({"error colours: -1 (too dark) to +1 (too bright)",
+                                       gpu::encode_png(diverging_colour_bar(256, 16))});
+      }
       for (const MethodRun& run : runs) {
         const std::string name(gpu::shadow_method_name(run.method));
         report.method_images.push_back(
@@ -360,6 +473,14 @@ int run_diff(const DiffOptions& options) {
              {{name + " overlay" + s, gpu::encode_png(overlay(run.lights[k].frame.colour, run.lights[k].comparison))},
               {name + " lit mask" + s, gpu::encode_png(gl_mask(run.lights[k].frame))},
               {"exact lit mask" + s, gpu::encode_png(exact_mask(exact, k))}}});
+        if (!comparison.soft.empty()) {
+          const gpu::StencilShadowFrame& f = run.lights[k].frame;
+          report.method_images.back().second.push_back(
+              {name + " light" + s, gpu::encode_png(light_image_gray(scene.camera.width, scene.camera.height,
+                                                                       f.first_light))});
+          report.method_images.back().second.push_back(
+              {name + " soft error" + s, gpu::encode_png(soft_error_image(comparison.soft[k].image, f.first_light))});
+        }
       }
     }
     write_diff_report(options.report, report);
@@ -386,6 +507,18 @@ int run_diff(const DiffOptions& options) {
                                                            : "  (smooth surface: its error)");
   }
   if (comparison.analytic) print_analytic(*comparison.analytic, scene, runs);
+  for (std::size_t k = 0; k < comparison.soft.size(); ++k) {
+    const SoftReference& r = comparison.soft[k];
+    fmt::print("  soft reference{}: disk light of radius {:.4g}, {} samples, {:.2f} s; light against it (never a "
+               "failure):\n",
+               light_count > 1 ? fmt::format(" of light {}", k) : std::string(), comparison.soft_radius,
+               r.image.samples.size(), r.image.stats.seconds + r.contact_seconds);
+    fmt::print("  {:<10} {:>9} {:>7} {:>8} {:>8} {:>8} {:>11} {:>12} {:>9}\n", "method", "mean err", "max",
+               "umbra", "penumbra", "outside", "leaks", "acne", "signed");
+    for (const MethodRun& run : runs)
+      if (run.lights[k].soft)
+        fmt::print("  {:<10} {}\n", gpu::shadow_method_name(run.method), soft_line(*run.lights[k].soft));
+  }
   fmt::print("  {}\n", passed ? "passed: no robust method has a hard error or an open volume"
                               : "FAILED: a robust method has a hard error or an open volume");
   return passed ? kExitOk : kExitCheckFailed;
@@ -435,6 +568,13 @@ void add_diff_command(CLI::App& app, int& exit_code) {
                   "smoothie: the width D in world units (default 2% of the scene's bounding-box diagonal)");
   cmd->add_option("--smoothie-space", options->smoothie_space, "smoothie: world or light (render --help)")
       ->check(CLI::IsMember({"world", "light"}))
+      ->capture_default_str();
+  cmd->add_flag("--soft", options->soft,
+                "Also compute every light's exact soft reference (a disk light of --light-radius around it, "
+                "--samples stratified samples, exact verdicts; docs/smoothies.md) and compare every method's light "
+                "image with it: mean and max error, inside the umbra, the penumbra and outside, leaks at contact, "
+                "acne (reported, never a failure)");
+  cmd->add_option("--samples", options->samples, "--soft: sample lights on the disk, a perfect square (64 = 8 x 8)")
       ->capture_default_str();
   cmd->add_option("--device", options->device, "Use EGL device N (default: a hardware device, else llvmpipe)");
   cmd->callback([options, &exit_code] { exit_code = run_diff(*options); });

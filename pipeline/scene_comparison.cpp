@@ -10,6 +10,7 @@
 
 #include "exact/volume_closure.h"
 #include "gpu/depth_precision.h"
+#include "gpu/shadow_map_renderer.h"
 #include "pipeline/mesh_palette.h"
 #include "pipeline/method_inputs.h"
 #include "reference/input_rounding.h"
@@ -140,6 +141,17 @@ SceneComparison compare_scene(const Scene& scene, const std::vector<gpu::ShadowM
   const bool silhouette_methods = std::any_of(methods.begin(), methods.end(), [](gpu::ShadowMethod m) {
     return std::find(gpu::kSilhouetteMethods.begin(), gpu::kSilhouetteMethods.end(), m) != gpu::kSilhouetteMethods.end();
   });
+  // The exact soft references, in world space as the exact image, one per light; the area light
+  // is pcss's unless the options name a radius.
+  if (options.soft) {
+    SoftReferenceOptions soft = *options.soft;
+    if (soft.sampling.radius == 0.0)
+      soft.sampling.radius = options.method_options.light_radius > 0.0
+                                 ? options.method_options.light_radius
+                                 : gpu::default_light_radius(gpu::soup_bounds(merged));
+    result.soft_radius = soft.sampling.radius;
+    for (std::size_t k = 0; k < scene.lights.size(); ++k) result.soft.push_back(soft_reference(scene, k, soft));
+  }
   // The analytic truth is the world scene's (its ellipsoids are in world space).
   if (options.analytic && silhouette_methods && has_analytic_caster(scene))
     result.analytic = analytic_reference(scene, options.silhouette.crease_angle_degrees);
@@ -178,6 +190,8 @@ SceneComparison compare_scene(const Scene& scene, const std::vector<gpu::ShadowM
                               silhouette ? &silhouette->gpu_casters : nullptr),
           method_options);
       run.lights.push_back(compare_light(renderer, result.exact, k, target, drawn.camera, options.timed_frames));
+      if (!result.soft.empty())
+        run.lights.back().soft = compare_soft_shadow(result.soft[k], run.lights.back().frame.first_light);
       if (silhouette != nullptr && result.analytic)
         run.lights.back().analytic = compare_analytic(*result.analytic, k, run.lights.back().frame);
     }

@@ -27,6 +27,8 @@
 #include "pipeline/analytic_comparison.h"
 #include "pipeline/scene_smoothies.h"
 #include "pipeline/silhouette_volumes.h"
+#include "pipeline/soft_reference.h"
+#include "pipeline/soft_shadow_comparison.h"
 #include "pipeline/stencil_choice.h"
 
 namespace shadowcert {
@@ -54,6 +56,9 @@ struct LightRun {
   // A smooth-silhouette method against the analytic shadow (pipeline/analytic_comparison.h),
   // when the comparison has one (SceneComparison::analytic): reported, never a failure.
   std::optional<AnalyticCounts> analytic;
+  // The method's light image against the light's exact soft reference (SceneComparison::soft),
+  // when the comparison has one: reported, never a failure.
+  std::optional<SoftShadowErrors> soft;
 };
 
 struct MethodRun {
@@ -89,6 +94,11 @@ struct SceneComparisonOptions {
   // When a smooth-silhouette method runs and a mesh casts as a known ellipsoid
   // (has_analytic_caster): the analytic shadow image too, and each such run against it.
   bool analytic = true;
+  // With a value: every point light's exact soft reference (pipeline/soft_reference.h: a disk
+  // light of sampling.radius around it, K samples) and every method's light image against it
+  // (LightRun::soft). sampling.radius 0 takes the pcss light radius (method_options.light_radius,
+  // or gpu::default_light_radius of the scene), so that both model the same area light.
+  std::optional<SoftReferenceOptions> soft;
 };
 
 struct SceneComparison {
@@ -103,6 +113,9 @@ struct SceneComparison {
   // The analytic shadow of the scene's ellipsoids (SceneComparisonOptions::analytic), which
   // the smooth-silhouette runs were compared with; nullopt when none.
   std::optional<AnalyticShadowImage> analytic;
+  // Per light, its exact soft reference (SceneComparisonOptions::soft); empty when not asked.
+  std::vector<SoftReference> soft;
+  double soft_radius = 0.0;  // the area light's radius the references were made with
 
   [[nodiscard]] bool passed() const;  // no run failed
 };

@@ -7,6 +7,12 @@
 //             sees through the point, then PCF over the penumbra that depth predicts;
 //   smoothie  Chen & Tsai §3: the hard comparison (stage 1), then the nearest smoothie in front of
 //             the point (stage 2) gives its alpha remapped, a' = a / (1 - b / r), clamped.
+// Receiver-plane depth bias (Isidoro, "Shadow mapping: GPU-based tips and techniques", GDC 2006):
+// the filters compare taps away from the point's own texel, where the receiver's own surface lies
+// at another depth than at the point; each tap's reference depth follows the receiver's plane,
+// window.z + dot(depth_gradient, offset), the gradient dz / d(uv) from the fragment's screen
+// derivatives (shadow_map_scene.frag.glsl). Without it a wide PCF or PCSS kernel on a receiver
+// tilted to the light compares against its own surface: acne over whole lit floors.
 // Light-space lengths: z is the depth along the light's axis (-z of light_view), linear;
 // one unit of the map's texture coordinates spans 2 z tan(half angle) world units at depth z
 // under a point light, 2 half_width (2 half_height) under a directional light's box.
@@ -36,6 +42,20 @@ const float kPcssMaxSearchRadius = 0.125;
 // of b on a smoothie that touches the receiver, where b / r -> 1 would divide by rounding noise.
 const float kSmoothieBehindTolerance = 1.0e-4;
 
+// The receiver's depth gradient dz / d(uv) in the map, by its screen derivatives: `dx` and `dy` are
+// dFdx and dFdy of the point's window coordinates. A plane's window depth is affine in the map's
+// uv, so the gradient extrapolates the receiver's own depth exactly over a filter's taps, however
+// steep: it is not clamped (a clamp made a steep floor count itself as its blocker, and PCSS's
+// penumbra collapsed to a hard edge). Zero where the derivatives are degenerate or not finite
+// (the receiver seen edge-on from the eye or from the light).
+vec2 receiver_depth_gradient(vec3 dx, vec3 dy) {
+  float det = dx.x * dy.y - dx.y * dy.x;
+  if (!(abs(det) > 0.0)) return vec2(0.0);
+  vec2 g = vec2(dy.y * dx.z - dx.y * dy.z, dx.x * dy.z - dy.x * dx.z) / det;
+  if (isnan(g.x) || isnan(g.y) || isinf(g.x) || isinf(g.y)) return vec2(0.0);
+  return g;
+}
+
 // The light's window depth d in [0, 1] as a linear depth along the light's axis.
 float linear_depth(float d) {
   float near = light_frustum.x, far = light_frustum.y;
@@ -53,29 +73,32 @@ float hard_light(vec3 window) {
   return textureLod(shadow_map, vec3(window.xy, window.z - depth_bias), 0.0) < 0.5 ? 0.0 : 1.0;
 }
 
-// taps x taps comparisons on a grid spanning [-radius, radius] around uv (one at uv when taps = 1).
-float grid_light(vec2 uv, float reference, vec2 radius, int taps) {
+// taps x taps comparisons on a grid spanning [-radius, radius] around uv (one at uv when taps = 1),
+// each against the receiver's plane there.
+float grid_light(vec2 uv, float reference, vec2 gradient, vec2 radius, int taps) {
   float lit = 0.0;
   for (int i = 0; i < taps; ++i) {
     for (int j = 0; j < taps; ++j) {
       vec2 offset = taps == 1 ? vec2(0.0) : (vec2(i, j) * (2.0 / float(taps - 1)) - 1.0) * radius;
-      lit += textureLod(shadow_map, vec3(uv + offset, reference), 0.0);
+      lit += textureLod(shadow_map, vec3(uv + offset, reference + dot(gradient, offset)), 0.0);
     }
   }
   return lit / float(taps * taps);
 }
 
-float pcf_light(vec3 window) {
+float pcf_light(vec3 window, vec2 gradient) {
   vec2 texel = 1.0 / vec2(textureSize(shadow_map, 0));
   int half_kernel = (pcf_kernel - 1) / 2;
   float lit = 0.0;
   for (int i = -half_kernel; i <= half_kernel; ++i)
-    for (int j = -half_kernel; j <= half_kernel; ++j)
-      lit += textureLod(shadow_map, vec3(window.xy + vec2(i, j) * texel, window.z - depth_bias), 0.0);
+    for (int j = -half_kernel; j <= half_kernel; ++j) {
+      vec2 offset = vec2(i, j) * texel;
+      lit += textureLod(shadow_map, vec3(window.xy + offset, window.z - depth_bias + dot(gradient, offset)), 0.0);
+    }
   return lit / float(pcf_kernel * pcf_kernel);
 }
 
-float pcss_light(vec3 window, float receiver_depth) {
+float pcss_light(vec3 window, vec2 gradient, float receiver_depth) {
   float near = light_frustum.x;
   float reference = window.z - depth_bias;
   // 1. Blocker search: the light's disk seen from the receiver, where the cone crosses the near
@@ -89,6 +112,11 @@ float pcss_light(vec3 window, float receiver_depth) {
     for (int j = 0; j < kPcssSearchTaps; ++j) {
       vec2 offset = (vec2(i, j) * (2.0 / float(kPcssSearchTaps - 1)) - 1.0) * search;
       float d = textureLod(depth_values, window.xy + offset, 0.0).r;
+      // The point's own reference, not the receiver's plane: the search region is wide (the
+      // light's disk at the near plane), and over it the plane reaches casters far from the
+      // point, which then count as its blockers; a texel of the receiver itself that the plane
+      // would have excused only pulls the mean blocker depth towards the receiver (a narrower
+      // penumbra), never darkens.
       if (d < reference) {
         blocker_sum += linear_depth(d);
         ++blockers;
@@ -101,7 +129,7 @@ float pcss_light(vec3 window, float receiver_depth) {
   float penumbra_world = orthographic == 1 ? light_radius * (receiver_depth - blocker_depth)
                                            : light_radius * (receiver_depth - blocker_depth) / blocker_depth;
   vec2 radius = max(vec2(penumbra_world), vec2(0.0)) / world_per_uv(receiver_depth);
-  return grid_light(window.xy, reference, radius, kPcssFilterTaps);
+  return grid_light(window.xy, reference, gradient, radius, kPcssFilterTaps);
 }
 
 float smoothie_light(vec3 window, float receiver_depth) {
@@ -114,11 +142,12 @@ float smoothie_light(vec3 window, float receiver_depth) {
   return clamp(smoothie.x / (1.0 - smoothie.y / receiver_depth), 0.0, 1.0);
 }
 
-// The amount of the light that reaches world point p, whose light window coordinates are `window`.
-float filtered_light(vec3 window, vec3 p) {
+// The amount of the light that reaches world point p, whose light window coordinates are `window`
+// and whose receiver's depth gradient in the map is `gradient` (receiver_depth_gradient).
+float filtered_light(vec3 window, vec2 gradient, vec3 p) {
   if (filter_mode == kFilterHard) return hard_light(window);
-  if (filter_mode == kFilterPcf) return pcf_light(window);
+  if (filter_mode == kFilterPcf) return pcf_light(window, gradient);
   float receiver_depth = -(light_view * vec4(p, 1.0)).z;
-  if (filter_mode == kFilterPcss) return pcss_light(window, receiver_depth);
+  if (filter_mode == kFilterPcss) return pcss_light(window, gradient, receiver_depth);
   return smoothie_light(window, receiver_depth);
 }

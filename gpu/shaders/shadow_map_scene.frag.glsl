@@ -25,6 +25,12 @@ layout(location = 0) out vec4 fragment;
 #include "shadow_filter.glsl"
 
 void main() {
+  // The point in the light's window and its screen derivatives, taken first, in uniform control
+  // flow (derivatives are undefined in a branch some fragments of a quad skip): what the filters'
+  // receiver-plane depth bias needs (shadow_filter.glsl).
+  vec4 clip = light_to_clip * vec4(world_position, 1.0);
+  vec3 window = (clip.xyz / clip.w) * 0.5 + 0.5;  // glDepthRange(0, 1), the default
+  vec2 gradient = receiver_depth_gradient(dFdx(window), dFdy(window));
   if (lambert_weight == 0.0) {
     fragment = vec4(surface_albedo * colour.rgb, 1.0);
     return;
@@ -49,15 +55,13 @@ void main() {
     }
   }
   float amount = 1.0;
-  vec4 clip = light_to_clip * vec4(world_position, 1.0);
   // The frustum is fitted to the scene's bounds, so every receiver point is inside it; a
   // point outside (w <= 0 or beyond [-1, 1]) has nothing in the map to hide it: lit.
   if (clip.w > 0.0) {
     vec3 ndc = clip.xyz / clip.w;
     if (all(lessThanEqual(abs(ndc), vec3(1.0)))) {
-      vec3 window = ndc * 0.5 + 0.5;  // glDepthRange(0, 1), the default
       // textureLod inside: no derivatives needed (one level) in this non-uniform branch.
-      amount = filtered_light(window, world_position);
+      amount = filtered_light(window, gradient, world_position);
     }
   }
   if (light_image_pass == 1) {
