@@ -63,18 +63,17 @@
 #include "pipeline/method_inputs.h"
 #include "pipeline/scene_comparison.h"
 #include "pipeline/silhouette_volumes.h"
+#include "scene/framed_scene.h"
 #include "scene/merged_soup.h"
-#include "scene/procedural_mesh.h"
 
 namespace {
 
 using namespace shadowcert;
 using Clock = std::chrono::steady_clock;
 
-const Light kPointLight{{1.2, 4.0, 0.8, 1.0}};
-const Light kSun{{0.3, 1.0, 0.2, 0.0}};
-constexpr double kFloorHeight = -1.5;
-constexpr double kFloorHalfSize = 8.0;
+// The analytic scenes' lights (scene/framed_scene.h).
+const Light kPointLight = kAnalyticPointLight;
+const Light kSun = kAnalyticSun;
 // The paper's offset of the caps along -n (Mattausch et al. 2012, §5), for a caster of unit size.
 constexpr double kPaperCapOffset = 0.15;
 // GL frames timed per benchmark after the untimed compared one.
@@ -86,34 +85,9 @@ struct Settings {
 };
 Settings g_settings;
 
-struct Shape {
-  std::string name;
-  Soup soup;
-  Ellipsoid truth;
-};
-
-// bench/smooth_silhouette_bench.cpp's ellipsoid: a 32x16 uv sphere under A (columns below),
-// its normals computed from the transformed mesh.
-Shape ellipsoid_shape() {
-  const Ellipsoid e{{0, 0, 0}, {{{1.4, 0.0, 0.2}, {0.0, 0.8, 0.0}, {-0.3, 0.0, 1.0}}}};
-  Soup s = uv_sphere({0, 0, 0}, 1.0, 32, 16);
-  s.normals.clear();
-  for (Vec3& v : s.vertices) {
-    const Vec3 u = v;
-    for (std::size_t k = 0; k < 3; ++k) v[k] = e.axes[0][k] * u[0] + e.axes[1][k] * u[1] + e.axes[2][k] * u[2];
-  }
-  return {"ellipsoid32x16", s, e};
-}
-
-std::vector<Shape> shapes() {
-  std::vector<Shape> out;
-  for (const auto& [slices, stacks] : {std::pair{8u, 4u}, {12u, 6u}, {16u, 8u}, {32u, 16u}, {64u, 32u}, {128u, 64u},
-                                       {256u, 128u}})
-    out.push_back({"sphere" + std::to_string(slices) + "x" + std::to_string(stacks),
-                   uv_sphere({0, 0, 0}, 1.0, slices, stacks), Ellipsoid{}});
-  out.push_back(ellipsoid_shape());
-  return out;
-}
+// The casters of the analytic error (scene/framed_scene.h): uv spheres 8x4 to 256x128 and the
+// ellipsoid, the shapes of bench/smooth_silhouette_bench.cpp.
+using Shape = AnalyticShape;
 
 // One shape under one light: the scene, as GL gets it, and the analytic truth. One at a time.
 struct Case {
@@ -125,27 +99,10 @@ struct Case {
   AnalyticShadowImage truth;
 };
 
+// The shape over the floor y = -1.5 (receiving only), seen so that the shadow and the caster's
+// terminator side are in view (scene/framed_scene.h's analytic_shape_scene).
 Scene shape_scene(const Shape& shape, const Light& light) {
-  Scene scene;
-  SceneMesh floor;
-  floor.name = "floor";
-  floor.soup = floor_quad(kFloorHalfSize);
-  for (Vec3& v : floor.soup.vertices) v[1] += kFloorHeight;
-  floor.casts = false;  // it only receives
-  scene.meshes.push_back(std::move(floor));
-  SceneMesh caster;
-  caster.name = shape.name;
-  caster.soup = shape.soup;
-  caster.ellipsoid = shape.truth;
-  scene.meshes.push_back(std::move(caster));
-  scene.lights = {light};
-  // Sees the shadow and the caster's terminator side (docs/smooth-silhouettes.md).
-  scene.camera.eye = {-2.5, 5.5, 6.5};
-  scene.camera.target = {-0.4, -0.9, -0.3};
-  scene.camera.width = g_settings.width;
-  scene.camera.height = g_settings.height;
-  scene.camera = camera_fitted_to(scene);
-  return scene;
+  return analytic_shape_scene(shape, light, g_settings.width, g_settings.height);
 }
 
 Case& case_for(const Shape& shape, std::string_view light_name, const Light& light) {
@@ -222,41 +179,13 @@ void run_offset(benchmark::State& state, const Shape& shape, std::string_view li
   measure(state, c, method, volume, std::chrono::duration<double, std::milli>(Clock::now() - start).count());
 }
 
-// tests/pipeline/scene_comparison_test.cpp's framing of a shared mesh: its vertex box (centre
-// c, half-diagonal r), a floor 6r wide just under it (receiving only), a point light at
-// c + r (1.5, 3, 1), the eye at c + r (2.4, 1.6, 3.2).
+// A shared mesh framed over a floor that only receives (scene/framed_scene.h's rule, which the
+// SharedMeshDiff tests and `shadowcert bench --suite real` use).
 Scene shared_mesh_scene(const Soup& mesh, const std::string& name) {
-  Vec3 lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
-  for (const Triangle& t : mesh.triangles)
-    for (std::uint32_t v : t)
-      for (std::size_t k = 0; k < 3; ++k) {
-        lo[k] = std::min(lo[k], mesh.vertices[v][k]);
-        hi[k] = std::max(hi[k], mesh.vertices[v][k]);
-      }
-  const Vec3 c{0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]), 0.5 * (lo[2] + hi[2])};
-  const double r = 0.5 * std::sqrt(dot(difference(hi, lo), difference(hi, lo)));
-  const auto at = [&](double x, double y, double z) { return Vec3{c[0] + r * x, c[1] + r * y, c[2] + r * z}; };
-  SceneMesh floor;
-  floor.name = "floor";
-  const double y = lo[1] - 0.01 * r;
-  floor.soup.vertices = {{c[0] - 3 * r, y, c[2] - 3 * r}, {c[0] - 3 * r, y, c[2] + 3 * r},
-                         {c[0] + 3 * r, y, c[2] + 3 * r}, {c[0] + 3 * r, y, c[2] - 3 * r}};
-  floor.soup.triangles = {{0, 1, 2}, {0, 2, 3}};
-  floor.casts = false;
-  SceneMesh caster;
-  caster.name = name;
-  caster.soup = mesh;
-  Scene scene;
-  scene.meshes.push_back(std::move(caster));
-  scene.meshes.push_back(std::move(floor));
-  const Vec3 light = at(1.5, 3.0, 1.0);
-  scene.lights = {Light{{light[0], light[1], light[2], 1.0}}};
-  scene.camera.eye = at(2.4, 1.6, 3.2);
-  scene.camera.target = c;
-  scene.camera.width = g_settings.mesh_width;
-  scene.camera.height = g_settings.mesh_height;
-  scene.camera = camera_fitted_to(scene);
-  return scene;
+  FramedMeshOptions options;
+  options.width = g_settings.mesh_width;
+  options.height = g_settings.mesh_height;
+  return framed_mesh_scene(mesh, name, options);
 }
 
 void run_mesh(benchmark::State& state, const std::string& relative) {
@@ -297,7 +226,7 @@ void register_benchmarks() {
                                     {"smooth0.03", gpu::ShadowMethod::smooth, 0.03},
                                     {"smooth0.01", gpu::ShadowMethod::smooth, 0.01},
                                     {"smooth0.003", gpu::ShadowMethod::smooth, 0.003}};
-  const std::vector<Shape> all = shapes();
+  const std::vector<Shape> all = analytic_shapes();
   // Light-major, then shape: one analytic image per (light, shape).
   for (const auto& [light_name, light] : {std::pair{"point", kPointLight}, {"sun", kSun}})
     for (const Shape& shape : all)

@@ -110,10 +110,14 @@ Scene campaign_view_scene(const CampaignView& view) {
 GlCampaignResult run_gl_campaign(const GlCampaignOptions& options) {
   if (options.methods.empty()) throw std::invalid_argument("run_gl_campaign: no method");
   if (options.width == 0 || options.height == 0) throw std::invalid_argument("run_gl_campaign: empty image");
+  if (!valid_case_shard(options.shard))
+    throw std::invalid_argument("run_gl_campaign: a shard needs count >= 1 and index < count");
   GlCampaignResult result;
   result.methods.resize(options.methods.size());
   const auto start = Clock::now();
-  for (std::uint64_t i = 0; i < options.cases; ++i) {
+  const std::uint64_t shard_cases = shard_case_count(options.cases, options.shard);
+  for (std::uint64_t j = 0; j < shard_cases; ++j) {
+    const std::uint64_t i = shard_case_index(options.shard, j);
     const CampaignCase c = campaign_case(options.seed, i, options.triangles);
     const SceneComparison comparison = compare_scene(
         campaign_view_scene(campaign_view(c, options.width, options.height)), options.methods, comparison_options(options));

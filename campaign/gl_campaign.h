@@ -18,12 +18,14 @@
 #include "core/scene.h"
 #include "campaign/random_soup.h"
 #include "campaign/campaign_view.h"
+#include "campaign/case_shard.h"
 
 namespace shadowcert {
 
 struct GlCampaignOptions {
   std::uint64_t seed = 1;
-  std::uint64_t cases = 1;
+  std::uint64_t cases = 1;  // the whole campaign's: cases 0 .. cases-1
+  CaseShard shard;          // only these of them (default: all)
   std::uint32_t triangles = 100;
   std::vector<gpu::ShadowMethod> methods;  // at least one
   std::uint32_t width = 64;                // the image, >= 1 each
@@ -66,7 +68,7 @@ struct ShrunkGlFailure {
 
 struct GlCampaignResult {
   std::vector<GlCampaignTally> methods;  // one per method of the options
-  std::uint64_t cases = 0;
+  std::uint64_t cases = 0;  // cases rendered: the shard's
   double seconds = 0.0;  // the cases alone, shrinking excluded
   double exact_seconds = 0.0;  // of which, the exact images (both roundings)
   double shrink_seconds = 0.0;
@@ -79,8 +81,8 @@ struct GlCampaignResult {
 [[nodiscard]] Scene campaign_view_scene(const CampaignView& view);
 
 // Runs the GL part of the campaign and shrinks the first failures of each method. Needs a
-// current GL context. Throws std::invalid_argument("run_gl_campaign: ...") on no method or an
-// empty image.
+// current GL context. Throws std::invalid_argument("run_gl_campaign: ...") on no method, an
+// empty image or a bad shard.
 [[nodiscard]] GlCampaignResult run_gl_campaign(const GlCampaignOptions& options);
 
 // A written reproducer: DIR/NAME.json (the scene), DIR/NAME.soup.off and DIR/NAME.floor.off.

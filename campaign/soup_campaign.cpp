@@ -99,17 +99,20 @@ CampaignFailureKind failure_kind(const RunVerdict& verdict) {
 CampaignResult run_campaign(const CampaignOptions& options) {
   if (options.runs.empty()) throw std::invalid_argument("run_campaign: no method run");
   if (options.triangles == 0) throw std::invalid_argument("run_campaign: a case needs at least one triangle");
+  if (!valid_case_shard(options.shard))
+    throw std::invalid_argument("run_campaign: a shard needs count >= 1 and index < count");
   const auto start = std::chrono::steady_clock::now();
   tbb::combinable<Partial> partials([&options] {
     Partial p;
     p.runs.resize(options.runs.size());
     return p;
   });
-  tbb::parallel_for(tbb::blocked_range<std::uint64_t>(0, options.cases, kCasesPerTask),
+  // j runs over the shard's cases; each is certified under its campaign index.
+  tbb::parallel_for(tbb::blocked_range<std::uint64_t>(0, shard_case_count(options.cases, options.shard), kCasesPerTask),
                     [&](const tbb::blocked_range<std::uint64_t>& range) {
                       Partial& p = partials.local();
-                      for (std::uint64_t i = range.begin(); i < range.end(); ++i) {
-                        run_case(options, i, p);
+                      for (std::uint64_t j = range.begin(); j < range.end(); ++j) {
+                        run_case(options, shard_case_index(options.shard, j), p);
                         if (options.progress != nullptr) options.progress->fetch_add(1, std::memory_order_relaxed);
                       }
                     });

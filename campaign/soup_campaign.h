@@ -1,5 +1,6 @@
 #pragma once
-// The random-soup campaign (docs/campaign.md): cases 0 .. N-1 of campaign/random_soup.h, each certified for
+// The random-soup campaign (docs/campaign.md): cases 0 .. N-1 of campaign/random_soup.h (or one
+// shard of them, campaign/case_shard.h), each certified for
 // every method run by campaign/case_certificate.h, in parallel over all cores (TBB). Every
 // case depends only on (seed, index), so the result is the same whatever the thread count and
 // schedule. Failing cases are then shrunk (campaign/soup_shrinker.h) to small soups that still
@@ -13,13 +14,15 @@
 #include "core/soup.h"
 #include "campaign/case_certificate.h"
 #include "campaign/campaign_run.h"
+#include "campaign/case_shard.h"
 #include "campaign/random_soup.h"
 
 namespace shadowcert {
 
 struct CampaignOptions {
   std::uint64_t seed = 1;
-  std::uint64_t cases = 1000;
+  std::uint64_t cases = 1000;     // the whole campaign's: cases 0 .. cases-1
+  CaseShard shard;                // only these of them (default: all)
   std::uint32_t triangles = 100;  // per case, >= 1
   std::vector<CampaignRun> runs = all_campaign_runs();
   CampaignSampling sampling;                           // its seed is replaced per case (campaign_sampling_for_case)
@@ -60,7 +63,7 @@ struct ShrunkFailure {
 };
 
 struct CampaignResult {
-  std::uint64_t cases = 0;
+  std::uint64_t cases = 0;  // cases certified: the shard's
   double seconds = 0.0;  // the cases alone, shrinking excluded
   double shrink_seconds = 0.0;
   std::vector<CampaignRunTally> runs;  // one per run of the options
@@ -79,7 +82,7 @@ struct CampaignResult {
 // The kind of failure of a failed verdict: closure when the chain is open, counts otherwise.
 [[nodiscard]] CampaignFailureKind failure_kind(const RunVerdict& verdict);
 
-// Throws std::invalid_argument("run_campaign: ...") on no runs or zero triangles.
+// Throws std::invalid_argument("run_campaign: ...") on no runs, zero triangles or a bad shard.
 [[nodiscard]] CampaignResult run_campaign(const CampaignOptions& options);
 
 // Shrinks one failure of a campaign with these options (the same runs and sampling).

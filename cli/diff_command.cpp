@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "cli/diff_report.h"
+#include "cli/edge_map_output.h"
 #include "cli/exit_code.h"
 #include "cli/light_image_output.h"
 #include "cli/option_values.h"
@@ -23,6 +24,7 @@
 #include "cli/stencil_output.h"
 #include "io/output_file.h"
 #include "pipeline/analytic_comparison.h"
+#include "pipeline/comparison_pictures.h"
 #include "pipeline/scene_comparison.h"
 #include "pipeline/soft_shadow_pictures.h"
 #include "io/scene_input.h"
@@ -65,6 +67,8 @@ struct DiffOptions {
   // (docs/smoothies.md#the-error-table), with --samples K (a perfect square) and --light-radius.
   bool soft = false;
   long long samples = 64;
+  // --edges: every filter's GL edge map against the exact edge ground truth (docs/edge-maps.md#scores).
+  bool edges = false;
 };
 
 // The method's lit mask, gated by coverage (the frame's alpha).
@@ -98,26 +102,7 @@ gpu::GrayImage ambiguity_image(const ExactImage& image, std::size_t light) {
 
 // Hard errors red, ambiguous pixels tinted yellow, over the rendered frame (made opaque).
 gpu::RgbaImage overlay(const gpu::RgbaImage& colour, const PixelComparison& comparison) {
-  gpu::RgbaImage out = colour;
-  for (std::size_t p = 0; p < comparison.verdicts.size(); ++p) {
-    std::uint8_t* px = out.pixels.data() + 4 * p;
-    switch (comparison.verdicts[p]) {
-      case PixelVerdict::agree:
-        break;
-      case PixelVerdict::ambiguous:
-        px[0] = static_cast<std::uint8_t>((px[0] + 255) / 2);
-        px[1] = static_cast<std::uint8_t>((px[1] + 255) / 2);
-        px[2] = static_cast<std::uint8_t>(px[2] / 2);
-        break;
-      case PixelVerdict::hard_error:
-        px[0] = 255;
-        px[1] = 0;
-        px[2] = 0;
-        break;
-    }
-    px[3] = 255;
-  }
-  return out;
+  return error_overlay(colour, comparison);
 }
 
 // The report's "stencil" fact: the choice, and in auto mode each light's method.
@@ -337,6 +322,10 @@ int run_diff(const DiffOptions& options) {
   const double rounded_seconds = comparison.rounded_seconds;
   const std::vector<MethodRun>& runs = comparison.runs;
   const bool passed = comparison.passed();
+  // --edges: the edge maps' scores (reported, never a failure).
+  const EdgeMapComparisonOptions edge_options;
+  std::optional<EdgeMapComparison> edge_maps;
+  if (options.edges) edge_maps = compare_edge_maps(scene, edge_options);
 
   // Images: the exact masks and counts, and per method its mask and overlay.
   const auto exact_images = [&](std::size_t k) {
@@ -346,11 +335,18 @@ int run_diff(const DiffOptions& options) {
         {"exact_counts" + s, exact_counts(exact, k)},
         {"exact_ambiguous" + s, ambiguity_image(exact, k)}};
   };
+  // The top of the counts' colour scale: the largest defined count of any light.
+  std::uint32_t counts_top = 1;
+  for (std::size_t k = 0; k < light_count; ++k) counts_top = std::max(counts_top, max_count(exact, k));
   if (!options.out.empty()) {
     const std::filesystem::path dir(options.out);
     create_parent_directories(dir / "summary.json");
+    if (edge_maps) write_edge_map_pictures(dir, *edge_maps);
     for (std::size_t k = 0; k < light_count; ++k) {
       for (const auto& [name, image] : exact_images(k)) gpu::write_png((dir / (name + ".png")).string(), image);
+      // The counts in a perceptual colour map: the gray file holds n mod 256, where 1 and 2 look black.
+      gpu::write_png((dir / ("exact_counts_viridis" + light_suffix(k, light_count) + ".png")).string(),
+                     count_colour_image(exact, k, counts_top));
       for (const MethodRun& run : runs) {
         const std::string name(gpu::shadow_method_name(run.method));
         const std::string s = light_suffix(k, light_count);
@@ -413,6 +409,8 @@ int run_diff(const DiffOptions& options) {
                                  {"samples", options.samples},
                                  {"per_light", per_light}};
   }
+  if (edge_maps)
+    summary["edge_maps"] = edge_maps_json(*edge_maps, edge_options.crease_degrees, edge_options.grazing_degrees);
   if (!options.out.empty()) write_json_file(std::filesystem::path(options.out) / "summary.json", summary);
   if (!options.json_file.empty()) write_json_file(options.json_file, summary);
 
@@ -456,7 +454,15 @@ int run_diff(const DiffOptions& options) {
                                  : std::string()});
     for (std::size_t k = 0; k < light_count; ++k) {
       const std::string s = light_count > 1 ? fmt::format(", light {}", k) : std::string();
-      for (const auto& [name, image] : exact_images(k)) report.exact_images.push_back({name + s, gpu::encode_png(image)});
+      for (const auto& [name, image] : exact_images(k)) {
+        // The counts in viridis with a legend (n mod 256 in gray is all but black).
+        if (name.rfind("exact_counts", 0) == 0) {
+          report.exact_images.push_back(
+              {name + " (viridis, legend below)" + s, gpu::encode_png(count_colour_image(exact, k, counts_top))});
+          continue;
+        }
+        report.exact_images.push_back({name + s, gpu::encode_png(image)});
+      }
       if (!comparison.soft.empty()) {
         const SoftReference& r = comparison.soft[k];
         report.exact_images.push_back(
@@ -483,6 +489,11 @@ int run_diff(const DiffOptions& options) {
         }
       }
     }
+    report.counts_legend = counts_legend(counts_top);
+    if (edge_maps) {
+      for (auto& fact : edge_map_facts(*edge_maps)) report.facts.push_back(std::move(fact));
+      report.method_images.push_back({"edge maps", edge_map_report_images(*edge_maps)});
+    }
     write_diff_report(options.report, report);
   }
 
@@ -507,6 +518,7 @@ int run_diff(const DiffOptions& options) {
                                                            : "  (smooth surface: its error)");
   }
   if (comparison.analytic) print_analytic(*comparison.analytic, scene, runs);
+  if (edge_maps) print_edge_maps(*edge_maps);
   for (std::size_t k = 0; k < comparison.soft.size(); ++k) {
     const SoftReference& r = comparison.soft[k];
     fmt::print("  soft reference{}: disk light of radius {:.4g}, {} samples, {:.2f} s; light against it (never a "
@@ -574,6 +586,10 @@ void add_diff_command(CLI::App& app, int& exit_code) {
                 "--samples stratified samples, exact verdicts; docs/smoothies.md) and compare every method's light "
                 "image with it: mean and max error, inside the umbra, the penumbra and outside, leaks at contact, "
                 "acne (reported, never a failure)");
+  cmd->add_flag("--edges", options->edges,
+                "Also score every edge-map filter (diagonal, c1, sobel) against the exact edge ground truth: "
+                "precision, recall and F1 per class at 1 px, 2 px and bsds, false edges on grazing surfaces "
+                "(docs/edge-maps.md#scores; reported, never a failure)");
   cmd->add_option("--samples", options->samples, "--soft: sample lights on the disk, a perfect square (64 = 8 x 8)")
       ->capture_default_str();
   cmd->add_option("--device", options->device, "Use EGL device N (default: a hardware device, else llvmpipe)");

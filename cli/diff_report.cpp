@@ -2,9 +2,11 @@
 
 #include <fmt/core.h>
 
+#include <cmath>
 #include <fstream>
 
 #include "io/output_file.h"
+#include "pipeline/comparison_pictures.h"
 #include "core/input_error.h"
 
 namespace shadowcert::cli {
@@ -37,6 +39,21 @@ std::string figures(const std::vector<ReportImage>& images) {
 }
 
 }  // namespace
+
+std::vector<LegendSwatch> counts_legend(std::uint32_t scale_max) {
+  std::vector<LegendSwatch> out;
+  const double top = scale_max == 0 ? 1.0 : static_cast<double>(scale_max);
+  if (scale_max <= 16) {
+    for (std::uint32_t n = 0; n <= scale_max; ++n) out.push_back({std::to_string(n), viridis_colour(n / top)});
+  } else {
+    for (int q = 0; q <= 4; ++q) {
+      const auto n = static_cast<std::uint32_t>(std::lround(top * q / 4.0));
+      out.push_back({std::to_string(n), viridis_colour(n / top)});
+    }
+  }
+  out.push_back({"undefined", {255, 0, 255}});
+  return out;
+}
 
 std::string base64(std::span<const std::uint8_t> bytes) {
   static constexpr char kAlphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
@@ -95,6 +112,13 @@ std::string diff_report_html(const DiffReport& report) {
   html += "</table>\n<p class=\"legend\">Overlays: <span style=\"background:#f00\"></span> hard error, "
           "<span style=\"background:#ff0\"></span> ambiguous pixel (docs/definitions.md#pixel-protocol), over the rendered frame.</p>\n";
   html += "<h2>exact image</h2>\n" + figures(report.exact_images);
+  if (!report.counts_legend.empty()) {
+    html += "<p class=\"legend\">exact counts n(P), viridis:";
+    for (const LegendSwatch& s : report.counts_legend)
+      html += fmt::format(" <span style=\"background:rgb({},{},{})\"></span> {}", s.colour[0], s.colour[1], s.colour[2],
+                          html_escape(s.label));
+    html += "; no hit transparent</p>\n";
+  }
   for (const auto& [method, images] : report.method_images)
     html += fmt::format("<h2>{}</h2>\n", html_escape(method)) + figures(images);
   return html + "</body>\n</html>\n";

@@ -2,6 +2,7 @@
 // `shadowcert diff --report FILE.html`: one self-contained HTML page with the diff's table and
 // its images side by side. Every image is inlined as a base64 data: URI and the page has no
 // script, font or style sheet from elsewhere, so it is viewable offline and can be mailed.
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -30,11 +31,23 @@ struct ReportRow {
   std::string note;              // e.g. the shadow map's size
 };
 
+// One entry of a colour legend: a swatch and what it means.
+struct LegendSwatch {
+  std::string label;
+  std::array<std::uint8_t, 3> colour{};
+};
+
+// The legend of the exact counts in viridis (pipeline/comparison_pictures.h's count_colour_image
+// up to `scale_max`): every count 0..scale_max when scale_max <= 16, else five evenly spaced;
+// then "undefined" (magenta).
+[[nodiscard]] std::vector<LegendSwatch> counts_legend(std::uint32_t scale_max);
+
 struct DiffReport {
   std::string title;
   std::vector<std::pair<std::string, std::string>> facts;  // "what: value" lines above the table
   std::vector<ReportRow> rows;
   std::vector<ReportImage> exact_images;
+  std::vector<LegendSwatch> counts_legend;  // shown under the exact images (the counts in viridis)
   std::vector<std::pair<std::string, std::vector<ReportImage>>> method_images;  // per method name
   bool passed = true;
 };

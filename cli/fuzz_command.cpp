@@ -27,6 +27,7 @@
 #include "campaign/soup_campaign.h"
 #include "campaign/reproducer.h"
 #include "campaign/campaign_run.h"
+#include "campaign/case_shard.h"
 
 namespace shadowcert::cli {
 namespace {
@@ -43,6 +44,7 @@ constexpr std::uint32_t kMaxTriangles = 1'000'000;
 struct FuzzOptions {
   std::uint64_t seed = 1;
   std::uint64_t cases = 10'000;
+  std::string shard;  // --shard K/N (docs/batch-runs.md); empty: the whole campaign
   std::uint32_t triangles = 100;
   std::string methods = "all";
   bool gl = false;
@@ -107,7 +109,7 @@ class ProgressLine {
 CampaignResult run_with_progress(CampaignOptions& campaign) {
   std::atomic<std::uint64_t> done{0};
   campaign.progress = &done;
-  const ProgressLine progress("fuzz", campaign.cases, done);
+  const ProgressLine progress("fuzz", shard_case_count(campaign.cases, campaign.shard), done);
   return run_campaign(campaign);
 }
 
@@ -127,8 +129,12 @@ std::string placement_list(const std::vector<std::uint64_t>& counts) {
 
 void print_summary(const FuzzOptions& options, const CampaignOptions& campaign, const CampaignResult& result,
                    unsigned threads) {
-  fmt::print("shadowcert fuzz: seed {}, {} cases of {} triangles, {} runs, {} threads\n", campaign.seed, result.cases,
-             campaign.triangles, campaign.runs.size(), threads);
+  const std::string shard =
+      campaign.shard.count > 1
+          ? fmt::format(" (shard {}/{} of {} cases)", campaign.shard.index + 1, campaign.shard.count, campaign.cases)
+          : std::string();
+  fmt::print("shadowcert fuzz: seed {}, {} cases{} of {} triangles, {} runs, {} threads\n", campaign.seed, result.cases,
+             shard, campaign.triangles, campaign.runs.size(), threads);
   fmt::print("  families: {}\n", family_list(result.cases_by_family));
   fmt::print("  lights:   {}\n", placement_list(result.cases_by_placement));
   fmt::print("  {:<16}{:>5}{:>10}{:>9}{:>8}{:>9}{:>11}{:>14}{:>16}\n", "run", "must", "failures", "closure", "counts",
@@ -264,6 +270,8 @@ int run_fuzz(const FuzzOptions& options) {
   CampaignOptions campaign;
   campaign.seed = options.seed;
   campaign.cases = options.cases;
+  const ShardOption shard = shard_option(options.shard, "--shard");
+  campaign.shard = {shard.k - 1, shard.n};
   campaign.triangles = options.triangles;
   try {
     campaign.runs = parse_campaign_runs(options.methods);
@@ -283,6 +291,7 @@ int run_fuzz(const FuzzOptions& options) {
   if (options.gl) {
     gl.seed = options.seed;
     gl.cases = options.cases;
+    gl.shard = campaign.shard;
     gl.triangles = options.triangles;
     gl.methods = shadow_methods_option(options.gl_methods, "--gl-methods");
     Camera size;
@@ -303,7 +312,7 @@ int run_fuzz(const FuzzOptions& options) {
     std::atomic<std::uint64_t> done{0};
     gl.progress = &done;
     {
-      const ProgressLine progress("fuzz --gl", gl.cases, done);
+      const ProgressLine progress("fuzz --gl", shard_case_count(gl.cases, gl.shard), done);
       gl_result = run_gl_campaign(gl);
     }
     print_gl_summary(gl, *gl_result, *context);
@@ -342,9 +351,11 @@ int run_fuzz(const FuzzOptions& options) {
       if (robust(gl.methods[m]) && gl_result->methods[m].failures > 0) must_not_fail_failed = true;
 
   if (!options.json_file.empty()) {
-    nlohmann::json methods = nlohmann::json::object();
-    for (std::size_t r = 0; r < campaign.runs.size(); ++r)
+    nlohmann::json methods = nlohmann::json::object(), runs = nlohmann::json::array();
+    for (std::size_t r = 0; r < campaign.runs.size(); ++r) {
       methods[campaign_run_name(campaign.runs[r])] = tally_json(campaign.runs[r], result.runs[r]);
+      runs.push_back(campaign_run_name(campaign.runs[r]));
+    }
     nlohmann::json families = nlohmann::json::object(), placements = nlohmann::json::object();
     for (std::size_t i = 0; i < result.cases_by_family.size(); ++i)
       families[std::string(family_name(static_cast<SoupFamily>(i)))] = result.cases_by_family[i];
@@ -391,9 +402,15 @@ int run_fuzz(const FuzzOptions& options) {
     }
     write_json_file(
         options.json_file,
-        {{"seed", campaign.seed},
+        {{"schema", "shadowcert-fuzz/1"},
+         {"seed", campaign.seed},
+         {"case_count", campaign.cases},
+         {"shard", {{"index", campaign.shard.index + 1}, {"count", campaign.shard.count}}},
          {"cases", result.cases},
          {"triangles", campaign.triangles},
+         {"runs", runs},
+         {"max_reproducers", options.max_reproducers},
+         {"shrink_findings", options.shrink_findings},
          {"threads", threads},
          {"seconds", result.seconds},
          {"cases_per_second", result.seconds > 0.0 ? static_cast<double>(result.cases) / result.seconds : 0.0},
@@ -426,6 +443,9 @@ void add_fuzz_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--seed", options->seed, "Campaign seed: case i is a function of (seed, i) alone")
       ->capture_default_str();
   cmd->add_option("--cases", options->cases, "Number of cases")->capture_default_str()->check(CLI::PositiveNumber);
+  cmd->add_option("--shard", options->shard,
+                  "K/N: only the cases i with i % N == K - 1 (1 <= K <= N); the shards' --json files merge into the "
+                  "whole run's with shadowcert merge (docs/batch-runs.md)");
   cmd->add_option("--triangles", options->triangles, "Triangles per soup")
       ->capture_default_str()
       ->check(CLI::Range(std::uint32_t{1}, kMaxTriangles));

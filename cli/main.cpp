@@ -10,11 +10,14 @@
 #include <iostream>
 #include <new>
 
+#include "cli/bench_command.h"
 #include "cli/certify_command.h"
 #include "cli/diff_command.h"
+#include "cli/edges_command.h"
 #include "cli/exit_code.h"
 #include "cli/fuzz_command.h"
 #include "cli/inspect_command.h"
+#include "cli/merge_command.h"
 #include "cli/render_command.h"
 #include "cli/soft_command.h"
 #include "cli/track_command.h"
@@ -36,6 +39,9 @@ int main(int argc, char** argv) {
   add_fuzz_command(app, exit_code);
   add_soft_command(app, exit_code);
   add_track_command(app, exit_code);
+  add_merge_command(app, exit_code);
+  add_edges_command(app, exit_code);
+  add_bench_command(app, exit_code);
 
   try {
     app.parse(argc, argv);

@@ -52,6 +52,24 @@ StencilChoice stencil_option(const std::string& stencil, bool zpass, bool zfail)
   return *choice;
 }
 
+ShardOption shard_option(const std::string& text, const std::string& option) {
+  if (text.empty()) return {};
+  // At most 9 digits each: no overflow, and no job array is that large.
+  const auto number = [](const std::string& part, std::uint64_t& value) {
+    if (part.empty() || part.size() > 9 || part.find_first_not_of("0123456789") != std::string::npos) return false;
+    value = std::stoull(part);
+    return true;
+  };
+  ShardOption s;
+  const std::size_t slash = text.find('/');
+  if (slash == std::string::npos || !number(text.substr(0, slash), s.k) || !number(text.substr(slash + 1), s.n))
+    throw CLI::ValidationError(option, "expects K/N (shard K of N, e.g. 2/8), got '" + text + "'");
+  if (s.n == 0) throw CLI::ValidationError(option, "N must be at least 1, got '" + text + "'");
+  if (s.k == 0 || s.k > s.n)
+    throw CLI::ValidationError(option, "K must be in [1, N] (shards are numbered from 1), got '" + text + "'");
+  return s;
+}
+
 std::vector<gpu::ShadowMethod> shadow_methods_option(const std::string& list, const std::string& option) {
   if (list.empty()) return {gpu::kShadowMethods.begin(), gpu::kShadowMethods.end()};
   std::vector<gpu::ShadowMethod> methods;

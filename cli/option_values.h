@@ -4,6 +4,7 @@
 // GL_MAX_RENDERBUFFER_SIZE of every driver we target) and GL method names (render --method,
 // diff --methods, fuzz --gl-methods), read by gpu::parse_shadow_method, and the stencil choice
 // (--stencil and its aliases --zpass and --zfail).
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,15 @@ void apply_image_size(const std::string& size, Camera& camera, const std::string
 // (render, diff): the choice, zfail when none is given. Throws CLI::ValidationError for --zpass
 // with --zfail, and for an alias that contradicts --stencil (an agreeing one is accepted).
 [[nodiscard]] StencilChoice stencil_option(const std::string& stencil, bool zpass, bool zfail);
+
+// `--shard K/N` (fuzz; bench reads the same syntax): shard K of N, 1 <= K <= N, decimal
+// digits only; an empty string is 1/1, the whole run. Throws CLI::ValidationError naming
+// `option` and the text for anything else (a malformed K/N, K = 0, K > N, N = 0).
+struct ShardOption {
+  std::uint64_t k = 1;
+  std::uint64_t n = 1;
+};
+[[nodiscard]] ShardOption shard_option(const std::string& text, const std::string& option = "--shard");
 
 // A comma-separated list of method names, duplicates dropped, in the list's order; empty:
 // every method (gpu::kShadowMethods). Throws as shadow_method_option.

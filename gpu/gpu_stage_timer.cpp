@@ -34,6 +34,9 @@ std::string_view render_stage_name(RenderStage stage) {
     case RenderStage::lit: return "lit";
     case RenderStage::shadow_map: return "shadow_map";
     case RenderStage::smoothie_map: return "smoothie_map";
+    case RenderStage::g_buffer: return "g_buffer";
+    case RenderStage::edge_filter: return "edge_filter";
+    case RenderStage::composite: return "composite";
   }
   throw std::invalid_argument("render_stage_name: unknown stage " + std::to_string(static_cast<int>(stage)));
 }

@@ -39,15 +39,19 @@ namespace shadowcert::gpu {
 // transform-feedback or tessellation passes); depth: the receivers' depth pre-pass; stencil:
 // the volume pass; lit: the lighting pass; shadow_map: the shadow map method's depth pass from
 // the light; smoothie_map: the smoothie method's pass of the smoothies from the light
-// (gpu/smoothie_map.h).
-enum class RenderStage : std::uint8_t { volume, depth, stencil, lit, shadow_map, smoothie_map };
-inline constexpr std::size_t kRenderStageCount = 6;
+// (gpu/smoothie_map.h). Edge maps (gpu/edge_map.h, gpu/edge_style.h): g_buffer: the G-buffer
+// pass; edge_filter: the filter pass(es) writing the edge map; composite: a style's passes (the
+// shaded scene, then the edges over it).
+enum class RenderStage : std::uint8_t {
+  volume, depth, stencil, lit, shadow_map, smoothie_map, g_buffer, edge_filter, composite };
+inline constexpr std::size_t kRenderStageCount = 9;
 inline constexpr std::array<RenderStage, kRenderStageCount> kRenderStages{
-    RenderStage::volume, RenderStage::depth,      RenderStage::stencil,
-    RenderStage::lit,    RenderStage::shadow_map, RenderStage::smoothie_map};
+    RenderStage::volume,       RenderStage::depth,    RenderStage::stencil,
+    RenderStage::lit,          RenderStage::shadow_map, RenderStage::smoothie_map,
+    RenderStage::g_buffer,     RenderStage::edge_filter, RenderStage::composite};
 
-// "volume", "depth", "stencil", "lit", "shadow_map", "smoothie_map": the JSON keys and table
-// columns.
+// "volume", "depth", "stencil", "lit", "shadow_map", "smoothie_map", "g_buffer", "edge_filter",
+// "composite": the JSON keys and table columns.
 [[nodiscard]] std::string_view render_stage_name(RenderStage stage);
 
 // One frame's times in milliseconds, per stage the sum of that stage's intervals (0 for a

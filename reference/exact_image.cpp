@@ -606,6 +606,7 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
     });
   }
   image.stats.footprint_seconds = seconds_since(stage);
+  image.view_ambiguity = geometric;
   stage = Clock::now();
   std::vector<std::uint32_t> counts(grid.size());
   std::vector<std::uint8_t> needed(grid.size());

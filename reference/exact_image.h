@@ -83,6 +83,13 @@ struct ExactImage {
   // The centre ray's first hit: an index into the soup's triangles, or kNoHit. Where the first
   // contact is degenerate (kZeroSign) it is the smallest index among the triangles met there.
   std::vector<std::uint32_t> hit_triangles;
+  // The light-independent AmbiguityReason bits of each pixel, which every light's ambiguity
+  // includes: kZeroSign (a footprint ray's first contact is degenerate; with
+  // ExactImageOptions::footprints false, the centre ray's), kFootprintTriangles (the footprint
+  // sees more than one triangle, or some of it nothing) and kDepthBand's surface test. Zero:
+  // the footprint sees one triangle only (or, all of it, nothing). What the edge ground truth
+  // reads (reference/edge_ground_truth.h), with no light at all.
+  std::vector<std::uint8_t> view_ambiguity;
   std::vector<ExactLightImage> lights;  // one per light, in the given order
   ExactImageStats stats;
 };

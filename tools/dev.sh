@@ -18,6 +18,7 @@ PACKAGES=(
   nlohmann-json3-dev libcli11-dev libfmt-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libegl-dev libepoxy-dev libpng-dev libglm-dev libgl1-mesa-dri libegl-mesa0
+  python3-matplotlib chromium   # shadowcert bench's plots (tools/bench_plots.py), its report's browser test
 )
 
 # Only `sanitize` needs these: clang 14, its sanitizer and libFuzzer runtimes
@@ -166,7 +167,10 @@ sanitize() {
 
 case "${1:-}" in
   demo) install_missing "${PACKAGES[@]}"; build; demo ;;
-  test) install_missing "${PACKAGES[@]}"; build; ctest --test-dir "$BUILD_DIR" --output-on-failure -j "$JOBS" ;;
+  # SHADOWCERT_REQUIRE_BROWSER=1: the bench report's browser test (tests/cli/report_browser_test.py)
+  # fails rather than skips when chromium or matplotlib is missing.
+  test) install_missing "${PACKAGES[@]}"; build
+        SHADOWCERT_REQUIRE_BROWSER=1 ctest --test-dir "$BUILD_DIR" --output-on-failure -j "$JOBS" ;;
   sanitize) install_missing "${PACKAGES[@]}" "${SANITIZE_PACKAGES[@]}"; sanitize ;;
   *) echo "usage: tools/dev.sh demo|test|sanitize" >&2; exit 2 ;;
 esac

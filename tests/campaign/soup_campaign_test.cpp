@@ -6,7 +6,10 @@
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <iostream>
+#include <utility>
+#include <vector>
 
 #include "campaign_test_support.h"
 
@@ -146,12 +149,83 @@ TEST(SoupCampaign, CaseSamplingSeeds_DifferPerCaseAndSeed) {
   EXPECT_EQ(campaign_sampling_for_case(base, 1, 5).seed, campaign_sampling_for_case(base, 1, 5).seed);
 }
 
+// Shards (campaign/case_shard.h, docs/batch-runs.md): the shards of a campaign hold every case
+// once, and their tallies add up to the whole run's, failures and their order included.
+TEST(SoupCampaign, FourShards_CoverEveryCaseOnceAndAddUpToTheWholeRun) {
+  CampaignOptions whole;
+  whole.seed = 11;
+  whole.cases = 203;  // not a multiple of 4: the shards differ by one case
+  whole.triangles = 30;
+  whole.shrink_findings = true;  // kim's failures listed too, so that there are some
+  whole.max_shrunk_per_run = 0;
+  const CampaignResult expected = run_campaign(whole);
+  ASSERT_FALSE(expected.failures.empty()) << "no kim failure: pick another seed";
+
+  CampaignResult sum;
+  sum.runs.resize(whole.runs.size());
+  std::vector<int> held(whole.cases, 0);
+  for (std::uint64_t k = 0; k < 4; ++k) {
+    CampaignOptions shard = whole;
+    shard.shard = {k, 4};
+    for (std::uint64_t j = 0; j < shard_case_count(whole.cases, shard.shard); ++j)
+      ++held[shard_case_index(shard.shard, j)];
+    const CampaignResult part = run_campaign(shard);
+    EXPECT_EQ(part.cases, shard_case_count(whole.cases, shard.shard));
+    sum.cases += part.cases;
+    sum.samples += part.samples;
+    for (std::size_t i = 0; i < sum.cases_by_family.size(); ++i) sum.cases_by_family[i] += part.cases_by_family[i];
+    for (std::size_t i = 0; i < sum.cases_by_placement.size(); ++i)
+      sum.cases_by_placement[i] += part.cases_by_placement[i];
+    for (std::size_t r = 0; r < whole.runs.size(); ++r) {
+      sum.runs[r].failures += part.runs[r].failures;
+      sum.runs[r].checks += part.runs[r].checks;
+      sum.runs[r].exact_mismatch_cases += part.runs[r].exact_mismatch_cases;
+      sum.runs[r].sign_disagreement_cases += part.runs[r].sign_disagreement_cases;
+    }
+    for (const CampaignFailure& f : part.failures) {
+      EXPECT_EQ(f.index % 4, k);  // only its own cases
+      sum.failures.push_back(f);
+    }
+  }
+  EXPECT_EQ(held, std::vector<int>(whole.cases, 1));
+  EXPECT_EQ(sum.cases, expected.cases);
+  EXPECT_EQ(sum.samples, expected.samples);
+  EXPECT_EQ(sum.cases_by_family, expected.cases_by_family);
+  EXPECT_EQ(sum.cases_by_placement, expected.cases_by_placement);
+  for (std::size_t r = 0; r < whole.runs.size(); ++r) {
+    SCOPED_TRACE(campaign_run_name(whole.runs[r]));
+    EXPECT_EQ(sum.runs[r].failures, expected.runs[r].failures);
+    EXPECT_EQ(sum.runs[r].checks, expected.runs[r].checks);
+    EXPECT_EQ(sum.runs[r].exact_mismatch_cases, expected.runs[r].exact_mismatch_cases);
+    EXPECT_EQ(sum.runs[r].sign_disagreement_cases, expected.runs[r].sign_disagreement_cases);
+  }
+  const auto key = [](const CampaignFailure& f) { return std::pair(f.index, f.run); };
+  std::vector<std::pair<std::uint64_t, std::size_t>> got, want;
+  for (const CampaignFailure& f : sum.failures) got.push_back(key(f));
+  for (const CampaignFailure& f : expected.failures) want.push_back(key(f));
+  std::sort(got.begin(), got.end());
+  EXPECT_EQ(got, want);
+}
+
+TEST(SoupCampaign, ShardCounts_SplitTheCasesEvenly) {
+  EXPECT_EQ(shard_case_count(10, {0, 3}), 4u);  // 0 3 6 9
+  EXPECT_EQ(shard_case_count(10, {2, 3}), 3u);  // 2 5 8
+  EXPECT_EQ(shard_case_count(2, {4, 5}), 0u);   // more shards than cases
+  EXPECT_EQ(shard_case_count(7, {0, 1}), 7u);
+  EXPECT_EQ(shard_case_index({2, 3}, 2), 8u);
+}
+
 TEST(SoupCampaign, BadOptions_Throw) {
   CampaignOptions options;
   options.runs.clear();
   EXPECT_THROW((void)run_campaign(options), std::invalid_argument);
   options = {};
   options.triangles = 0;
+  EXPECT_THROW((void)run_campaign(options), std::invalid_argument);
+  options = {};
+  options.shard = {3, 3};  // index beyond the count
+  EXPECT_THROW((void)run_campaign(options), std::invalid_argument);
+  options.shard = {0, 0};
   EXPECT_THROW((void)run_campaign(options), std::invalid_argument);
 }
 

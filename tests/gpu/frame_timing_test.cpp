@@ -60,7 +60,8 @@ TEST(SummarizeFrames, NoFrameOrCountsDiffer_Throws) {
 }
 
 TEST(RenderStageName, EveryStage_HasItsJsonKey) {
-  const std::vector<std::string_view> expected{"volume", "depth", "stencil", "lit", "shadow_map", "smoothie_map"};
+  const std::vector<std::string_view> expected{"volume", "depth", "stencil", "lit", "shadow_map", "smoothie_map",
+                                             "g_buffer", "edge_filter", "composite"};
   ASSERT_EQ(kRenderStages.size(), expected.size());
   for (std::size_t i = 0; i < kRenderStages.size(); ++i) EXPECT_EQ(render_stage_name(kRenderStages[i]), expected[i]);
 }

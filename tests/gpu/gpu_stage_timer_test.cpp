@@ -48,6 +48,9 @@ bool runs(int frame, RenderStage stage) {
     case RenderStage::lit: return true;
     case RenderStage::volume: return false;
     case RenderStage::smoothie_map: return false;
+    case RenderStage::g_buffer: return false;
+    case RenderStage::edge_filter: return false;
+    case RenderStage::composite: return false;
   }
   return false;
 }

@@ -29,7 +29,6 @@
 #include <vector>
 
 #include "core/homogeneous_mesh.h"
-#include "core/near_plane.h"
 #include "gpu/offscreen_target.h"
 #include "gpu/shadow_method_renderer.h"
 #include "io/soup_file.h"
@@ -37,6 +36,7 @@
 #include "pipeline/stencil_choice.h"
 #include "reference/exact_image.h"
 #include "reference/pixel_comparison.h"
+#include "scene/framed_scene.h"
 #include "support/gl_test_support.h"
 #include "support/volume_test_support.h"
 
@@ -223,35 +223,15 @@ TEST(HardSceneList, IsNotEmpty) { EXPECT_GE(hard_scenes().size(), 10u); }
 // ---- real meshes over a floor ------------------------------------------------------------------
 
 // The real meshes of ../shared/data/ (its README), each lit over a floor as a user would view it:
-// the mesh's vertex box, centre c and half-diagonal r; a floor quad 3 r square just under it; a
-// point light up and to the side (c + r (1.5, 3, 1)); the camera at c + r (2.4, 1.6, 3.2) looking
-// at c. The scene's near plane is fitted (core/near_plane.h), as the scene reader fits it.
+// scene/framed_scene.h's rule (the mesh's vertex box, centre c and half-diagonal r; a floor 6r
+// wide just under it; a point light at c + r (1.5, 3, 1); the camera at c + r (2.4, 1.6, 3.2)
+// looking at c; the near plane fitted), the floor casting too.
 Scene shared_mesh_scene(const Soup& mesh, const std::string& name, std::uint32_t width, std::uint32_t height) {
-  Vec3 lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
-  for (const Triangle& t : mesh.triangles)
-    for (std::uint32_t v : t)
-      for (std::size_t k = 0; k < 3; ++k) {
-        lo[k] = std::min(lo[k], mesh.vertices[v][k]);
-        hi[k] = std::max(hi[k], mesh.vertices[v][k]);
-      }
-  const Vec3 c{0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]), 0.5 * (lo[2] + hi[2])};
-  const double r = 0.5 * std::sqrt(dot(difference(hi, lo), difference(hi, lo)));
-  const auto at = [&](double x, double y, double z) { return Vec3{c[0] + r * x, c[1] + r * y, c[2] + r * z}; };
-  Soup floor;
-  const double y = lo[1] - 0.01 * r;
-  floor.vertices = {{c[0] - 3 * r, y, c[2] - 3 * r}, {c[0] - 3 * r, y, c[2] + 3 * r}, {c[0] + 3 * r, y, c[2] + 3 * r},
-                    {c[0] + 3 * r, y, c[2] - 3 * r}};
-  floor.triangles = {{0, 1, 2}, {0, 2, 3}};
-  Scene scene;
-  scene.meshes = {{name, mesh}, {"floor", floor}};
-  const Vec3 light = at(1.5, 3.0, 1.0);
-  scene.lights = {Light{{light[0], light[1], light[2], 1.0}}};
-  scene.camera.eye = at(2.4, 1.6, 3.2);
-  scene.camera.target = c;
-  scene.camera.width = width;
-  scene.camera.height = height;
-  scene.camera = camera_fitted_to(scene);
-  return scene;
+  FramedMeshOptions options;
+  options.width = width;
+  options.height = height;
+  options.floor_casts = true;  // in every volume too
+  return framed_mesh_scene(mesh, name, options);
 }
 
 std::vector<std::string> shared_meshes() {

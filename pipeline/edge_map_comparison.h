@@ -1,0 +1,127 @@
+#pragma once
+// The GL edge maps of one scene against its exact ground truth (docs/edge-maps.md#scores): the
+// part `shadowcert diff` (the edge maps in its report), bench/edge_score_bench and the tests
+// share.
+//
+//   gpu::EglContext context = gpu::open_gl_context("diff", device);   // current on this thread
+//   EdgeMapComparison c = compare_edge_maps(scene, {});               // truth, then each filter
+//   c.runs[k].curves[class][tolerance][threshold]                      // EdgeMatchCounts
+//
+// The ground truth (reference/edge_ground_truth.h) is the world scene's, every mesh seen; GL
+// draws the scene in its eye's frame (core/eye_frame.h), as every GL path does, through
+// gpu/edge_map.h's EdgeMapRenderer (G-buffer and filter), once per filter. Each filter's profile
+// intensities are scored against the profile truth and its inner intensities against the inner
+// truth (reference/edge_scores.h), at every threshold and tolerance of the options.
+#include <array>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/scene.h"
+#include "gpu/edge_map.h"
+#include "reference/edge_ground_truth.h"
+#include "reference/edge_scores.h"
+
+namespace shadowcert {
+
+// The classes the scores keep apart, in this order: profile (silhouette and border edges, the
+// edge map's profile intensities), inner (creases, its inner intensities), and any (either
+// class's truth, against the larger of the two intensities: what an outline drawn from both
+// channels shows; normals also step at most profile edges, the paper's section 3, which the
+// inner class counts as false edges and this one does not).
+enum class EdgeClass : std::uint8_t { profile = 0, inner = 1, any = 2 };
+inline constexpr std::array<EdgeClass, 3> kEdgeClasses{EdgeClass::profile, EdgeClass::inner, EdgeClass::any};
+[[nodiscard]] std::string_view edge_class_name(EdgeClass c);  // "profile", "inner", "any"
+
+// One class's truth and intensities, per pixel: for any, truth edge where either class's is,
+// excluded where neither is an edge but one is excluded, and the larger intensity. Throws
+// std::invalid_argument("edge_class_images: ...") when the sizes differ.
+struct EdgeClassImages {
+  std::vector<EdgeTruth> truth;
+  std::vector<float> intensity;
+};
+[[nodiscard]] EdgeClassImages edge_class_images(const EdgeGroundTruth& truth, const gpu::EdgeMapImage& map, EdgeClass c);
+
+struct EdgeMapComparisonOptions {
+  std::vector<gpu::EdgeFilter> filters{gpu::kEdgeFilters.begin(), gpu::kEdgeFilters.end()};
+  std::vector<double> thresholds = default_edge_thresholds();
+  std::vector<EdgeTolerance> tolerances = standard_edge_tolerances();
+  // The ground truth's crease threshold: gpu/edge_map.h's default, which the filters' inner
+  // thresholds name too (inner_threshold), so that truth and detector mean the same crease.
+  double crease_degrees = gpu::kDefaultEdgeCreaseAngleDegrees;
+  double grazing_degrees = 80.0;
+  // Frames drawn and timed per filter after the scored one and a warm-up frame: G-buffer,
+  // filter and composite (the plain `edges` style) each timed apart (gpu/edge_style.h's
+  // time_edge_frames, bounded by glFinish, so that llvmpipe's wall time is the pass's cost);
+  // 0: none.
+  std::size_t timed_frames = 0;
+};
+
+// Milliseconds per pass, the median over the timed frames: GPU time from timer queries and
+// CPU wall time around each pass (bounded by glFinish).
+struct EdgePassTimes {
+  double g_buffer_gpu = 0.0, filter_gpu = 0.0, composite_gpu = 0.0;
+  double g_buffer_wall = 0.0, filter_wall = 0.0, composite_wall = 0.0;
+  std::size_t frames = 0;
+};
+
+struct EdgeFilterRun {
+  gpu::EdgeFilter filter = gpu::EdgeFilter::diagonal;
+  gpu::EdgeMapImage map;
+  // curves[class][tolerance][threshold], in the order of kEdgeClasses and of the options'
+  // tolerances and thresholds.
+  std::array<std::vector<std::vector<EdgeMatchCounts>>, kEdgeClasses.size()> curves;
+  EdgePassTimes times;
+
+  [[nodiscard]] const std::vector<EdgeMatchCounts>& curve(EdgeClass c, std::size_t tolerance) const {
+    return curves[static_cast<std::size_t>(c)][tolerance];
+  }
+};
+
+struct EdgeMapComparison {
+  EdgeGroundTruth truth;
+  std::vector<double> thresholds;
+  std::vector<EdgeTolerance> tolerances;
+  std::vector<EdgeFilterRun> runs;  // one per filter, in the options' order
+};
+
+// The ground truth of `scene` (merged_soup: every mesh seen) at its camera.
+[[nodiscard]] EdgeGroundTruth scene_edge_ground_truth(const Scene& scene, double crease_degrees = gpu::kDefaultEdgeCreaseAngleDegrees,
+                                                      double grazing_degrees = 80.0);
+
+// `map` scored against `truth` (same size, else std::invalid_argument("score_edge_map: ...")):
+// no GL, for maps rendered elsewhere and for tests.
+[[nodiscard]] EdgeFilterRun score_edge_map(const EdgeGroundTruth& truth, gpu::EdgeMapImage map, gpu::EdgeFilter filter,
+                                           std::span<const double> thresholds,
+                                           std::span<const EdgeTolerance> tolerances);
+
+// The ground truth and every filter on `scene`. Preconditions: a GL context is current on this
+// thread; the scene has a triangle; filters, thresholds and tolerances are not empty
+// (std::invalid_argument("compare_edge_maps: ...") otherwise). Throws what the renderer and the
+// ground truth throw.
+[[nodiscard]] EdgeMapComparison compare_edge_maps(const Scene& scene, const EdgeMapComparisonOptions& options = {});
+
+// The threshold a filter's class is scored at where one is wanted (diff's table, the pictures):
+// the one with the best F1 at 1 px over every scene of bench/edge_score_bench at 1024x768
+// (docs/edge-maps.md#scores): diagonal 0.04 / 0.05 / 0.1 (profile / inner / any), c1 0.005 /
+// 0.03 / 0.03, sobel 0.01 / 0.25 / 0.25. Each lies in default_edge_thresholds().
+[[nodiscard]] double measured_edge_threshold(gpu::EdgeFilter filter, EdgeClass c);
+
+// One filter and class of a comparison at its measured threshold (the comparison's threshold
+// nearest to it): the counts at every tolerance, in the comparison's order.
+struct EdgeScoreRow {
+  gpu::EdgeFilter filter = gpu::EdgeFilter::diagonal;
+  EdgeClass edge_class = EdgeClass::profile;
+  double threshold = 0.0;
+  std::vector<EdgeMatchCounts> counts;
+};
+// Per run, the classes in kEdgeClasses order.
+[[nodiscard]] std::vector<EdgeScoreRow> edge_score_rows(const EdgeMapComparison& comparison);
+
+// The threshold index where one curve's F1 is highest (the first on a tie): a scene's own best,
+// the benchmark's "optimal image scale"; thresholds tuned on the test image itself.
+[[nodiscard]] std::size_t best_threshold_of(const std::vector<EdgeMatchCounts>& curve);
+
+}  // namespace shadowcert
