@@ -27,7 +27,20 @@ function(shadowcert_module name)
   endforeach()
   file(GLOB sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*.cpp ${CMAKE_CURRENT_SOURCE_DIR}/detail/*.cpp)
   add_library(shadowcert_${name} STATIC ${sources})
-  target_link_libraries(shadowcert_${name} PUBLIC ${ARG_PUBLIC} PRIVATE shadowcert_warnings ${ARG_PRIVATE})
+  # The build's own helper targets (shadowcert_warnings, shadowcert_fuzz_coverage: flags only)
+  # are linked for the build tree only. A static library's private links still reach its
+  # installed export as $<LINK_ONLY:...> (cmake/ShadowcertInstall.cmake), and these must not:
+  # a consumer of the package gets neither our warnings nor libFuzzer's instrumentation.
+  set(private_links)
+  foreach(dependency IN LISTS ARG_PRIVATE)
+    if(dependency MATCHES "^shadowcert_(.+)$" AND NOT CMAKE_MATCH_1 IN_LIST SHADOWCERT_MODULES)
+      list(APPEND private_links "$<BUILD_INTERFACE:${dependency}>")
+    else()
+      list(APPEND private_links "${dependency}")
+    endif()
+  endforeach()
+  target_link_libraries(shadowcert_${name} PUBLIC ${ARG_PUBLIC}
+                        PRIVATE $<BUILD_INTERFACE:shadowcert_warnings> ${private_links})
   if(ARG_CGAL_PCH AND SHADOWCERT_PRECOMPILE_CGAL)
     if(ARG_CGAL_PCH STREQUAL name)
       target_precompile_headers(shadowcert_${name} PRIVATE <CGAL/Exact_predicates_inexact_constructions_kernel.h>)

@@ -198,7 +198,7 @@ def contour_plots(bench, out_dir, index):
             points = sorted((s["triangles"], r["error"]["contour"]["max"]) for s, r in by_light[light]
                             if r["id"] == run_id and s["name"].startswith("sphere"))
             if points:
-                ax.plot([t for t, _ in points], [max(m, 1e-6) for _, m in points], "o-", markersize=3,
+                ax.plot([t for t, _ in points], [max(m, 1e-6) for _, m in points], marker="o", markersize=3,
                         color=colours(i / max(1, len(ids) - 1)), label=run_id,
                         linestyle="--" if run_id in ("discrete", "accurate") else "-")
         ax.set_xscale("log")

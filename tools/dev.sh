@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The project's entry points (see README.md):
-#   tools/dev.sh demo       install what is missing, build Release, run the main job on the
-#                           bundled default scene, outputs under out/
+#   tools/dev.sh demo       install what the CLI needs, build it alone (build-demo/), run
+#                           inspect, certify, diff of every method (HTML report) and a small
+#                           bench (plots, report) on the bundled default scene; out/demo/
 #   tools/dev.sh test       install what is missing, build Release, run every test (ctest)
 #   tools/dev.sh sanitize   install what is missing (clang too), build one clang tree with
 #                           ASan + UBSan and the libFuzzer harnesses (build-san/), run every
@@ -47,17 +48,50 @@ build() {
   cmake --build "$BUILD_DIR" -j "$JOBS"
 }
 
+# The demo builds the CLI alone, in its own tree (no tests, no benchmarks), so it needs only
+# the packages the program runs with: the build tools, the libraries it links, Mesa, and
+# matplotlib for bench's plots (not GoogleTest, Google Benchmark or chromium).
+DEMO_PACKAGES=(
+  ca-certificates cmake ninja-build g++ pkg-config python3
+  libcgal-dev libgmp-dev libmpfr-dev libboost-dev libtbb-dev libopenmesh-dev
+  nlohmann-json3-dev libcli11-dev libfmt-dev
+  libegl-dev libepoxy-dev libpng-dev libglm-dev libgl1-mesa-dri libegl-mesa0
+  python3-matplotlib
+)
+DEMO_BUILD_DIR=${SHADOWCERT_DEMO_BUILD_DIR:-build-demo}
+DEMO_OUT=${SHADOWCERT_DEMO_OUT:-out/demo}
+
+build_demo() {
+  cmake -S . -B "$DEMO_BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+    -DSHADOWCERT_BUILD_TESTS=OFF -DSHADOWCERT_BUILD_BENCH=OFF >/dev/null
+  cmake --build "$DEMO_BUILD_DIR" -j "$JOBS" --target shadowcert
+}
+
+# What the tool is for, on the bundled default scene (a fan of 16 blades around one
+# non-manifold edge, an open box with fins, random triangles; one point light): the caster
+# diagnostics, the exact certificates, every GL method against the exact image with its
+# HTML report, and a small bench (time against error, plots, report).
 demo() {
-  mkdir -p out
-  local scene=data/scenes/default.json
+  local cli="$DEMO_BUILD_DIR/cli/shadowcert" scene=data/scenes/default.json out=$DEMO_OUT
+  local methods=cpu,cs,gs,ts,pertri,shadowmap,discrete,accurate,smooth,smooth-gpu,pcf,pcss,smoothie
+  mkdir -p "$out"
   echo "== shadowcert inspect $scene"
-  "$BUILD_DIR/cli/shadowcert" inspect "$scene" --json out/inspect.json
-  echo "== shadowcert certify $scene"
-  "$BUILD_DIR/cli/shadowcert" certify "$scene" --method all --json out/certify.json --volume-out out/volume.off
-  echo "== shadowcert render $scene --method cpu"
-  "$BUILD_DIR/cli/shadowcert" render "$scene" --method cpu --out out/render.png --counts out/counts.png \
-    --mask out/mask.png --json out/render.json
-  echo "== outputs under out/: inspect.json certify.json volume_<method>.off render.png counts.png mask.png render.json"
+  "$cli" inspect "$scene" --json "$out/inspect.json"
+  echo "== shadowcert certify $scene --method all"
+  "$cli" certify "$scene" --method all --json "$out/certify.json" --volume-out "$out/volume.off"
+  echo "== shadowcert diff $scene: every method against the exact image, its soft reference and edge maps"
+  "$cli" diff "$scene" --size 320x240 --methods "$methods" --soft --edges \
+    --out "$out/diff" --report "$out/diff.html" --json "$out/diff.json"
+  echo "== shadowcert bench $scene: every method's time against its error"
+  "$cli" bench "$scene" --size 160x120 --frames 5 --out "$out/bench" >"$out/bench.log"
+  tail -n 3 "$out/bench.log"
+  echo "== outputs under $out/:"
+  echo "   inspect.json               caster diagnostics (docs/caster-diagnostics.md)"
+  echo "   certify.json, volume_*.off exact multiplicities, closed volumes, certificates (docs/certificates.md)"
+  echo "   diff.html                  every method against the exact image: open it in a browser (docs/diff.md)"
+  echo "   diff/, diff.json           its images (masks, overlays, counts in viridis) and figures"
+  echo "   bench/report.html          time against error: plots and tables (docs/bench.md)"
+  echo "   bench/bench.json, bench.csv, bench.md, bench/plots/"
 }
 
 # ---------------------------------------------------------------------------- sanitize
@@ -166,7 +200,7 @@ sanitize() {
 }
 
 case "${1:-}" in
-  demo) install_missing "${PACKAGES[@]}"; build; demo ;;
+  demo) install_missing "${DEMO_PACKAGES[@]}"; build_demo; demo ;;
   # SHADOWCERT_REQUIRE_BROWSER=1: the bench report's browser test (tests/cli/report_browser_test.py)
   # fails rather than skips when chromium or matplotlib is missing.
   test) install_missing "${PACKAGES[@]}"; build
