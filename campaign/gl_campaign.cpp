@@ -100,7 +100,11 @@ std::string gl_run_name(gpu::ShadowMethod method) { return "gl-" + std::string(g
 
 Scene campaign_view_scene(const CampaignView& view) {
   Scene scene;
-  scene.meshes = {{"soup", view.soup}, {"floor", view.floor}};
+  scene.meshes.resize(2);
+  scene.meshes[0].name = "soup";
+  scene.meshes[0].soup = view.soup;
+  scene.meshes[1].name = "floor";
+  scene.meshes[1].soup = view.floor;
   scene.lights = {view.light};
   scene.camera = view.camera;
   scene.camera = camera_fitted_to(scene);  // a snapped soup at 2^17 needs a far near plane

@@ -194,7 +194,7 @@ int run_render(const RenderOptions& options) {
   const auto start = Clock::now();
   const auto [method, stencil_choice] = validate(options);
   const bool shadowmap = gpu::uses_shadow_map(method);  // shadowmap, pcf, pcss, smoothie
-  Scene scene = load_scene_or_mesh(options.input);
+  Scene scene = load_image_scene(options.input);
   if (scene.lights.empty()) throw InputError(options.input, "the scene has no light");
   apply_image_size(options.size, scene.camera);
   // GL is given the scene in its eye's frame (core/eye_frame.h; docs/diff.md): every position
@@ -416,7 +416,7 @@ void add_render_command(CLI::App& app, int& exit_code) {
       "render",
       "Stencil shadow volumes with OpenGL 4.5 core (headless EGL; docs/definitions.md#counts, 5). Lights are drawn one after "
       "another; --counts, --mask and the pixel counts are for the FIRST light");
-  cmd->add_option("input", options->input, "Mesh file (.obj .off .ply .stl) or scene (.json)")->required();
+  cmd->add_option("input", options->input, "Scene (.json), or a mesh file (.obj .off .ply .stl) framed over a floor with a light and a camera (docs/cli.md#inputs)")->required();
   cmd->add_option("--method", options->method,
                   "How the volume is built: cpu (the exact chain of the float-rounded input from exact/, drawn as "
                   "is; exact/cpu_volume.h), cs (compute "

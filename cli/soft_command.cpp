@@ -53,7 +53,7 @@ int run_soft(const SoftOptions& options) {
                                                         "reference), got {}", options.samples));
   if (!(std::isfinite(options.contact_pixels) && options.contact_pixels >= 0.0))
     throw CLI::ValidationError("--contact-pixels", fmt::format("must be finite and >= 0, got {}", options.contact_pixels));
-  Scene scene = load_scene_or_mesh(options.input);
+  Scene scene = load_image_scene(options.input);
   if (scene.lights.empty()) throw InputError(options.input, "the scene has no light");
   if (options.light >= scene.lights.size())
     throw CLI::ValidationError("--light", fmt::format("the scene has {} light(s), got {}", scene.lights.size(), options.light));
@@ -148,7 +148,7 @@ void add_soft_command(CLI::App& app, int& exit_code) {
       "soft",
       "The exact soft reference (docs/smoothies.md#the-exact-soft-reference): a disk light of radius R around the "
       "light, K stratified samples on it, each receiver pixel's light the mean of their exact verdicts");
-  cmd->add_option("input", options->input, "Mesh file (.obj .off .ply .stl) or scene (.json)")->required();
+  cmd->add_option("input", options->input, "Scene (.json), or a mesh file (.obj .off .ply .stl) framed over a floor with a light and a camera (docs/cli.md#inputs)")->required();
   cmd->add_option("--radius,--light-radius", options->radius,
                   "The disk's radius R in world units, facing the centre of the scene's bounds (directional lights: "
                   "the tangent of the angular radius); 0: the exact hard shadow; default 1% of the scene's "

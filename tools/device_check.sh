@@ -55,7 +55,7 @@ step() {
   command -v nvidia-smi >/dev/null && nvidia-smi --query-gpu=name,driver_version,memory.total --format=csv,noheader
 } >"$OUT_DIR/environment.txt" 2>&1
 
-step build 300 "$OUT_DIR/build.log" bash -c "
+step build 210 "$OUT_DIR/build.log" bash -c "
   cmake -S . -B '$BUILD' -G Ninja -DCMAKE_BUILD_TYPE=Release -DSHADOWCERT_BUILD_BENCH=ON &&
   cmake --build '$BUILD' -j '$JOBS' --target shadowcert render_bench &&
   cmake --build '$BUILD' -j '$JOBS'" || { echo "build failed: $OUT_DIR/build.log" >&2; exit 1; }
@@ -65,11 +65,11 @@ step build 300 "$OUT_DIR/build.log" bash -c "
   >/dev/null 2>&1 && python3 -c "import json,sys; d=json.load(open(sys.argv[1])); print('renderer:', d.get('renderer')); print('device:', d.get('device'))" \
   "$OUT_DIR/renderer.json" >>"$OUT_DIR/environment.txt" 2>&1
 
-step gl_tests 150 "$OUT_DIR/gl_tests.log" ctest --test-dir "$BUILD" -L gl --output-on-failure -j "$JOBS"
-step render_bench 150 "$OUT_DIR/render_bench.txt" "$BUILD/bench/render_bench" --triangles="$TRIANGLES" \
+step gl_tests 90 "$OUT_DIR/gl_tests.log" ctest --test-dir "$BUILD" -L gl --output-on-failure -j "$JOBS"
+step render_bench 120 "$OUT_DIR/render_bench.txt" "$BUILD/bench/render_bench" --triangles="$TRIANGLES" \
   --resolution="$RESOLUTION" --benchmark_counters_tabular=true \
   --benchmark_out="$OUT_DIR/render_bench.json" --benchmark_out_format=json
-step bench_default 120 "$OUT_DIR/bench.log" "$BUILD/cli/shadowcert" bench --suite default --out "$OUT_DIR/bench"
+step bench_default 60 "$OUT_DIR/bench.log" "$BUILD/cli/shadowcert" bench --suite default --out "$OUT_DIR/bench"
 
 echo "== results under $OUT_DIR (summary.txt)"
 cat "$OUT_DIR/environment.txt"

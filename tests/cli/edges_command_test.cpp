@@ -170,4 +170,20 @@ TEST(CliEdges, CameraSeesNothing_ExitsTwoSayingSo) {
   EXPECT_NE(r.output.find("looking_away.json"), std::string::npos) << r.output;
 }
 
+// A mesh file is framed over a floor (io/scene_input.h's load_image_scene). Regression: three
+// meshes of ../shared/data (beast.obj, thingi10k_908460.stl, an OpenSCAD export), far from the
+// origin or far from unit size, were drawn with the default camera, which saw none of them.
+TEST(CliEdges, MeshFarFromTheOrigin_FramedAndEdged) {
+  const fs::path mesh = temp_dir() / "far_tetrahedron.off";
+  std::ofstream(mesh) << "OFF\n4 4 0\n5000 5000 5000\n6000 5000 5000\n5000 6000 5000\n5000 5000 6000\n"
+                         "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+  const EdgesRun r = edges("far_mesh", "--style gooch --shadows cs", mesh.string());
+  if (render_unavailable(r.run)) GTEST_SKIP() << r.run.output;
+  ASSERT_EQ(r.run.exit_code, 0) << r.run.output;
+  // The floor covers most of the image; the tetrahedron's outline is a profile edge.
+  EXPECT_GT(r.report["edge_pixels"]["covered"].get<int>(), 160 * 120 / 4);
+  EXPECT_GT(r.report["edge_pixels"]["profile"].get<int>(), 50);
+  EXPECT_GT(r.report["edge_pixels"]["inner"].get<int>(), 0);
+}
+
 }  // namespace

@@ -8,6 +8,7 @@
 #   -DVERSION=      the project's version (`shadowcert --version` must print it)
 #   -DGENERATOR= -DMAKE_PROGRAM= -DCXX_COMPILER= -DCONFIG=   the build tree's, for the consumer
 #   -DPREFIX_PATH=  the build tree's CMAKE_PREFIX_PATH, '|'-separated (may be empty)
+#   -DBINDIR= -DLIBDIR= -DINCLUDEDIR= -DDOCDIR=   its GNUInstallDirs folders (bin, lib, ...)
 #
 # The consumer gets the build's compiler, and nothing of its flags: what a program linking the
 # libraries needs (the sanitizer runtimes of a SHADOWCERT_SANITIZE build, no FMA contraction)
@@ -15,7 +16,7 @@
 # Any failure stops the script with the failing step's full output.
 cmake_minimum_required(VERSION 3.22)
 
-foreach(var BUILD_DIR WORK_DIR CONSUMER_DIR VERSION GENERATOR CXX_COMPILER)
+foreach(var BUILD_DIR WORK_DIR CONSUMER_DIR VERSION GENERATOR CXX_COMPILER BINDIR LIBDIR INCLUDEDIR DOCDIR)
   if(NOT DEFINED ${var} OR "${${var}}" STREQUAL "")
     message(FATAL_ERROR "package test: -D${var}=... is required")
   endif()
@@ -54,40 +55,42 @@ step("cmake --install ${BUILD_DIR} --prefix ${prefix}"
      ${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix} ${config_args})
 
 # ---- 2. what the prefix holds
-foreach(file bin/shadowcert share/doc/shadowcert/README.md share/doc/shadowcert/docs/development.md
-             lib/cmake/shadowcert/shadowcertConfig.cmake lib/cmake/shadowcert/shadowcertConfigVersion.cmake
-             lib/cmake/shadowcert/shadowcertTargets.cmake
-             include/shadowcert/exact/edge_multiplicity.h include/shadowcert/gpu/camera_transform.h)
+set(includes ${prefix}/${INCLUDEDIR}/shadowcert)
+set(package ${LIBDIR}/cmake/shadowcert)
+foreach(file ${BINDIR}/shadowcert ${DOCDIR}/README.md ${DOCDIR}/docs/development.md
+             ${package}/shadowcertConfig.cmake ${package}/shadowcertConfigVersion.cmake
+             ${package}/shadowcertTargets.cmake
+             ${INCLUDEDIR}/shadowcert/exact/edge_multiplicity.h ${INCLUDEDIR}/shadowcert/gpu/camera_transform.h)
   if(NOT EXISTS ${prefix}/${file})
     fail("${prefix}/${file} was not installed")
   endif()
 endforeach()
 # Only the executable: no test or benchmark program.
-file(GLOB programs RELATIVE ${prefix}/bin ${prefix}/bin/*)
+file(GLOB programs RELATIVE ${prefix}/${BINDIR} ${prefix}/${BINDIR}/*)
 if(NOT programs STREQUAL "shadowcert")
-  fail("${prefix}/bin holds '${programs}', expected only 'shadowcert'")
+  fail("${prefix}/${BINDIR} holds '${programs}', expected only 'shadowcert'")
 endif()
 # The installed executable runs (its shared libraries resolve without the build tree).
-step("bin/shadowcert --version" ${prefix}/bin/shadowcert --version)
+step("shadowcert --version" ${prefix}/${BINDIR}/shadowcert --version)
 if(NOT step_output MATCHES "shadowcert ${VERSION}")
-  fail("bin/shadowcert --version printed '${step_output}', expected 'shadowcert ${VERSION}'")
+  fail("shadowcert --version printed '${step_output}', expected 'shadowcert ${VERSION}'")
 endif()
 # Every project header an installed header includes is installed too (a detail/ header, a
 # generated one), and none includes CGAL or OpenMesh (they stay inside the libraries).
-file(GLOB_RECURSE headers RELATIVE ${prefix}/include/shadowcert ${prefix}/include/shadowcert/*)
+file(GLOB_RECURSE headers RELATIVE ${includes} ${includes}/*)
 list(LENGTH headers header_count)
 foreach(header IN LISTS headers)
-  file(STRINGS ${prefix}/include/shadowcert/${header} includes REGEX "^[ \t]*#[ \t]*include")
-  foreach(line IN LISTS includes)
+  file(STRINGS ${includes}/${header} lines REGEX "^[ \t]*#[ \t]*include")
+  foreach(line IN LISTS lines)
     if(line MATCHES "<(CGAL|OpenMesh)/")
       fail("installed ${header} includes a private dependency: ${line}")
     endif()
-    if(line MATCHES "\"([a-z_]+/[^\"]+)\"" AND NOT EXISTS ${prefix}/include/shadowcert/${CMAKE_MATCH_1})
+    if(line MATCHES "\"([a-z_]+/[^\"]+)\"" AND NOT EXISTS ${includes}/${CMAKE_MATCH_1})
       fail("installed ${header} includes \"${CMAKE_MATCH_1}\", which is not installed")
     endif()
   endforeach()
 endforeach()
-message(STATUS "package test: the prefix holds bin/shadowcert, the docs, the package files and "
+message(STATUS "package test: the prefix holds shadowcert, the docs, the package files and "
                "${header_count} headers")
 
 # ---- 3. a consumer: find_package(shadowcert), link shadowcert::exact and shadowcert::gpu
@@ -107,7 +110,7 @@ step("configure the consumer"
 file(STRINGS ${consumer_build}/CMakeCache.txt found REGEX "^shadowcert_DIR:")
 string(REGEX REPLACE "^[^=]*=" "" found "${found}")
 file(REAL_PATH "${found}" found)
-file(REAL_PATH ${prefix}/lib/cmake/shadowcert expected)
+file(REAL_PATH ${prefix}/${package} expected)
 if(NOT found STREQUAL expected)
   fail("the consumer found shadowcert in '${found}', expected '${expected}'")
 endif()
