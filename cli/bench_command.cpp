@@ -21,6 +21,7 @@
 
 #include "cli/bench_outputs.h"
 #include "cli/exit_code.h"
+#include "cli/frame_timing_output.h"
 #include "cli/option_values.h"
 #include "core/input_error.h"
 #include "gpu/egl_context.h"
@@ -134,20 +135,16 @@ nlohmann::json environment_json(const gpu::EglContext& context, bool software) {
           {"host", {{"cpus", std::thread::hardware_concurrency()}}}};
 }
 
-nlohmann::json summary_json(const gpu::TimingSummary& s) {
-  return {{"median", s.median_ms}, {"min", s.min_ms}, {"max", s.max_ms}};
-}
-
 nlohmann::json timing_json(const BenchRun& b, bool synchronised) {
   nlohmann::json gpu_ms = nlohmann::json::object(), cpu_ms = nlohmann::json::object();
   for (gpu::RenderStage stage : b.timing.stages) {
     const std::string name(gpu::render_stage_name(stage));
-    gpu_ms[name] = summary_json(b.timing.gpu(stage));
-    if (synchronised) cpu_ms[name] = summary_json(b.timing.wall(stage));
+    gpu_ms[name] = timing_summary_json(b.timing.gpu(stage));
+    if (synchronised) cpu_ms[name] = timing_summary_json(b.timing.wall(stage));
   }
-  gpu_ms["frame"] = summary_json(b.timing.frame_gpu);
-  cpu_ms["frame"] = summary_json(b.timing.frame_cpu);
-  return {{"frame_ms", summary_json(synchronised ? b.timing.frame_cpu : b.timing.frame_gpu)},
+  gpu_ms["frame"] = timing_summary_json(b.timing.frame_gpu);
+  cpu_ms["frame"] = timing_summary_json(b.timing.frame_cpu);
+  return {{"frame_ms", timing_summary_json(synchronised ? b.timing.frame_cpu : b.timing.frame_gpu)},
           {"gpu_ms", gpu_ms},
           {"cpu_ms", cpu_ms},
           {"build_ms", b.build_ms}};

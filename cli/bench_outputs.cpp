@@ -362,7 +362,7 @@ std::string markdown_table(const Table& t, const std::string& heading) {
 
 // ------------------------------------------------------------------ HTML
 
-constexpr std::string_view kStyle = R"(
+constexpr std::string_view kBenchReportStyle = R"(
 body { font-family: sans-serif; margin: 1.5em; color: #222; max-width: 110em; }
 table { border-collapse: collapse; margin: 0.5em 0 1.5em; font-size: 0.9em; }
 th, td { border: 1px solid #bbb; padding: 0.2em 0.6em; text-align: right; }
@@ -575,7 +575,7 @@ std::string bench_report_html(const json& bench, const fs::path& dir, const std:
   std::string html = fmt::format("<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
                                  "<title>shadowcert bench: {0}</title>\n<style>{1}</style>\n</head>\n<body>\n"
                                  "<h1>shadowcert bench: {0}</h1>\n<ul>\n",
-                                 html_escape(bench["suite"].get<std::string>()), kStyle);
+                                 html_escape(bench["suite"].get<std::string>()), kBenchReportStyle);
   for (const auto& [what, value] : facts(bench))
     html += fmt::format("<li>{}: {}</li>\n", html_escape(what), html_escape(value));
   html += "</ul>\n";

@@ -14,6 +14,7 @@
 
 #include "cli/exit_code.h"
 #include "cli/silhouette_output.h"
+#include "cli/wall_clock.h"
 #include "exact/volume_closure.h"
 #include "gpu/egl_context.h"
 #include "pipeline/silhouette_volumes.h"
@@ -52,10 +53,6 @@ struct CertifyOptions {
   SilhouetteOptions silhouette;  // --method discrete|accurate|smooth: --epsilon, --crease-angle
 };
 
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 Light chosen_light(const CertifyOptions& options, const Scene& scene) {
   if (options.light.empty()) {

@@ -18,6 +18,7 @@
 #include "cli/diff_report.h"
 #include "cli/edge_map_output.h"
 #include "cli/exit_code.h"
+#include "cli/frame_timing_output.h"
 #include "cli/light_image_output.h"
 #include "cli/option_values.h"
 #include "cli/silhouette_output.h"
@@ -40,9 +41,6 @@
 namespace shadowcert::cli {
 namespace {
 
-// Frames drawn without readback (each ended by glFinish) after the compared one, for the
-// ms-per-frame figure: one frame alone would mostly time llvmpipe's first-use compilation.
-constexpr std::size_t kTimedFrames = 5;
 
 struct DiffOptions {
   std::string input;
@@ -302,7 +300,7 @@ int run_diff(const DiffOptions& options) {
   comparison_options.stencil_auto = stencil_choice == StencilChoice::automatic;
   comparison_options.method_options.shadow_map_size = static_cast<std::uint32_t>(options.shadowmap_size);
   comparison_options.method_options.sign = *gpu::parse_sign_mode(options.sign);  // CLI11 checked the name
-  comparison_options.timed_frames = kTimedFrames;
+  comparison_options.timed_frames = kPlainTimedFrames;
   comparison_options.silhouette = options.silhouette;
   comparison_options.method_options.pcf_kernel = static_cast<std::uint32_t>(options.pcf.value_or(gpu::kDefaultPcfKernel));
   comparison_options.method_options.light_radius = options.light_radius.value_or(0.0);  // 0: the default

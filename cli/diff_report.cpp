@@ -14,7 +14,7 @@ namespace {
 
 // Inline only: the page must render with no network (pixelated so single pixels stay visible
 // when a small image is scaled up).
-constexpr std::string_view kStyle = R"(
+constexpr std::string_view kDiffReportStyle = R"(
 body { font-family: sans-serif; margin: 1.5em; color: #222; }
 table { border-collapse: collapse; margin: 1em 0; }
 th, td { border: 1px solid #bbb; padding: 0.3em 0.7em; text-align: right; }
@@ -94,7 +94,7 @@ std::string html_escape(std::string_view text) {
 std::string diff_report_html(const DiffReport& report) {
   std::string html = fmt::format("<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
                                  "<title>{0}</title>\n<style>{1}</style>\n</head>\n<body>\n<h1>{0}</h1>\n",
-                                 html_escape(report.title), kStyle);
+                                 html_escape(report.title), kDiffReportStyle);
   html += fmt::format("<p><strong>{}</strong></p>\n<ul>\n",
                       report.passed ? "PASSED: no robust method has a hard error or an open volume"
                                     : "FAILED: a robust method has a hard error or an open volume");

@@ -14,6 +14,7 @@
 #include "cli/exit_code.h"
 #include "cli/frame_timing_output.h"
 #include "cli/option_values.h"
+#include "cli/wall_clock.h"
 #include "core/eye_frame.h"
 #include "core/input_error.h"
 #include "gpu/edge_map.h"
@@ -34,12 +35,6 @@
 namespace shadowcert::cli {
 namespace {
 
-// The per-pass figures of every run: untimed frames first (llvmpipe compiles shader variants
-// on first use), then this many timed ones whose medians are reported (--timing: --frames).
-constexpr std::size_t kWarmUpFrames = 2;
-constexpr std::size_t kTimedFrames = 5;
-constexpr std::size_t kDefaultTimingFrames = 20;
-
 struct EdgesOptions {
   std::string input;
   std::string filter = "diagonal";
@@ -56,10 +51,8 @@ struct EdgesOptions {
   std::optional<int> device;
 };
 
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
-struct Validated {
+struct ValidatedEdgesOptions {
   gpu::EdgeFilter filter;
   gpu::EdgeStyle style;
   std::optional<gpu::ShadowMethod> shadows;
@@ -69,7 +62,7 @@ struct Validated {
 
 // The checks that need no input file (CLI11 checked the filter and style names already; they
 // are checked again so that a caller without those checks gets the same message).
-Validated validate(const EdgesOptions& options) {
+ValidatedEdgesOptions validate(const EdgesOptions& options) {
   const std::optional<gpu::EdgeFilter> filter = gpu::parse_edge_filter(options.filter);
   if (!filter) throw CLI::ValidationError("--filter", "unknown filter '" + options.filter + "': use diagonal, c1 or sobel");
   const std::optional<gpu::EdgeStyle> style = gpu::parse_edge_style(options.style);
@@ -80,7 +73,7 @@ Validated validate(const EdgesOptions& options) {
     throw CLI::ValidationError("--crease-angle",
                                fmt::format("must be in [0, 180] degrees (between two faces' normals), got {}",
                                            options.crease_angle));
-  Validated v{*filter, *style, std::nullopt, 0.0, 0.0};
+  ValidatedEdgesOptions v{*filter, *style, std::nullopt, 0.0, 0.0};
   if (!options.shadows.empty()) v.shadows = shadow_method_option(options.shadows, "--shadows");
   v.profile_threshold = options.threshold.value_or(gpu::profile_threshold(*filter, gpu::kDefaultEdgeDepthStep));
   v.inner_threshold = gpu::inner_threshold(*filter, options.crease_angle);
@@ -128,7 +121,7 @@ void prepare_shadows(ShadowFrameSource& source, gpu::ShadowMethod method, const 
 
 int run_edges(const EdgesOptions& options) {
   const auto start = Clock::now();
-  const Validated v = validate(options);
+  const ValidatedEdgesOptions v = validate(options);
   Scene scene = load_image_scene(options.input);
   if (scene.lights.empty()) throw InputError(options.input, "the scene has no light (the styles are shaded by the first)");
   apply_image_size(options.size, scene.camera);
@@ -183,9 +176,9 @@ int run_edges(const EdgesOptions& options) {
 
   // Per-pass times: always over a few frames; with --timing over --frames, printed as a table.
   const gpu::StageSync sync = context.software() ? gpu::StageSync::finish : gpu::StageSync::none;
-  const std::size_t timed_frames = options.timing ? options.frames : kTimedFrames;
+  const std::size_t timed_frames = options.timing ? options.frames : kPlainTimedFrames;
   const gpu::FrameTiming timing = gpu::time_edge_frames(edges, style, target, camera, v.filter, v.style, style_options,
-                                                        kWarmUpFrames, timed_frames, sync);
+                                                        kTimingWarmUpFrames, timed_frames, sync);
   // On a software renderer the stage's wall time (bounded by glFinish) is its cost; on a GPU
   // its GL_TIME_ELAPSED (gpu/gpu_stage_timer.h).
   const auto pass_ms = [&](gpu::RenderStage stage) {
@@ -208,7 +201,7 @@ int run_edges(const EdgesOptions& options) {
   fmt::print("  ms per pass (median of {} frames): g_buffer {:.3f}, edge_filter {:.3f}, composite {:.3f}; frame {:.3f}\n",
              timing.frames, pass_ms(gpu::RenderStage::g_buffer), pass_ms(gpu::RenderStage::edge_filter),
              pass_ms(gpu::RenderStage::composite), timing.frame_cpu.median_ms);
-  if (options.timing) print_frame_timing(timing, kWarmUpFrames);
+  if (options.timing) print_frame_timing(timing, kTimingWarmUpFrames);
 
   if (!options.json_file.empty()) {
     nlohmann::json report{
@@ -240,7 +233,7 @@ int run_edges(const EdgesOptions& options) {
     // ground-truth work; docs/edge-maps.md "Scores") go here, as report["scores"], once that
     // function exists: it takes `map` (gpu::EdgeMapImage), the thresholds above and the scene
     // as GL drew it (`scene`, in the eye's frame).
-    if (options.timing) report["timing"] = frame_timing_json(timing, kWarmUpFrames);
+    if (options.timing) report["timing"] = frame_timing_json(timing, kTimingWarmUpFrames);
     write_json_file(options.json_file, report);
   }
   return kExitOk;

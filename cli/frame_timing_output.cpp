@@ -6,13 +6,9 @@
 #include <string_view>
 
 namespace shadowcert::cli {
-namespace {
-
-nlohmann::json summary_json(const gpu::TimingSummary& s) {
+nlohmann::json timing_summary_json(const gpu::TimingSummary& s) {
   return {{"median", s.median_ms}, {"min", s.min_ms}, {"max", s.max_ms}};
 }
-
-}  // namespace
 
 nlohmann::json frame_timing_json(const gpu::FrameTiming& timing, std::size_t warm_up_frames) {
   const bool synchronised = timing.sync == gpu::StageSync::finish;
@@ -20,11 +16,11 @@ nlohmann::json frame_timing_json(const gpu::FrameTiming& timing, std::size_t war
   nlohmann::json cpu_ms = nlohmann::json::object();
   for (gpu::RenderStage stage : timing.stages) {
     const std::string name(gpu::render_stage_name(stage));
-    gpu_ms[name] = summary_json(timing.gpu(stage));
-    if (synchronised) cpu_ms[name] = summary_json(timing.wall(stage));
+    gpu_ms[name] = timing_summary_json(timing.gpu(stage));
+    if (synchronised) cpu_ms[name] = timing_summary_json(timing.wall(stage));
   }
-  gpu_ms["frame"] = summary_json(timing.frame_gpu);
-  cpu_ms["frame"] = summary_json(timing.frame_cpu);
+  gpu_ms["frame"] = timing_summary_json(timing.frame_gpu);
+  cpu_ms["frame"] = timing_summary_json(timing.frame_cpu);
   return {{"warm_up_frames", warm_up_frames},
           {"frames", timing.frames},
           {"stage_sync", synchronised ? "finish" : "none"},

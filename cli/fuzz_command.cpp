@@ -22,6 +22,7 @@
 #include "cli/exit_code.h"
 #include "campaign/gl_campaign.h"
 #include "cli/option_values.h"
+#include "cli/wall_clock.h"
 #include "io/output_file.h"
 #include "pipeline/scene_comparison.h"
 #include "campaign/soup_campaign.h"
@@ -59,7 +60,6 @@ struct FuzzOptions {
   std::optional<int> device;
 };
 
-using Clock = std::chrono::steady_clock;
 
 // Shows the progress of work running on the calling thread: a line on stderr from a helper
 // thread, until destroyed. (The work stays on the calling thread: GL contexts are per thread.)

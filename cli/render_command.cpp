@@ -13,10 +13,12 @@
 #include <vector>
 
 #include "cli/exit_code.h"
+#include "cli/frame_timing_output.h"
 #include "cli/light_image_output.h"
 #include "cli/option_values.h"
 #include "cli/silhouette_output.h"
 #include "cli/stencil_output.h"
+#include "cli/wall_clock.h"
 #include "pipeline/mesh_palette.h"
 #include "io/output_file.h"
 #include "io/scene_input.h"
@@ -36,13 +38,6 @@
 namespace shadowcert::cli {
 namespace {
 
-// Frames drawn (without readback, each ended by glFinish) for the ms-per-frame figure: one
-// frame alone would mostly time llvmpipe's first-use shader compilation.
-constexpr std::size_t kTimedFrames = 5;
-// --timing: untimed frames first (llvmpipe compiles shader variants on first use), then
-// --frames timed ones (default kDefaultTimingFrames) whose medians are reported.
-constexpr std::size_t kTimingWarmUpFrames = 2;
-constexpr std::size_t kDefaultTimingFrames = 20;
 
 struct RenderOptions {
   std::string input;
@@ -77,10 +72,8 @@ struct RenderOptions {
   SilhouetteOptions silhouette;  // --epsilon, --crease-angle
 };
 
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
-struct Validated {
+struct ValidatedRenderOptions {
   gpu::ShadowMethod method;
   StencilChoice stencil;
 };
@@ -102,7 +95,7 @@ gpu::ShadowMethod method_of(const RenderOptions& options) {
 }
 
 // The method and the stencil choice, after the checks that need no input file.
-Validated validate(const RenderOptions& options) {
+ValidatedRenderOptions validate(const RenderOptions& options) {
   const gpu::ShadowMethod method = method_of(options);
   const StencilChoice stencil = stencil_option(options.stencil, options.zpass, options.zfail);
   if (options.pcf && (*options.pcf < 1 || *options.pcf > gpu::kMaxPcfKernel || *options.pcf % 2 == 0))
@@ -147,47 +140,6 @@ std::uint64_t count_pixels(const gpu::RgbaImage& colour, const gpu::GrayImage& s
     if (covered && (stencil.pixels[i] == 0) == lit) ++n;
   }
   return n;
-}
-
-nlohmann::json summary_json(const gpu::TimingSummary& s) {
-  return {{"median", s.median_ms}, {"min", s.min_ms}, {"max", s.max_ms}};
-}
-
-// The "timing" object of --json (docs/cli.md): GPU ms per stage of the method and per frame,
-// CPU wall ms per frame (and per stage when stages were synchronised), each as median, min
-// and max over the timed frames.
-nlohmann::json timing_json(const gpu::FrameTiming& timing) {
-  const bool synchronised = timing.sync == gpu::StageSync::finish;
-  nlohmann::json gpu_ms = nlohmann::json::object();
-  nlohmann::json cpu_ms = nlohmann::json::object();
-  for (gpu::RenderStage stage : timing.stages) {
-    const std::string name(gpu::render_stage_name(stage));
-    gpu_ms[name] = summary_json(timing.gpu(stage));
-    if (synchronised) cpu_ms[name] = summary_json(timing.wall(stage));
-  }
-  gpu_ms["frame"] = summary_json(timing.frame_gpu);
-  cpu_ms["frame"] = summary_json(timing.frame_cpu);
-  return {{"warm_up_frames", kTimingWarmUpFrames},
-          {"frames", timing.frames},
-          {"stage_sync", synchronised ? "finish" : "none"},
-          {"gpu_ms", gpu_ms},
-          {"cpu_ms", cpu_ms}};
-}
-
-void print_timing(const gpu::FrameTiming& timing) {
-  const bool synchronised = timing.sync == gpu::StageSync::finish;
-  fmt::print("  timing, ms over {} frames after {} warm-up{}:\n", timing.frames, kTimingWarmUpFrames,
-             synchronised ? " (stages bounded by glFinish: software renderer)" : "");
-  fmt::print("    {:<12} {:>10} {:>8} {:>8}   {:>10} {:>8} {:>8}\n", "stage", "gpu median", "min", "max",
-             "cpu median", "min", "max");
-  const auto row = [](std::string_view name, const gpu::TimingSummary& gpu, const gpu::TimingSummary* cpu) {
-    fmt::print("    {:<12} {:10.3f} {:8.3f} {:8.3f}", name, gpu.median_ms, gpu.min_ms, gpu.max_ms);
-    if (cpu != nullptr) fmt::print("   {:10.3f} {:8.3f} {:8.3f}", cpu->median_ms, cpu->min_ms, cpu->max_ms);
-    fmt::print("\n");
-  };
-  for (gpu::RenderStage stage : timing.stages)
-    row(gpu::render_stage_name(stage), timing.gpu(stage), synchronised ? &timing.wall(stage) : nullptr);
-  row("frame", timing.frame_gpu, &timing.frame_cpu);
 }
 
 int run_render(const RenderOptions& options) {
@@ -282,7 +234,7 @@ int run_render(const RenderOptions& options) {
 
   std::optional<gpu::FrameTiming> timing;
   double frame_ms = 0.0;
-  std::size_t mean_frames = kTimedFrames;
+  std::size_t mean_frames = kPlainTimedFrames;
   if (options.timing) {
     // A software renderer's timer queries do not time its stages (gpu/gpu_stage_timer.h):
     // there each stage is bounded by glFinish and timed on the wall clock as well.
@@ -291,7 +243,7 @@ int run_render(const RenderOptions& options) {
     frame_ms = timing->mean_cpu_ms;
     mean_frames = timing->frames;
   } else {
-    const std::vector<double> wall_ms = renderer.render_frames(target, scene.camera, kTimedFrames);
+    const std::vector<double> wall_ms = renderer.render_frames(target, scene.camera, kPlainTimedFrames);
     frame_ms = std::accumulate(wall_ms.begin(), wall_ms.end(), 0.0) / static_cast<double>(wall_ms.size());
   }
 
@@ -353,7 +305,7 @@ int run_render(const RenderOptions& options) {
   fmt::print("  seconds: {}upload {:.3f}, first frame {:.3f}; {:.2f} ms per frame ({} frames)\n",
              shadowmap ? "" : fmt::format("chains {:.3f}, ", chain_seconds), upload_seconds, first_frame_seconds,
              frame_ms, mean_frames);
-  if (timing) print_timing(*timing);
+  if (timing) print_frame_timing(*timing, kTimingWarmUpFrames);
 
   if (!options.json_file.empty()) {
     nlohmann::json report{{"input", options.input},
@@ -402,7 +354,7 @@ int run_render(const RenderOptions& options) {
       if (stencil_choice == StencilChoice::automatic) report["stage_seconds"]["zpass_proof"] = proof_seconds;
       if (silhouette) report["casters"] = silhouette_casters_json(*silhouette);
     }
-    if (timing) report["timing"] = timing_json(*timing);
+    if (timing) report["timing"] = frame_timing_json(*timing, kTimingWarmUpFrames);
     write_json_file(options.json_file, report);
   }
   return kExitOk;
