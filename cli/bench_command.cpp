@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "cli/bench_outputs.h"
+#include "cli/comparison_json.h"
 #include "cli/exit_code.h"
 #include "cli/frame_timing_output.h"
 #include "cli/option_values.h"
@@ -150,34 +151,6 @@ nlohmann::json timing_json(const BenchRun& b, bool synchronised) {
           {"build_ms", b.build_ms}};
 }
 
-nlohmann::json soft_json(const SoftShadowErrors& e) {
-  return {{"compared", e.compared},
-          {"reference_only", e.reference_only},
-          {"method_only", e.method_only},
-          {"mean_error", e.mean_error},
-          {"max_error", e.max_error},
-          {"mean_signed_error", e.mean_signed_error},
-          {"umbra", e.umbra},
-          {"umbra_mean_error", e.umbra_mean_error},
-          {"penumbra", e.penumbra},
-          {"penumbra_mean_error", e.penumbra_mean_error},
-          {"outside_penumbra", e.outside_penumbra},
-          {"outside_penumbra_mean_error", e.outside_penumbra_mean_error},
-          {"contact", e.contact},
-          {"leaks", e.leaks},
-          {"lit_facing", e.lit_facing},
-          {"acne", e.acne},
-          {"turned_away", e.turned_away},
-          {"turned_away_mean_error", e.turned_away_mean_error}};
-}
-
-nlohmann::json analytic_json(const AnalyticCounts& a) {
-  return {{"receiver_agree", a.receiver_agree},         {"receiver_disagree", a.receiver_disagree},
-          {"receiver_ambiguous", a.receiver_ambiguous}, {"caster_agree", a.caster_agree},
-          {"caster_disagree", a.caster_disagree},       {"caster_band", a.caster_band},
-          {"caster_ambiguous", a.caster_ambiguous}};
-}
-
 nlohmann::json parameter_json(const BenchRun& b) {
   const BenchVariant& v = b.variant;
   nlohmann::json p = nlohmann::json::object();
@@ -232,8 +205,8 @@ nlohmann::json run_json(const BenchRun& b, bool synchronised, const nlohmann::js
   }
   for (const LightRun& l : r.lights)
     if (!l.capacity_error.empty()) error["capacity_error"] = l.capacity_error;
-  if (b.soft) error["soft"] = soft_json(*b.soft);
-  if (const std::optional<AnalyticCounts> a = r.analytic()) error["analytic"] = analytic_json(*a);
+  if (b.soft) error["soft"] = soft_errors_json(*b.soft);
+  if (const std::optional<AnalyticCounts> a = r.analytic()) error["analytic"] = analytic_counts_json(*a);
   if (b.edges) {
     // No lit mask: the pixel figures do not apply.
     for (const char* key : {"hard_errors", "ambiguous", "agree", "coverage_errors", "lit_errors", "count_errors"})

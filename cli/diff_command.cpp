@@ -15,6 +15,7 @@
 #include <utility>
 #include <vector>
 
+#include "cli/comparison_json.h"
 #include "cli/diff_report.h"
 #include "cli/edge_map_output.h"
 #include "cli/exit_code.h"
@@ -123,28 +124,6 @@ nlohmann::json comparison_json(const PixelComparison& c) {
           {"coverage_errors", c.coverage_errors}, {"lit_errors", c.lit_errors}, {"count_errors", c.count_errors}};
 }
 
-// A method's light image against the exact soft reference (pipeline/soft_shadow_comparison.h).
-nlohmann::json soft_json(const SoftShadowErrors& e) {
-  return {{"compared", e.compared},
-          {"reference_only", e.reference_only},
-          {"method_only", e.method_only},
-          {"mean_error", e.mean_error},
-          {"max_error", e.max_error},
-          {"mean_signed_error", e.mean_signed_error},
-          {"umbra", e.umbra},
-          {"umbra_mean_error", e.umbra_mean_error},
-          {"penumbra", e.penumbra},
-          {"penumbra_mean_error", e.penumbra_mean_error},
-          {"outside_penumbra", e.outside_penumbra},
-          {"outside_penumbra_mean_error", e.outside_penumbra_mean_error},
-          {"contact", e.contact},
-          {"leaks", e.leaks},
-          {"lit_facing", e.lit_facing},
-          {"acne", e.acne},
-          {"turned_away", e.turned_away},
-          {"turned_away_mean_error", e.turned_away_mean_error}};
-}
-
 // The soft reference's own figures, per light.
 nlohmann::json soft_reference_json(const SoftReference& r) {
   std::array<std::uint64_t, 5> regions{};
@@ -172,14 +151,6 @@ std::string soft_fact(const SoftShadowErrors& e) {
                      "penumbra {:.4f}; leaks {} of {} contact pixels, acne {} of {} lit pixels",
                      e.mean_error, e.max_error, e.mean_signed_error, e.umbra_mean_error, e.penumbra_mean_error,
                      e.outside_penumbra_mean_error, e.leaks, e.contact, e.acne, e.lit_facing);
-}
-
-// A silhouette run against the analytic shadow (pipeline/analytic_comparison.h).
-nlohmann::json analytic_json(const AnalyticCounts& a) {
-  return {{"receiver_agree", a.receiver_agree},         {"receiver_disagree", a.receiver_disagree},
-          {"receiver_ambiguous", a.receiver_ambiguous}, {"caster_agree", a.caster_agree},
-          {"caster_disagree", a.caster_disagree},       {"caster_band", a.caster_band},
-          {"caster_ambiguous", a.caster_ambiguous}};
 }
 
 // The analytic truth's own figures: its time, the meshes cast as ellipsoids, its band, and per
@@ -231,12 +202,12 @@ nlohmann::json method_json(const MethodRun& run, const DiffOptions& options) {
       lj["volume_triangles"] = l.volume_triangles;
     }
     if (!l.capacity_error.empty()) lj["capacity_error"] = l.capacity_error;
-    if (l.analytic) lj["analytic"] = analytic_json(*l.analytic);
-    if (l.soft) lj["soft"] = soft_json(*l.soft);
+    if (l.analytic) lj["analytic"] = analytic_counts_json(*l.analytic);
+    if (l.soft) lj["soft"] = soft_errors_json(*l.soft);
     per_light.push_back(lj);
   }
   j["per_light"] = per_light;
-  if (const std::optional<AnalyticCounts> a = run.analytic()) j["analytic"] = analytic_json(*a);
+  if (const std::optional<AnalyticCounts> a = run.analytic()) j["analytic"] = analytic_counts_json(*a);
   return j;
 }
 
