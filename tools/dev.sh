@@ -200,7 +200,8 @@ sanitize() {
 }
 
 case "${1:-}" in
-  demo) install_missing "${DEMO_PACKAGES[@]}"; build_demo; demo ;;
+  demo) t0=$SECONDS; install_missing "${DEMO_PACKAGES[@]}"; t1=$SECONDS; build_demo; t2=$SECONDS; demo
+        echo "== demo took $((SECONDS - t0)) s: install $((t1 - t0)) s, build $((t2 - t1)) s, run $((SECONDS - t2)) s" ;;
   # SHADOWCERT_REQUIRE_BROWSER=1: the bench report's browser test (tests/cli/report_browser_test.py)
   # fails rather than skips when chromium or matplotlib is missing.
   test) install_missing "${PACKAGES[@]}"; build
