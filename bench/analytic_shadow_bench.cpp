@@ -36,7 +36,6 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
-#include <iostream>
 #include <memory>
 #include <numeric>
 #include <optional>
@@ -54,7 +53,6 @@
 #include "exact/light_orientation.h"
 #include "gpu/depth_precision.h"
 #include "gpu/egl_context.h"
-#include "gpu/gl_environment_error.h"
 #include "gpu/offscreen_target.h"
 #include "gpu/shadow_method_renderer.h"
 #include "io/soup_file.h"
@@ -65,6 +63,8 @@
 #include "pipeline/silhouette_volumes.h"
 #include "scene/framed_scene.h"
 #include "scene/merged_soup.h"
+
+#include "gl_bench_main.h"
 
 namespace {
 
@@ -287,21 +287,9 @@ void take_settings(int& argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
-    take_settings(argc, argv);
-  } catch (const std::exception& e) {
-    std::cerr << "analytic_shadow_bench: " << e.what() << '\n';
-    return 2;
-  }
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 2;
-  std::optional<gpu::EglContext> context;
-  try {
-    context.emplace(gpu::EglContextOptions{});
-  } catch (const gpu::GlEnvironmentError& e) {
-    std::cerr << "analytic_shadow_bench: needs OpenGL 4.5 core through headless EGL: " << e.what() << '\n';
-    return 2;
-  }
+  if (!bench::take_command_line("analytic_shadow_bench", argc, argv, take_settings)) return 2;
+  const std::optional<gpu::EglContext> context = bench::open_bench_context("analytic_shadow_bench");
+  if (!context) return 2;
   benchmark::AddCustomContext("renderer", context->renderer());
   benchmark::AddCustomContext("resolution", fmt::format("{}x{}", g_settings.width, g_settings.height));
   benchmark::AddCustomContext("mesh_resolution", fmt::format("{}x{}", g_settings.mesh_width, g_settings.mesh_height));

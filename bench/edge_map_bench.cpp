@@ -44,12 +44,13 @@
 #include "gpu/edge_style.h"
 #include "gpu/egl_context.h"
 #include "gpu/frame_timing.h"
-#include "gpu/gl_environment_error.h"
 #include "gpu/offscreen_target.h"
 #include "io/scene_input.h"
 #include "io/soup_file.h"
 #include "pipeline/mesh_palette.h"
 #include "scene/procedural_mesh.h"
+
+#include "gl_bench_main.h"
 
 namespace {
 
@@ -212,9 +213,7 @@ Settings take_settings(int& argc, char** argv) {
     } else if (const auto triangles = value("--triangles=")) {
       settings.grid_triangles = numbers(*triangles).front();
     } else if (const auto sync = value("--stage-sync=")) {
-      if (*sync != "auto" && *sync != "finish" && *sync != "none")
-        throw std::invalid_argument("--stage-sync expects auto, finish or none");
-      settings.stage_sync = *sync;
+      settings.stage_sync = bench::stage_sync_setting(*sync);
     } else {
       argv[kept++] = argv[i];
     }
@@ -227,29 +226,12 @@ Settings take_settings(int& argc, char** argv) {
 
 int main(int argc, char** argv) {
   Settings settings;
-  try {
-    settings = take_settings(argc, argv);
-  } catch (const std::exception& e) {
-    std::cerr << "edge_map_bench: " << e.what() << '\n';
-    return 2;
-  }
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 2;
+  if (!bench::take_command_line("edge_map_bench", argc, argv, settings, take_settings)) return 2;
 
-  std::optional<gpu::EglContext> context;
-  try {
-    context.emplace(gpu::EglContextOptions{});
-  } catch (const gpu::GlEnvironmentError& e) {
-    std::cerr << "edge_map_bench: needs OpenGL 4.5 core through headless EGL: " << e.what() << '\n';
-    return 2;
-  }
-  const gpu::StageSync sync = settings.stage_sync == "finish" ? gpu::StageSync::finish
-                              : settings.stage_sync == "none" ? gpu::StageSync::none
-                              : context->software()           ? gpu::StageSync::finish
-                                                              : gpu::StageSync::none;
-  benchmark::AddCustomContext("renderer", context->renderer());
-  benchmark::AddCustomContext("stage_sync", sync == gpu::StageSync::finish ? "finish (passes: wall ms)"
-                                                                           : "none (passes: GPU query ms)");
+  const std::optional<gpu::EglContext> context = bench::open_bench_context("edge_map_bench");
+  if (!context) return 2;
+  const gpu::StageSync sync = bench::chosen_stage_sync(settings.stage_sync, *context);
+  bench::add_gl_context(*context, sync, "passes");
 
   // Scenes are built once (the grid and the ogre take seconds) and live until the end.
   std::vector<std::unique_ptr<BenchScene>> scenes;

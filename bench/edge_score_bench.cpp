@@ -37,7 +37,6 @@
 #include "core/near_plane.h"
 #include "core/scene.h"
 #include "gpu/egl_context.h"
-#include "gpu/gl_environment_error.h"
 #include "io/scene_input.h"
 #include "gpu/png_image.h"
 #include "io/soup_file.h"
@@ -45,6 +44,8 @@
 #include "pipeline/edge_map_comparison.h"
 #include "scene/framed_scene.h"
 #include "scene/procedural_mesh.h"
+
+#include "gl_bench_main.h"
 
 namespace {
 
@@ -395,21 +396,9 @@ Settings take_settings(int& argc, char** argv) {
 
 int main(int argc, char** argv) {
   Settings settings;
-  try {
-    settings = take_settings(argc, argv);
-  } catch (const std::exception& e) {
-    std::cerr << "edge_score_bench: " << e.what() << '\n';
-    return 2;
-  }
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 2;
-  std::optional<gpu::EglContext> context;
-  try {
-    context.emplace(gpu::EglContextOptions{});
-  } catch (const gpu::GlEnvironmentError& e) {
-    std::cerr << "edge_score_bench: needs OpenGL 4.5 core through headless EGL: " << e.what() << '\n';
-    return 2;
-  }
+  if (!bench::take_command_line("edge_score_bench", argc, argv, settings, take_settings)) return 2;
+  const std::optional<gpu::EglContext> context = bench::open_bench_context("edge_score_bench");
+  if (!context) return 2;
   std::cerr << "renderer: " << context->renderer() << '\n';
   try {
     print_tables(settings);

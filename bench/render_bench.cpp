@@ -31,7 +31,6 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
-#include <iostream>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -46,13 +45,14 @@
 #include "gpu/camera_transform.h"
 #include "gpu/egl_context.h"
 #include "gpu/frame_timing.h"
-#include "gpu/gl_environment_error.h"
 #include "gpu/light_side_probe.h"
 #include "gpu/offscreen_target.h"
 #include "gpu/shadow_method_renderer.h"
 #include "pipeline/method_inputs.h"
 #include "scene/merged_soup.h"
 #include "scene/procedural_mesh.h"
+
+#include "gl_bench_main.h"
 
 namespace {
 
@@ -221,9 +221,7 @@ Settings take_settings(int& argc, char** argv) {
       settings.width = static_cast<std::uint32_t>(std::stoul(size->substr(0, x)));
       settings.height = static_cast<std::uint32_t>(std::stoul(size->substr(x + 1)));
     } else if (const auto sync = value("--stage-sync=")) {
-      if (*sync != "auto" && *sync != "finish" && *sync != "none")
-        throw std::invalid_argument("--stage-sync expects auto, finish or none");
-      settings.stage_sync = *sync;
+      settings.stage_sync = bench::stage_sync_setting(*sync);
     } else {
       argv[kept++] = argv[i];
     }
@@ -236,30 +234,13 @@ Settings take_settings(int& argc, char** argv) {
 
 int main(int argc, char** argv) {
   Settings settings;
-  try {
-    settings = take_settings(argc, argv);
-  } catch (const std::exception& e) {
-    std::cerr << "render_bench: " << e.what() << '\n';
-    return 2;
-  }
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 2;
+  if (!bench::take_command_line("render_bench", argc, argv, settings, take_settings)) return 2;
 
-  std::optional<gpu::EglContext> context;
-  try {
-    context.emplace(gpu::EglContextOptions{});
-  } catch (const gpu::GlEnvironmentError& e) {
-    std::cerr << "render_bench: needs OpenGL 4.5 core through headless EGL: " << e.what() << '\n';
-    return 2;
-  }
-  const gpu::StageSync sync = settings.stage_sync == "finish" ? gpu::StageSync::finish
-                              : settings.stage_sync == "none" ? gpu::StageSync::none
-                              : context->software()           ? gpu::StageSync::finish
-                                                              : gpu::StageSync::none;
-  benchmark::AddCustomContext("renderer", context->renderer());
+  const std::optional<gpu::EglContext> context = bench::open_bench_context("render_bench");
+  if (!context) return 2;
+  const gpu::StageSync sync = bench::chosen_stage_sync(settings.stage_sync, *context);
+  bench::add_gl_context(*context, sync, "stages");
   benchmark::AddCustomContext("resolution", fmt::format("{}x{}", settings.width, settings.height));
-  benchmark::AddCustomContext("stage_sync", sync == gpu::StageSync::finish ? "finish (stages: wall ms)"
-                                                                           : "none (stages: GPU query ms)");
 
   for (std::uint64_t triangles : settings.triangles) {
     for (gpu::ShadowMethod method : gpu::kShadowMethods) {

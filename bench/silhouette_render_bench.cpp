@@ -22,7 +22,6 @@
 #include <algorithm>
 #include <cstdint>
 #include <filesystem>
-#include <iostream>
 #include <map>
 #include <memory>
 #include <optional>
@@ -34,7 +33,6 @@
 #include "core/eye_frame.h"
 #include "core/scene.h"
 #include "gpu/egl_context.h"
-#include "gpu/gl_environment_error.h"
 #include "gpu/offscreen_target.h"
 #include "gpu/shadow_method_renderer.h"
 #include "gpu/smooth_silhouette_volume.h"
@@ -45,6 +43,8 @@
 #include "pipeline/smooth_caster_arrays.h"
 #include "scene/merged_soup.h"
 #include "scene/procedural_mesh.h"
+
+#include "gl_bench_main.h"
 
 namespace {
 
@@ -177,21 +177,9 @@ void add(const std::string& name, Run run, benchmark::IterationCount iterations,
 
 int main(int argc, char** argv) {
   Settings settings;
-  try {
-    settings = take_settings(argc, argv);
-  } catch (const std::exception& e) {
-    std::cerr << "silhouette_render_bench: " << e.what() << '\n';
-    return 2;
-  }
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 2;
-  std::optional<gpu::EglContext> context;
-  try {
-    context.emplace(gpu::EglContextOptions{});
-  } catch (const gpu::GlEnvironmentError& e) {
-    std::cerr << "silhouette_render_bench: needs OpenGL 4.5 core through headless EGL: " << e.what() << '\n';
-    return 2;
-  }
+  if (!bench::take_command_line("silhouette_render_bench", argc, argv, settings, take_settings)) return 2;
+  const std::optional<gpu::EglContext> context = bench::open_bench_context("silhouette_render_bench");
+  if (!context) return 2;
   benchmark::AddCustomContext("renderer", context->renderer());
   benchmark::AddCustomContext("resolution", fmt::format("{}x{}", settings.width, settings.height));
 

@@ -21,7 +21,6 @@
 #include <array>
 #include <chrono>
 #include <cstdint>
-#include <iostream>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -37,7 +36,6 @@
 #include "core/soup.h"
 #include "gpu/egl_context.h"
 #include "gpu/frame_timing.h"
-#include "gpu/gl_environment_error.h"
 #include "gpu/offscreen_target.h"
 #include "gpu/shadow_map_renderer.h"
 #include "gpu/shadow_method_renderer.h"
@@ -45,6 +43,8 @@
 #include "pipeline/scene_smoothies.h"
 #include "scene/merged_soup.h"
 #include "scene/procedural_mesh.h"
+
+#include "gl_bench_main.h"
 
 namespace {
 
@@ -187,9 +187,7 @@ Settings take_settings(int& argc, char** argv) {
       settings.width = static_cast<std::uint32_t>(std::stoul(size->substr(0, x)));
       settings.height = static_cast<std::uint32_t>(std::stoul(size->substr(x + 1)));
     } else if (const auto sync = value("--stage-sync=")) {
-      if (*sync != "auto" && *sync != "finish" && *sync != "none")
-        throw std::invalid_argument("--stage-sync expects auto, finish or none");
-      settings.stage_sync = *sync;
+      settings.stage_sync = bench::stage_sync_setting(*sync);
     } else {
       argv[kept++] = argv[i];
     }
@@ -202,30 +200,13 @@ Settings take_settings(int& argc, char** argv) {
 
 int main(int argc, char** argv) {
   Settings settings;
-  try {
-    settings = take_settings(argc, argv);
-  } catch (const std::exception& e) {
-    std::cerr << "smoothie_bench: " << e.what() << '\n';
-    return 2;
-  }
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 2;
+  if (!bench::take_command_line("smoothie_bench", argc, argv, settings, take_settings)) return 2;
 
-  std::optional<gpu::EglContext> context;
-  try {
-    context.emplace(gpu::EglContextOptions{});
-  } catch (const gpu::GlEnvironmentError& e) {
-    std::cerr << "smoothie_bench: needs OpenGL 4.5 core through headless EGL: " << e.what() << '\n';
-    return 2;
-  }
-  const gpu::StageSync sync = settings.stage_sync == "finish" ? gpu::StageSync::finish
-                              : settings.stage_sync == "none" ? gpu::StageSync::none
-                              : context->software()           ? gpu::StageSync::finish
-                                                              : gpu::StageSync::none;
-  benchmark::AddCustomContext("renderer", context->renderer());
+  const std::optional<gpu::EglContext> context = bench::open_bench_context("smoothie_bench");
+  if (!context) return 2;
+  const gpu::StageSync sync = bench::chosen_stage_sync(settings.stage_sync, *context);
+  bench::add_gl_context(*context, sync, "stages");
   benchmark::AddCustomContext("resolution", fmt::format("{}x{}", settings.width, settings.height));
-  benchmark::AddCustomContext("stage_sync", sync == gpu::StageSync::finish ? "finish (stages: wall ms)"
-                                                                           : "none (stages: GPU query ms)");
 
   const std::vector<FrameMethod> methods{{"shadowmap", gpu::ShadowMethod::shadowmap},
                                          {"pcf3", gpu::ShadowMethod::pcf, 3},

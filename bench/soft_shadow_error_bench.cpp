@@ -27,7 +27,6 @@
 #include <fmt/core.h>
 
 #include <cmath>
-#include <iostream>
 #include <map>
 #include <memory>
 #include <optional>
@@ -38,7 +37,6 @@
 #include "core/eye_frame.h"
 #include "core/scene.h"
 #include "gpu/egl_context.h"
-#include "gpu/gl_environment_error.h"
 #include "gpu/offscreen_target.h"
 #include "gpu/shadow_map_renderer.h"
 #include "gpu/shadow_method_renderer.h"
@@ -48,6 +46,8 @@
 #include "pipeline/soft_reference.h"
 #include "pipeline/soft_shadow_comparison.h"
 #include "scene/merged_soup.h"
+
+#include "gl_bench_main.h"
 
 namespace {
 
@@ -220,21 +220,9 @@ Settings take_settings(int& argc, char** argv) {
 
 int main(int argc, char** argv) {
   Settings settings;
-  try {
-    settings = take_settings(argc, argv);
-  } catch (const std::exception& e) {
-    std::cerr << "soft_shadow_error_bench: " << e.what() << '\n';
-    return 2;
-  }
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 2;
-  std::optional<gpu::EglContext> context;
-  try {
-    context.emplace(gpu::EglContextOptions{});
-  } catch (const gpu::GlEnvironmentError& e) {
-    std::cerr << "soft_shadow_error_bench: needs OpenGL 4.5 core through headless EGL: " << e.what() << '\n';
-    return 2;
-  }
+  if (!bench::take_command_line("soft_shadow_error_bench", argc, argv, settings, take_settings)) return 2;
+  const std::optional<gpu::EglContext> context = bench::open_bench_context("soft_shadow_error_bench");
+  if (!context) return 2;
   benchmark::AddCustomContext("renderer", context->renderer());
   benchmark::AddCustomContext("resolution", fmt::format("{}x{}", settings.width, settings.height));
   benchmark::AddCustomContext("light_radius", fmt::format("{}", settings.light_radius));

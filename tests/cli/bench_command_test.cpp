@@ -3,59 +3,21 @@
 // shards split a suite's scenes by index, and --from rewrites the outputs from a bench.json.
 // bench renders: without an EGL device it exits 2 naming EGL, and these tests skip.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
-#include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "cli_run.h"
+
 namespace {
 
 namespace fs = std::filesystem;
 
-struct RunResult {
-  int exit_code = -1;
-  std::string output;  // stdout and stderr together
-};
-
-RunResult run_cli(const std::string& arguments) {
-  const std::string command = std::string(SHADOWCERT_CLI) + " " + arguments + " 2>&1";
-  RunResult result;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (pipe == nullptr) return result;
-  char buffer[4096];
-  while (std::fgets(buffer, sizeof buffer, pipe) != nullptr) result.output += buffer;
-  const int status = pclose(pipe);
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
-}
-
-fs::path temp_dir(const std::string& name) {
-  fs::path dir = fs::temp_directory_path() / ("shadowcert_bench_test_" + std::to_string(::getpid())) / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-nlohmann::json read_json(const fs::path& file) {
-  std::ifstream in(file);
-  return nlohmann::json::parse(in);
-}
-
-std::string read_text(const fs::path& file) {
-  std::ifstream in(file);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-bool unavailable(const RunResult& r) { return r.exit_code == 2 && r.output.find("EGL") != std::string::npos; }
+using namespace shadowcert::cli_test;
 
 const std::string kSource = SHADOWCERT_SOURCE_DIR;
 const std::string kDefaultScene = kSource + "/data/scenes/default.json";
@@ -68,7 +30,7 @@ const std::string kTinyRun = " --size 32x24 --frames 1 --methods cpu,cs,shadowma
 class BenchOutputs : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    dir_ = new fs::path(temp_dir("outputs"));
+    dir_ = new fs::path(empty_temp_dir("bench_test", "outputs"));
     run_ = new RunResult(run_cli("bench " + kDefaultScene + kTinyRun + " --out " + dir_->string()));
   }
   static void TearDownTestSuite() {
@@ -77,7 +39,7 @@ class BenchOutputs : public ::testing::Test {
     delete run_;
   }
   void SetUp() override {
-    if (unavailable(*run_)) GTEST_SKIP() << run_->output;
+    if (render_unavailable(*run_)) GTEST_SKIP() << run_->output;
     ASSERT_EQ(run_->exit_code, 0) << run_->output;
   }
   static fs::path* dir_;
@@ -194,7 +156,7 @@ TEST_F(BenchOutputs, CsvAndMarkdown_HoldEveryRun) {
 }
 
 TEST_F(BenchOutputs, From_RewritesTheSameTablesWithoutRendering) {
-  const fs::path again = temp_dir("from");
+  const fs::path again = empty_temp_dir("bench_test", "from");
   const RunResult r = run_cli("bench --from " + (*dir_ / "bench.json").string() + " --no-plots --out " + again.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_EQ(read_text(again / "bench.md"), read_text(*dir_ / "bench.md"));
@@ -208,9 +170,9 @@ TEST_F(BenchOutputs, From_RewritesTheSameTablesWithoutRendering) {
 TEST(BenchShards, TwoShards_SplitTheScenesByIndex) {
   const std::string scenes = kDefaultScene + " " + kSoftContact + " " + kSphere;
   const std::string options = " --size 16x12 --frames 1 --methods cpu,shadowmap/512";
-  const fs::path dir = temp_dir("shards");
+  const fs::path dir = empty_temp_dir("bench_test", "shards");
   const RunResult whole = run_cli("bench " + scenes + options + " --out " + (dir / "whole").string());
-  if (unavailable(whole)) GTEST_SKIP() << whole.output;
+  if (render_unavailable(whole)) GTEST_SKIP() << whole.output;
   ASSERT_EQ(whole.exit_code, 0) << whole.output;
   std::set<std::string> names;
   std::size_t runs = 0;
@@ -267,10 +229,10 @@ TEST(BenchShards, TwoShards_SplitTheScenesByIndex) {
 // the conic, smooth below discrete on the 8x4 sphere (docs/smooth-silhouettes.md), and the
 // per-pixel figures against the analytic shadow.
 TEST(BenchAnalytic, FirstShapeUnderThePointLight_SmoothContourBeatsDiscrete) {
-  const fs::path dir = temp_dir("analytic");
+  const fs::path dir = empty_temp_dir("bench_test", "analytic");
   const RunResult r = run_cli("bench --suite analytic --shard 1/16 --size 32x24 --frames 1 --methods "
                               "discrete,smooth/0.01 --no-plots --out " + dir.string());
-  if (unavailable(r)) GTEST_SKIP() << r.output;
+  if (render_unavailable(r)) GTEST_SKIP() << r.output;
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const nlohmann::json j = read_json(dir / "bench.json");
   EXPECT_EQ(j["scene_count"], 16);
@@ -299,11 +261,12 @@ TEST(BenchUsage, BadOptions_ExitTwoNamingTheOption) {
       {"--suite hard " + kDefaultScene, "--suite"}};
   for (const auto& [arguments, option] : cases) {
     SCOPED_TRACE(arguments);
-    const RunResult r = run_cli("bench " + arguments + " --out " + temp_dir("usage").string());
+    const RunResult r = run_cli("bench " + arguments + " --out " + empty_temp_dir("bench_test", "usage").string());
     EXPECT_EQ(r.exit_code, 2) << r.output;
     EXPECT_NE(r.output.find(option), std::string::npos) << r.output;
   }
-  const RunResult missing = run_cli("bench /nonexistent/scene.json --out " + temp_dir("usage").string());
+  const RunResult missing =
+      run_cli("bench /nonexistent/scene.json --out " + empty_temp_dir("bench_test", "usage").string());
   EXPECT_EQ(missing.exit_code, 2) << missing.output;
   EXPECT_NE(missing.output.find("/nonexistent/scene.json"), std::string::npos) << missing.output;
 }
@@ -311,10 +274,10 @@ TEST(BenchUsage, BadOptions_ExitTwoNamingTheOption) {
 // diff's counts picture (docs/diff.md): the counts in viridis beside the gray data file, and in
 // the report with a legend of swatches.
 TEST(DiffCountsPicture, OutAndReport_HaveTheViridisCountsAndItsLegend) {
-  const fs::path dir = temp_dir("diff_counts");
+  const fs::path dir = empty_temp_dir("bench_test", "diff_counts");
   const RunResult r = run_cli("diff " + kDefaultScene + " --size 48x36 --methods cpu --out " + dir.string() +
                               " --report " + (dir / "report.html").string());
-  if (unavailable(r)) GTEST_SKIP() << r.output;
+  if (render_unavailable(r)) GTEST_SKIP() << r.output;
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_TRUE(fs::exists(dir / "exact_counts.png"));
   EXPECT_TRUE(fs::exists(dir / "exact_counts_viridis.png"));

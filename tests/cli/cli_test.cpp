@@ -2,9 +2,7 @@
 // input or environment), messages on stderr naming the file and line, and the JSON keys
 // the issues promise.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -12,37 +10,13 @@
 #include <string>
 #include <vector>
 
+#include "cli_run.h"
+
 namespace {
 
 namespace fs = std::filesystem;
 
-struct RunResult {
-  int exit_code = -1;
-  std::string output;  // stdout and stderr together
-};
-
-RunResult run_cli(const std::string& arguments) {
-  const std::string command = std::string(SHADOWCERT_CLI) + " " + arguments + " 2>&1";
-  RunResult result;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (pipe == nullptr) return result;
-  char buffer[4096];
-  while (std::fgets(buffer, sizeof buffer, pipe) != nullptr) result.output += buffer;
-  const int status = pclose(pipe);
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
-}
-
-fs::path temp_dir() {
-  fs::path dir = fs::temp_directory_path() / ("shadowcert_cli_test_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  return dir;
-}
-
-nlohmann::json read_json(const fs::path& file) {
-  std::ifstream in(file);
-  return nlohmann::json::parse(in);
-}
+using namespace shadowcert::cli_test;
 
 const std::string kSource = SHADOWCERT_SOURCE_DIR;
 const std::string kDefaultScene = kSource + "/data/scenes/default.json";
@@ -61,7 +35,7 @@ TEST(CliUsage, Help_ExitsZero) {
 TEST(CliUsage, UnknownOption_ExitsTwo) { EXPECT_EQ(run_cli("inspect " + kCube + " --bogus").exit_code, 2); }
 
 TEST(CliInspect, Cube_JsonHasEveryKeyAndRightFigures) {
-  const fs::path json = temp_dir() / "cube.json";
+  const fs::path json = temp_dir("cli_test") / "cube.json";
   const RunResult r = run_cli("inspect " + kCube + " --json " + json.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const nlohmann::json j = read_json(json);
@@ -78,7 +52,7 @@ TEST(CliInspect, Cube_JsonHasEveryKeyAndRightFigures) {
 }
 
 TEST(CliInspect, DefaultScene_ReportsNonManifoldCastersPerMesh) {
-  const fs::path json = temp_dir() / "default.json";
+  const fs::path json = temp_dir("cli_test") / "default.json";
   const RunResult r = run_cli("inspect " + kDefaultScene + " --json " + json.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const nlohmann::json j = read_json(json);
@@ -91,7 +65,7 @@ TEST(CliInspect, DefaultScene_ReportsNonManifoldCastersPerMesh) {
 // data/scenes/noncasting_floor.json: the floor and the pane only receive ("casts": false), so
 // inspect and certify work on the sphere (528 triangles) and the box (12) alone.
 TEST(CliInspect, NonCastingMeshes_LeftOutOfTheCastersAndNamed) {
-  const fs::path json = temp_dir() / "noncasting_inspect.json";
+  const fs::path json = temp_dir("cli_test") / "noncasting_inspect.json";
   const RunResult r = run_cli("inspect " + kSource + "/data/scenes/noncasting_floor.json --json " + json.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const nlohmann::json j = read_json(json);
@@ -105,12 +79,12 @@ TEST(CliInspect, NonCastingMeshes_LeftOutOfTheCastersAndNamed) {
 }
 
 TEST(CliCertify, NonCastingMeshes_CertifiesTheCastersOnlyAndNeedsOne) {
-  const fs::path json = temp_dir() / "noncasting_certify.json";
+  const fs::path json = temp_dir("cli_test") / "noncasting_certify.json";
   const RunResult r = run_cli("certify " + kSource + "/data/scenes/noncasting_floor.json --method exact --samples 200 "
                               "--json " + json.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_EQ(read_json(json)["triangles"], 540);
-  const fs::path nothing = temp_dir() / "nothing_casts.json";
+  const fs::path nothing = temp_dir("cli_test") / "nothing_casts.json";
   std::ofstream(nothing) << R"({"meshes": [{"generator": "floor", "casts": false}]})";
   const RunResult none = run_cli("certify " + nothing.string());
   EXPECT_EQ(none.exit_code, 2);
@@ -118,7 +92,7 @@ TEST(CliCertify, NonCastingMeshes_CertifiesTheCastersOnlyAndNeedsOne) {
 }
 
 TEST(CliInspect, BadFile_ExitsTwoNamingFileAndLine) {
-  const fs::path bad = temp_dir() / "bad.obj";
+  const fs::path bad = temp_dir("cli_test") / "bad.obj";
   std::ofstream(bad) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n";
   const RunResult r = run_cli("inspect " + bad.string());
   EXPECT_EQ(r.exit_code, 2);
@@ -132,7 +106,7 @@ TEST(CliInspect, MissingFile_ExitsTwoNamingFile) {
 }
 
 TEST(CliInspect, BadScene_ExitsTwoNamingKey) {
-  const fs::path scene = temp_dir() / "scene.json";
+  const fs::path scene = temp_dir("cli_test") / "scene.json";
   std::ofstream(scene) << R"({"meshes": [{"generator": "box", "colour": 1}]})";
   const RunResult r = run_cli("inspect " + scene.string());
   EXPECT_EQ(r.exit_code, 2);
@@ -140,7 +114,7 @@ TEST(CliInspect, BadScene_ExitsTwoNamingKey) {
 }
 
 TEST(CliCertify, DefaultScene_JsonHasEveryMethodAndExactIsCertified) {
-  const fs::path json = temp_dir() / "certify.json";
+  const fs::path json = temp_dir("cli_test") / "certify.json";
   const RunResult r = run_cli("certify " + kDefaultScene + " --samples 400 --json " + json.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const nlohmann::json j = read_json(json);
@@ -157,7 +131,7 @@ TEST(CliCertify, DefaultScene_JsonHasEveryMethodAndExactIsCertified) {
 }
 
 TEST(CliCertify, CubeUnderDirectionalLight_ClosedAndVolumeWritten) {
-  const fs::path dir = temp_dir();
+  const fs::path dir = temp_dir("cli_test");
   const RunResult r = run_cli("certify " + kCube + " --method refedge --precision double --light 1,2,3,0 --volume-out " +
                               (dir / "volume.off").string() + " --json " + (dir / "c.json").string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
@@ -174,7 +148,7 @@ TEST(CliCertify, BadLight_ExitsTwo) {
 }
 
 TEST(CliCertify, BadPointFile_ExitsTwoNamingLine) {
-  const fs::path points = temp_dir() / "points.txt";
+  const fs::path points = temp_dir("cli_test") / "points.txt";
   std::ofstream(points) << "# comment\n1 2 3\n4 five 6\n";
   const RunResult r = run_cli("certify " + kCube + " --points " + points.string());
   EXPECT_EQ(r.exit_code, 2);
@@ -182,7 +156,7 @@ TEST(CliCertify, BadPointFile_ExitsTwoNamingLine) {
 }
 
 TEST(CliCertify, UserPoints_AreChecked) {
-  const fs::path dir = temp_dir();
+  const fs::path dir = temp_dir("cli_test");
   std::ofstream(dir / "p.txt") << "5 5 4\n-3 0.3 0.2\n";
   const RunResult r = run_cli("certify " + kCube + " --method exact --samples 0 --light 10,0.5,0.5,1 --points " +
                               (dir / "p.txt").string() + " --json " + (dir / "u.json").string());
@@ -194,19 +168,13 @@ TEST(CliCertify, UserPoints_AreChecked) {
 
 namespace {
 
-// render needs EGL (here Mesa's llvmpipe); without it render exits 2 naming EGL, and the
-// capture tests skip rather than fail on machines with no GL at all.
-bool render_unavailable(const RunResult& r) {
-  return r.exit_code == 2 && r.output.find("EGL") != std::string::npos;
-}
-
 void capture_and_certify(const std::string& method) {
-  const fs::path volume = temp_dir() / ("capture_" + method + ".vol");
+  const fs::path volume = temp_dir("cli_test") / ("capture_" + method + ".vol");
   const RunResult render =
       run_cli("render " + kDefaultScene + " --method " + method + " --size 64x48 --capture " + volume.string());
   if (render_unavailable(render)) GTEST_SKIP() << render.output;
   ASSERT_EQ(render.exit_code, 0) << render.output;
-  const fs::path json = temp_dir() / ("capture_" + method + ".json");
+  const fs::path json = temp_dir("cli_test") / ("capture_" + method + ".json");
   const RunResult r = run_cli("certify --volume " + volume.string() + " --json " + json.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("closed                 yes"), std::string::npos) << r.output;
@@ -227,7 +195,7 @@ TEST(CliCapture, CsVolumeAsDrawn_IsClosed) { capture_and_certify("cs"); }
 TEST(CliCapture, GsVolumeAsDrawn_IsClosed) { capture_and_certify("gs"); }
 
 TEST(CliCapture, PlantedFault_OneFaceDeleted_ExitsOneWithUnbalancedEdges) {
-  const fs::path volume = temp_dir() / "capture_fault.vol";
+  const fs::path volume = temp_dir("cli_test") / "capture_fault.vol";
   const RunResult render = run_cli("render " + kDefaultScene + " --method cs --size 64x48 --capture " + volume.string());
   if (render_unavailable(render)) GTEST_SKIP() << render.output;
   ASSERT_EQ(render.exit_code, 0) << render.output;
@@ -244,7 +212,7 @@ TEST(CliCapture, PlantedFault_OneFaceDeleted_ExitsOneWithUnbalancedEdges) {
   in.close();
   ASSERT_TRUE(deleted);
   std::ofstream(volume) << kept.str();
-  const fs::path json = temp_dir() / "capture_fault.json";
+  const fs::path json = temp_dir("cli_test") / "capture_fault.json";
   const RunResult r = run_cli("certify --volume " + volume.string() + " --json " + json.string());
   EXPECT_EQ(r.exit_code, 1) << r.output;
   EXPECT_NE(r.output.find("unbalanced edges"), std::string::npos) << r.output;
@@ -254,7 +222,7 @@ TEST(CliCapture, PlantedFault_OneFaceDeleted_ExitsOneWithUnbalancedEdges) {
 }
 
 TEST(CliCapture, BadVolumeFile_ExitsTwoNamingLine) {
-  const fs::path volume = temp_dir() / "bad.vol";
+  const fs::path volume = temp_dir("cli_test") / "bad.vol";
   std::ofstream(volume) << "v 0 0 0 1\nv 1 0 0 2\n";
   const RunResult r = run_cli("certify --volume " + volume.string());
   EXPECT_EQ(r.exit_code, 2);
@@ -312,7 +280,7 @@ struct TimedRender {
   nlohmann::json report;
 };
 TimedRender render_timed(const std::string& method) {
-  const fs::path json = temp_dir() / ("timing_" + method + ".json");
+  const fs::path json = temp_dir("cli_test") / ("timing_" + method + ".json");
   TimedRender r{run_cli("render " + kDefaultScene + " --method " + method + " --size 128x96 --timing --frames 5 " +
                         "--json " + json.string()),
                 nullptr};
@@ -358,7 +326,7 @@ TEST(CliTiming, FramesWithoutTimingOrZero_ExitsTwo) {
 // ---- shadowcert fuzz -----------------------------------------------------------------------
 
 TEST(CliFuzz, TinyCampaign_ExitsZeroJsonHasCasesSecondsAndEveryMethod) {
-  const fs::path dir = temp_dir() / "fuzz";
+  const fs::path dir = temp_dir("cli_test") / "fuzz";
   const fs::path json = dir / "fuzz.json";
   const RunResult r = run_cli("fuzz --seed 3 --cases 60 --triangles 30 --out " + (dir / "out").string() + " --json " +
                               json.string());
@@ -389,7 +357,7 @@ TEST(CliFuzz, TinyCampaign_ExitsZeroJsonHasCasesSecondsAndEveryMethod) {
 }
 
 TEST(CliFuzz, SameSeed_SameFiguresWhateverTheThreads) {
-  const fs::path dir = temp_dir() / "fuzz_threads";
+  const fs::path dir = temp_dir("cli_test") / "fuzz_threads";
   const std::string common = "fuzz --seed 9 --cases 40 --triangles 20 --out " + (dir / "out").string();
   ASSERT_EQ(run_cli(common + " --threads 1 --json " + (dir / "one.json").string()).exit_code, 0);
   ASSERT_EQ(run_cli(common + " --threads 2 --json " + (dir / "two.json").string()).exit_code, 0);
@@ -399,7 +367,7 @@ TEST(CliFuzz, SameSeed_SameFiguresWhateverTheThreads) {
 }
 
 TEST(CliFuzz, ShrinkFindings_KimReproducersThatCertifyReplays) {
-  const fs::path dir = temp_dir() / "fuzz_findings";
+  const fs::path dir = temp_dir("cli_test") / "fuzz_findings";
   const RunResult r = run_cli("fuzz --seed 1 --cases 30 --methods exact,kim-float --shrink-findings --max-reproducers 1 "
                               "--out " + (dir / "out").string() + " --json " + (dir / "f.json").string());
   ASSERT_EQ(r.exit_code, 0) << r.output;  // kim may fail: a finding, not an error
@@ -433,7 +401,7 @@ TEST(CliFuzz, BadOptions_ExitTwo) {
 // fuzz --gl (docs/campaign.md, "The GL methods"): cases 0 to 11 of seed 1 at 30 triangles pass
 // every robust GL method on llvmpipe; every pixel of every case is judged once per method.
 TEST(CliFuzz, TinyGlCampaign_ExitsZeroJsonHasEveryGlMethod) {
-  const fs::path dir = temp_dir() / "fuzz_gl";
+  const fs::path dir = temp_dir("cli_test") / "fuzz_gl";
   const fs::path json = dir / "gl.json";
   const RunResult r = run_cli("fuzz --gl --seed 1 --cases 12 --triangles 30 --gl-size 32x24 --out " +
                               (dir / "out").string() + " --json " + json.string());
@@ -471,7 +439,7 @@ TEST(CliFuzz, TinyGlCampaign_ExitsZeroJsonHasEveryGlMethod) {
 // half-space: hard errors (docs/campaign.md, "What the GL campaign found"). If this test starts
 // failing because cs passes, that finding was fixed: pin another failing case.
 TEST(CliFuzz, GlFailure_ShrunkToASceneThatDiffReplays) {
-  const fs::path dir = temp_dir() / "gl_campaign_failure";
+  const fs::path dir = temp_dir("cli_test") / "gl_campaign_failure";
   const fs::path json = dir / "gl.json";
   // Float signs: the light within rounding of a plane still fails them (exact signs do not).
   const RunResult r = run_cli("fuzz --gl --sign float --seed 2 --cases 20 --triangles 30 --methods exact --gl-methods cs "
@@ -501,9 +469,9 @@ TEST(CliFuzz, GlFailure_ShrunkToASceneThatDiffReplays) {
 
 // The same cases with the default exact signs: none fails (docs/gpu.md "Exact signs").
 TEST(CliFuzz, CasesThatFailFloatSigns_PassWithExactSigns) {
-  const fs::path json = temp_dir() / "gl_campaign_exact.json";
+  const fs::path json = temp_dir("cli_test") / "gl_campaign_exact.json";
   const RunResult r = run_cli("fuzz --gl --seed 2 --cases 20 --triangles 30 --methods exact --gl-methods cs,pertri "
-                              "--max-reproducers 0 --out " + (temp_dir() / "unused").string() + " --json " +
+                              "--max-reproducers 0 --out " + (temp_dir("cli_test") / "unused").string() + " --json " +
                               json.string());
   if (render_unavailable(r)) GTEST_SKIP() << r.output;
   ASSERT_EQ(r.exit_code, 0) << r.output;
@@ -525,7 +493,7 @@ TEST(CliFuzz, RegressionReproducer_CertifyReplaysItsRecordedCommand) {
     command += ' ';
     command += file ? (folder / word).string() : word;
   }
-  const fs::path certified = temp_dir() / "regression.json";
+  const fs::path certified = temp_dir("cli_test") / "regression.json";
   const RunResult r = run_cli(command + " --json " + certified.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const nlohmann::json j = read_json(certified);
@@ -543,9 +511,9 @@ const std::string kHardScenes = kSource + "/data/scenes/hard/";
 }  // namespace
 
 TEST(CliDiff, DefaultScene_EveryMethodInJsonImagesAndOfflineReport) {
-  const fs::path dir = temp_dir() / "diff_default";
-  const fs::path json = temp_dir() / "diff_default.json";
-  const fs::path report = temp_dir() / "diff_default.html";
+  const fs::path dir = temp_dir("cli_test") / "diff_default";
+  const fs::path json = temp_dir("cli_test") / "diff_default.json";
+  const fs::path report = temp_dir("cli_test") / "diff_default.html";
   const RunResult r = run_cli("diff " + kDefaultScene + " --size 64x48 --out " + dir.string() + " --json " +
                               json.string() + " --report " + report.string());
   if (render_unavailable(r)) GTEST_SKIP() << r.output;
@@ -574,8 +542,7 @@ TEST(CliDiff, DefaultScene_EveryMethodInJsonImagesAndOfflineReport) {
     EXPECT_TRUE(fs::exists(dir / file)) << file;
   EXPECT_EQ(read_json(dir / "summary.json"), j);
   // One page, every image inlined, nothing fetched from elsewhere.
-  std::ifstream in(report);
-  const std::string html((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string html = read_text(report);
   std::size_t images = 0;
   for (std::size_t at = html.find("src=\"data:image/png;base64,"); at != std::string::npos;
        at = html.find("src=\"data:image/png;base64,", at + 1))
@@ -586,7 +553,7 @@ TEST(CliDiff, DefaultScene_EveryMethodInJsonImagesAndOfflineReport) {
 }
 
 TEST(CliDiff, MethodsOption_ComparesOnlyThose) {
-  const fs::path json = temp_dir() / "diff_methods.json";
+  const fs::path json = temp_dir("cli_test") / "diff_methods.json";
   const RunResult r = run_cli("diff " + kDefaultScene + " --size 48x36 --methods gs,shadowmap --json " + json.string());
   if (render_unavailable(r)) GTEST_SKIP() << r.output;
   ASSERT_EQ(r.exit_code, 0) << r.output;
@@ -599,7 +566,7 @@ TEST(CliDiff, MethodsOption_ComparesOnlyThose) {
 // z-pass counts the faces between the eye and P: with the eye inside a shadow volume every
 // pixel behind it is off by the eye's own count. cpu is a robust method, so the run fails.
 TEST(CliDiff, RobustMethodWithHardErrors_ExitsOne) {
-  const fs::path json = temp_dir() / "diff_zpass.json";
+  const fs::path json = temp_dir("cli_test") / "diff_zpass.json";
   const RunResult r = run_cli("diff " + kHardScenes + "camera_inside_volume.json --size 48x36 --methods cpu --zpass --json " +
                               json.string());
   if (render_unavailable(r)) GTEST_SKIP() << r.output;
@@ -613,7 +580,7 @@ TEST(CliDiff, RobustMethodWithHardErrors_ExitsOne) {
 
 // The shadow map's errors are its speed-against-error figures, never a failure.
 TEST(CliDiff, ShadowMapHardErrors_ExitZero) {
-  const fs::path json = temp_dir() / "diff_shadowmap.json";
+  const fs::path json = temp_dir("cli_test") / "diff_shadowmap.json";
   const RunResult r = run_cli("diff " + kHardScenes + "light_inside_closed_caster.json --size 48x36 --methods shadowmap "
                               "--shadowmap-size 64 --json " + json.string());
   if (render_unavailable(r)) GTEST_SKIP() << r.output;
@@ -634,7 +601,7 @@ TEST(CliDiff, BadOptions_ExitTwo) {
 // ---- --stencil auto|zpass|zfail (docs/gpu.md#proven-z-pass) ------------------------------------
 
 TEST(CliStencil, RenderAuto_PlainSceneProvenZPassInTextAndJson) {
-  const fs::path json = temp_dir() / "render_auto.json";
+  const fs::path json = temp_dir("cli_test") / "render_auto.json";
   const RunResult r = run_cli("render " + kDefaultScene + " --size 48x36 --stencil auto --json " + json.string());
   if (render_unavailable(r)) GTEST_SKIP() << r.output;
   ASSERT_EQ(r.exit_code, 0) << r.output;
@@ -653,7 +620,7 @@ TEST(CliStencil, RenderAuto_PlainSceneProvenZPassInTextAndJson) {
 }
 
 TEST(CliStencil, DiffAuto_CameraInsideVolumePicksZFailAndPasses) {
-  const fs::path json = temp_dir() / "diff_auto.json";
+  const fs::path json = temp_dir("cli_test") / "diff_auto.json";
   const RunResult r = run_cli("diff " + kHardScenes + "camera_inside_volume.json --size 48x36 --methods cpu,cs "
                               "--stencil auto --json " + json.string());
   if (render_unavailable(r)) GTEST_SKIP() << r.output;
@@ -673,7 +640,7 @@ TEST(CliStencil, DiffAuto_CameraInsideVolumePicksZFailAndPasses) {
 TEST(CliStencil, AliasesAndRequestedMethods_SayRequested) {
   for (const char* option : {"--zpass", "--stencil zpass", "--stencil zpass --zpass"}) {
     SCOPED_TRACE(option);
-    const fs::path json = temp_dir() / "render_requested.json";
+    const fs::path json = temp_dir("cli_test") / "render_requested.json";
     const RunResult r = run_cli("render " + kDefaultScene + " --size 32x24 " + option + " --json " + json.string());
     if (render_unavailable(r)) GTEST_SKIP() << r.output;
     ASSERT_EQ(r.exit_code, 0) << r.output;
@@ -709,7 +676,7 @@ TEST(CliStencil, BadOrConflictingStencilOptions_ExitTwo) {
 // chain, named with their reports; discrete is held to 0 hard errors, accurate and smooth report
 // theirs without failing.
 TEST(CliSilhouette, DiffDefaultScene_NonManifoldMeshesFallBackWithTheirReports) {
-  const fs::path json = temp_dir() / "diff_silhouette.json";
+  const fs::path json = temp_dir("cli_test") / "diff_silhouette.json";
   const RunResult r = run_cli("diff " + kDefaultScene + " --size 96x72 --methods discrete,accurate,smooth,smooth-gpu --json " +
                               json.string());
   if (render_unavailable(r)) GTEST_SKIP() << r.output;
@@ -736,7 +703,7 @@ TEST(CliSilhouette, DiffDefaultScene_NonManifoldMeshesFallBackWithTheirReports) 
 }
 
 TEST(CliSilhouette, RenderSmoothSphere_OneLoopAndAShadow) {
-  const fs::path json = temp_dir() / "render_smooth.json";
+  const fs::path json = temp_dir("cli_test") / "render_smooth.json";
   const RunResult r = run_cli("render " + kSource + "/data/scenes/smooth_sphere.json --method smooth --epsilon 0.003 "
                               "--size 160x120 --json " + json.string());
   if (render_unavailable(r)) GTEST_SKIP() << r.output;
@@ -753,7 +720,7 @@ TEST(CliSilhouette, RenderSmoothSphere_OneLoopAndAShadow) {
 // analytic shadow (docs/smooth-silhouettes.md#per-pixel-error-against-the-analytic-shadow),
 // reports it in text and JSON and keeps the exit code; other runs and other scenes get none.
 TEST(CliSilhouette, DiffSmoothSphere_ReportsTheAnalyticErrorAndKeepsTheExitCode) {
-  const fs::path json = temp_dir() / "diff_analytic.json";
+  const fs::path json = temp_dir("cli_test") / "diff_analytic.json";
   const RunResult r = run_cli("diff " + kSource + "/data/scenes/smooth_sphere.json --size 160x120 --methods "
                               "cpu,discrete,smooth --json " + json.string());
   if (render_unavailable(r)) GTEST_SKIP() << r.output;
@@ -770,7 +737,7 @@ TEST(CliSilhouette, DiffSmoothSphere_ReportsTheAnalyticErrorAndKeepsTheExitCode)
   EXPECT_LT(smooth["caster_disagree"].get<int>(), discrete["caster_disagree"].get<int>());
   EXPECT_TRUE(j["methods"]["smooth"]["per_light"][0].contains("analytic"));
   // default.json has no analytic caster.
-  const fs::path plain = temp_dir() / "diff_no_analytic.json";
+  const fs::path plain = temp_dir("cli_test") / "diff_no_analytic.json";
   ASSERT_EQ(run_cli("diff " + kDefaultScene + " --size 64x48 --methods smooth --json " + plain.string()).exit_code, 0);
   EXPECT_FALSE(read_json(plain).contains("analytic"));
 }
@@ -786,7 +753,7 @@ TEST(CliSilhouette, BadEpsilonOrCreaseAngle_ExitTwo) {
 // caster report in the JSON.
 TEST(CliSilhouette, CertifySmooth_EveryLightClosedWithTheCasters) {
   for (const char* method : {"discrete", "accurate", "smooth"}) {
-    const fs::path json = temp_dir() / (std::string("certify_") + method + ".json");
+    const fs::path json = temp_dir("cli_test") / (std::string("certify_") + method + ".json");
     const RunResult r = run_cli("certify " + kSource + "/data/scenes/closed_casters.json --method " + method +
                                 " --json " + json.string());
     ASSERT_EQ(r.exit_code, 0) << r.output;
@@ -802,7 +769,7 @@ TEST(CliSilhouette, CertifySmooth_EveryLightClosedWithTheCasters) {
 // certify --method smooth-gpu: the GPU builds the smooth casters' part of every light's volume,
 // read back and certified closed with the rest; render draws it.
 TEST(CliSilhouette, CertifyAndRenderSmoothGpu_ClosedAndAShadow) {
-  const fs::path json = temp_dir() / "certify_smooth_gpu.json";
+  const fs::path json = temp_dir("cli_test") / "certify_smooth_gpu.json";
   const RunResult r = run_cli("certify " + kSource + "/data/scenes/closed_casters.json --method smooth-gpu --json " +
                               json.string());
   if (render_unavailable(r)) GTEST_SKIP() << r.output;
@@ -812,7 +779,7 @@ TEST(CliSilhouette, CertifyAndRenderSmoothGpu_ClosedAndAShadow) {
   bool built_on_gpu = false;
   for (const nlohmann::json& c : j["casters"]) built_on_gpu = built_on_gpu || c["cast_by"] == "smooth-gpu";
   EXPECT_TRUE(built_on_gpu) << j.dump();
-  const fs::path render_json = temp_dir() / "render_smooth_gpu.json";
+  const fs::path render_json = temp_dir("cli_test") / "render_smooth_gpu.json";
   const RunResult render = run_cli("render " + kSource + "/data/scenes/smooth_sphere.json --method smooth-gpu "
                                    "--size 160x120 --json " + render_json.string());
   ASSERT_EQ(render.exit_code, 0) << render.output;
@@ -822,7 +789,7 @@ TEST(CliSilhouette, CertifyAndRenderSmoothGpu_ClosedAndAShadow) {
 // shadowcert soft: the exact soft reference's figures in JSON, its light as PNG and PFM, and
 // the hard shadow for R = 0 (docs/smoothies.md#the-exact-soft-reference).
 TEST(CliSoft, SphereOverFloor_JsonRegionsAndLightFiles) {
-  const fs::path dir = temp_dir();
+  const fs::path dir = temp_dir("cli_test");
   const fs::path json = dir / "soft.json", png = dir / "soft_light.png";
   const RunResult r = run_cli("soft " + kSource + "/data/scenes/sphere_over_floor.json --size 64x48 --radius 0.5 "
                               "--samples 16 --json " + json.string() + " --out " + png.string() + " --regions " +
@@ -872,7 +839,7 @@ TEST(CliSoft, BadOptions_ExitTwo) {
 // `shadowcert track` (docs/smoothies.md, "Silhouette tracking"): the bifurcation case of
 // tests/contour/silhouette_tracker_test.cpp, a torus of 8 x 8 segments lit from its own plane.
 TEST(CliTrack, Torus_JsonHasSummariesAndFramesPerVariant) {
-  const fs::path dir = temp_dir();
+  const fs::path dir = temp_dir("cli_test");
   const fs::path scene = dir / "track_torus.json";
   std::ofstream(scene) << R"({"meshes": [{"generator": "torus", "params": {"minor_radius": 0.3, "major_segments": 8,
                               "minor_segments": 8}}]})";
@@ -911,7 +878,7 @@ TEST(CliTrack, Torus_JsonHasSummariesAndFramesPerVariant) {
 
 // Soups are not tracked: named with the reason, their silhouette the exact full search's.
 TEST(CliTrack, DefaultScene_SoupsNamedWithTheirReason) {
-  const fs::path json = temp_dir() / "track_default.json";
+  const fs::path json = temp_dir("cli_test") / "track_default.json";
   const RunResult r = run_cli("track " + kDefaultScene + " --frames 12 --json " + json.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("mesh fan: 16 triangles, 33 edges: not tracked (not an oriented 2-manifold: 1 non-manifold edge"),
@@ -930,7 +897,7 @@ TEST(CliTrack, DefaultScene_SoupsNamedWithTheirReason) {
 }
 
 TEST(CliTrack, PathFile_OneFramePerLightOrRepeated) {
-  const fs::path dir = temp_dir();
+  const fs::path dir = temp_dir("cli_test");
   const fs::path path = dir / "track_path.txt";
   std::ofstream(path) << "# three lights\n4 2 0 1\n0 2 4 1\n0.3 1 0.2 0\n";
   const fs::path json = dir / "track_path.json";
@@ -944,7 +911,7 @@ TEST(CliTrack, PathFile_OneFramePerLightOrRepeated) {
 }
 
 TEST(CliTrack, BadInput_ExitsTwoNamingTheOptionOrFileAndLine) {
-  const fs::path dir = temp_dir();
+  const fs::path dir = temp_dir("cli_test");
   const auto fails = [](const std::string& arguments, const std::string& expected) {
     const RunResult r = run_cli("track " + arguments);
     EXPECT_EQ(r.exit_code, 2) << arguments << "\n" << r.output;
@@ -984,7 +951,7 @@ std::vector<float> read_pfm_values(const fs::path& file, int& width, int& height
 }  // namespace
 
 TEST(CliSmoothie, RenderSmoothie_JsonAndLightImagePngAndPfm) {
-  const fs::path dir = temp_dir();
+  const fs::path dir = temp_dir("cli_test");
   const fs::path json = dir / "smoothie.json", png = dir / "smoothie_light.png";
   const RunResult r = run_cli("render " + kDefaultScene + " --size 128x96 --method smoothie --smoothie-width 0.3 "
                               "--smoothie-space light --light-image " + png.string() + " --json " + json.string());
@@ -1014,7 +981,7 @@ TEST(CliSmoothie, RenderSmoothie_JsonAndLightImagePngAndPfm) {
 }
 
 TEST(CliSmoothie, PcfAndPcssFlags_PickTheirMethods) {
-  const fs::path dir = temp_dir();
+  const fs::path dir = temp_dir("cli_test");
   const RunResult pcf = run_cli("render " + kDefaultScene + " --size 64x48 --pcf 5 --json " + (dir / "pcf.json").string());
   ASSERT_EQ(pcf.exit_code, 0) << pcf.output;
   EXPECT_EQ(read_json(dir / "pcf.json")["method"], "pcf");
@@ -1029,7 +996,7 @@ TEST(CliSmoothie, PcfAndPcssFlags_PickTheirMethods) {
 
 // A stencil method's light image is its lit mask: 1 on the lit receiver pixels, 0 on the shadowed.
 TEST(CliSmoothie, StencilMethodLightImage_IsTheLitMask) {
-  const fs::path dir = temp_dir();
+  const fs::path dir = temp_dir("cli_test");
   const fs::path json = dir / "cs.json";
   const RunResult r = run_cli("render " + kDefaultScene + " --size 96x72 --method cs --light-image " +
                               (dir / "cs_light.png").string() + " --json " + json.string());
@@ -1077,7 +1044,7 @@ TEST(CliSmoothie, BadOptions_ExitTwoNamingTheOption) {
 
 // diff takes the soft methods as baselines: reported, never a failure.
 TEST(CliSmoothie, DiffSoftMethods_ReportedAsBaselines) {
-  const fs::path json = temp_dir() / "diff_soft.json";
+  const fs::path json = temp_dir("cli_test") / "diff_soft.json";
   const RunResult r = run_cli("diff " + kDefaultScene + " --size 48x36 --methods pcf,pcss,smoothie --pcf 3 --json " +
                               json.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
@@ -1094,7 +1061,7 @@ TEST(CliSmoothie, DiffSoftMethods_ReportedAsBaselines) {
 // A point light inside the scene's bounds: one map frustum cannot hold the scene; every
 // shadow-map method says so (text and JSON), as it draws what the capped frustum holds.
 TEST(CliSmoothie, LightInsideTheBounds_Reported) {
-  const fs::path json = temp_dir() / "capped.json";
+  const fs::path json = temp_dir("cli_test") / "capped.json";
   const RunResult r = run_cli("render " + kHardScenes + "light_inside_closed_caster.json --size 32x24 --method smoothie "
                               "--json " + json.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;

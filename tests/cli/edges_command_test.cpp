@@ -5,49 +5,20 @@
 // camera does not see exits 2 saying so. edges renders: without an EGL device it exits 2
 // naming EGL, and these tests skip.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
+#include "cli_run.h"
+
 namespace {
 
 namespace fs = std::filesystem;
 
-struct RunResult {
-  int exit_code = -1;
-  std::string output;  // stdout and stderr together
-};
-
-RunResult run_cli(const std::string& arguments) {
-  const std::string command = std::string(SHADOWCERT_CLI) + " " + arguments + " 2>&1";
-  RunResult result;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (pipe == nullptr) return result;
-  char buffer[4096];
-  while (std::fgets(buffer, sizeof buffer, pipe) != nullptr) result.output += buffer;
-  const int status = pclose(pipe);
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
-}
-
-fs::path temp_dir() {
-  fs::path dir = fs::temp_directory_path() / ("shadowcert_edges_test_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  return dir;
-}
-
-nlohmann::json read_json(const fs::path& file) {
-  std::ifstream in(file);
-  return nlohmann::json::parse(in);
-}
-
-bool render_unavailable(const RunResult& r) { return r.exit_code == 2 && r.output.find("EGL") != std::string::npos; }
+using namespace shadowcert::cli_test;
 
 const std::string kScene = std::string(SHADOWCERT_SOURCE_DIR) + "/data/scenes/edges_creases.json";
 
@@ -59,7 +30,7 @@ struct EdgesRun {
 
 // `edges SCENE ARGS --size 160x120` with --out, --edge-map and --json under a name of its own.
 EdgesRun edges(const std::string& name, const std::string& arguments, const std::string& scene = kScene) {
-  const fs::path dir = temp_dir();
+  const fs::path dir = temp_dir("edges_test");
   EdgesRun r;
   r.out = dir / (name + ".png");
   r.edge_map = dir / (name + "_map.png");
@@ -160,7 +131,7 @@ TEST(CliEdges, BadOptions_ExitTwoNamingTheOption) {
 }
 
 TEST(CliEdges, CameraSeesNothing_ExitsTwoSayingSo) {
-  const fs::path scene = temp_dir() / "looking_away.json";
+  const fs::path scene = temp_dir("edges_test") / "looking_away.json";
   std::ofstream(scene) << R"({"meshes": [{"generator": "floor", "params": {"half_size": 2}}],
     "camera": {"eye": [0, 1, 10], "target": [0, 1, 20], "size": [64, 48]}})";
   const RunResult r = run_cli("edges " + scene.string());
@@ -174,7 +145,7 @@ TEST(CliEdges, CameraSeesNothing_ExitsTwoSayingSo) {
 // meshes of ../shared/data (beast.obj, thingi10k_908460.stl, an OpenSCAD export), far from the
 // origin or far from unit size, were drawn with the default camera, which saw none of them.
 TEST(CliEdges, MeshFarFromTheOrigin_FramedAndEdged) {
-  const fs::path mesh = temp_dir() / "far_tetrahedron.off";
+  const fs::path mesh = temp_dir("edges_test") / "far_tetrahedron.off";
   std::ofstream(mesh) << "OFF\n4 4 0\n5000 5000 5000\n6000 5000 5000\n5000 6000 5000\n5000 5000 6000\n"
                          "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
   const EdgesRun r = edges("far_mesh", "--style gooch --shadows cs", mesh.string());

@@ -4,53 +4,22 @@
 // are not shards of one run (another seed, a shard twice, one missing, another kind of file)
 // are refused with exit 2, naming the file. Run through the real executable, as users run it.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
+#include "cli_run.h"
+
 namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
-
-struct RunResult {
-  int exit_code = -1;
-  std::string output;  // stdout and stderr together
-};
-
-RunResult run_cli(const std::string& arguments) {
-  const std::string command = std::string(SHADOWCERT_CLI) + " " + arguments + " 2>&1";
-  RunResult result;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (pipe == nullptr) return result;
-  char buffer[4096];
-  while (std::fgets(buffer, sizeof buffer, pipe) != nullptr) result.output += buffer;
-  const int status = pclose(pipe);
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
-}
-
-fs::path temp_dir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("shadowcert_shard_test_" + std::to_string(::getpid())) / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-json read_json(const fs::path& file) {
-  std::ifstream in(file);
-  return json::parse(in);
-}
+using namespace shadowcert::cli_test;
 
 void write_json(const fs::path& file, const json& value) { std::ofstream(file) << value.dump(2); }
-
-bool render_unavailable(const RunResult& r) { return r.exit_code == 2 && r.output.find("EGL") != std::string::npos; }
 
 // What a run's figures are, without what depends on the machine and the moment (times,
 // threads) or on where the files went (a reproducer's path and command name its --out).
@@ -104,7 +73,7 @@ const std::string kCampaign =
     "--seed 1 --cases 60 --triangles 30 --methods exact,kim-float,refedge-float --shrink-findings --max-reproducers 2";
 
 TEST(FuzzShards, ThreeShardsMerged_EqualTheWholeRun) {
-  const fs::path dir = temp_dir("three");
+  const fs::path dir = empty_temp_dir("shard_test", "three");
   const ShardedRun s = run_sharded(kCampaign, 3, dir);
   ASSERT_EQ(s.whole_exit, 0) << s.output;
   ASSERT_EQ(s.merge_exit, 0) << s.output;
@@ -125,7 +94,7 @@ TEST(FuzzShards, ThreeShardsMerged_EqualTheWholeRun) {
 }
 
 TEST(FuzzShards, MoreShardsThanCases_EmptyShardsMergeToo) {
-  const fs::path dir = temp_dir("empty");
+  const fs::path dir = empty_temp_dir("shard_test", "empty");
   const ShardedRun s = run_sharded("--seed 5 --cases 3 --triangles 20", 5, dir);
   ASSERT_EQ(s.whole_exit, 0) << s.output;
   ASSERT_EQ(s.merge_exit, 0) << s.output;
@@ -136,7 +105,7 @@ TEST(FuzzShards, MoreShardsThanCases_EmptyShardsMergeToo) {
 // The GL part shards with the exact part. Float signs fail gl-cs on case 15 of seed 2
 // (cli_test's GlFailure_...): the merge keeps the whole run's reproducers and exits 1 as it does.
 TEST(FuzzShards, GlShardsMerged_EqualTheWholeRunFailureIncluded) {
-  const fs::path dir = temp_dir("gl");
+  const fs::path dir = empty_temp_dir("shard_test", "gl");
   const ShardedRun s = run_sharded(
       "--gl --sign float --seed 2 --cases 20 --triangles 30 --methods exact --gl-methods cs,pertri --gl-size 32x24 "
       "--max-reproducers 1",
@@ -163,7 +132,7 @@ TEST(FuzzShards, MalformedShard_ExitsTwoNamingTheOption) {
 class MergeRefusal : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    dir_ = new fs::path(temp_dir("refusal"));
+    dir_ = new fs::path(empty_temp_dir("shard_test", "refusal"));
     for (int k = 1; k <= 3; ++k)
       ASSERT_EQ(run_cli("fuzz --seed 4 --cases 12 --triangles 20 --methods exact --shard " + std::to_string(k) + "/3" +
                         " --json " + file(k))
@@ -264,7 +233,7 @@ json bench_shard(int k, int n, int scene_count, const std::string& renderer) {
 }
 
 TEST(MergeBench, ShardsOfTheSchema_MergeIntoTheWholeRunsScenesAndTotals) {
-  const fs::path dir = temp_dir("bench");
+  const fs::path dir = empty_temp_dir("shard_test", "bench");
   for (int k = 1; k <= 3; ++k) write_json(dir / ("b" + std::to_string(k) + ".json"), bench_shard(k, 3, 7, "llvmpipe"));
   const std::string files =
       " " + (dir / "b3.json").string() + " " + (dir / "b1.json").string() + " " + (dir / "b2.json").string();
