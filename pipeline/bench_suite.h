@@ -1,5 +1,5 @@
 #pragma once
-// `shadowcert bench` (docs/bench.md, DESIGN §7): every GL method, at each value of its swept
+// `shadowcert bench` (docs/bench.md): every GL method, at each value of its swept
 // parameter, on the scenes of a suite, each run's time and its error by the measure that fits it.
 // The work per scene is compare_scene's (pipeline/scene_comparison.h): one exact image, the
 // analytic truth when a smooth-silhouette run meets an ellipsoid caster, the exact soft

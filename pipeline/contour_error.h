@@ -1,5 +1,5 @@
 #pragma once
-// The contour error of a smooth-silhouette method (DESIGN §8, docs/smooth-silhouettes.md, "Error
+// The contour error of a smooth-silhouette method (docs/smooth-silhouettes.md, "Error
 // against the analytic shadow"): how far the shadow boundary the method casts on a plane lies
 // from the true one, the conic where the light's tangent cone meets the plane
 // (reference/ellipsoid_shadow.h). What bench/smooth_silhouette_bench.cpp tabulates per shape,

@@ -3,7 +3,7 @@
 // edges chosen exactly here, their quads built by contour/smoothie.h, drawn by the `smoothie`
 // method (gpu/shadow_method_renderer.h, gpu/smoothie_map.h).
 //
-// Silhouette edges (docs/definitions.md#counts, DESIGN §9): the edges of the casters' canonical
+// Silhouette edges (docs/definitions.md#counts, docs/smoothies.md): the edges of the casters' canonical
 // soup with exact multiplicity m != 0 for the light, taken on the input as GL receives it (every
 // coordinate and the light rounded to float, core/float_rounding.h; the same indices, as cpu's
 // chain). On an edge of exactly two triangles that run it in opposite directions (an oriented

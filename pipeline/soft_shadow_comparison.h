@@ -1,5 +1,5 @@
 #pragma once
-// How fake a fake soft shadow is (docs/smoothies.md#the-exact-soft-reference, DESIGN §9): a
+// How fake a fake soft shadow is (docs/smoothies.md#the-exact-soft-reference): a
 // method's per-pixel amount of light for its first light against the exact soft reference
 // (pipeline/soft_reference.h). Plain arithmetic on images: no GL, no exact predicate.
 //

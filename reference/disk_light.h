@@ -26,7 +26,7 @@
 
 namespace shadowcert {
 
-// DESIGN §9's reference takes K >= 64 samples: 8 x 8 strata.
+// The reference takes K >= 64 samples (docs/smoothies.md#the-exact-soft-reference): 8 x 8 strata.
 inline constexpr std::uint32_t kReferenceDiskSamples = 64;
 inline constexpr std::uint64_t kDefaultDiskSeed = 1;
 

@@ -1,6 +1,5 @@
 #pragma once
-// The exact ground truth of an edge map (docs/edge-maps.md#the-exact-ground-truth, DESIGN
-// section 10): per pixel and per class, whether a visible edge of that class passes through
+// The exact ground truth of an edge map (docs/edge-maps.md#the-exact-ground-truth): per pixel and per class, whether a visible edge of that class passes through
 // the pixel's footprint, for a soup seen by a camera.
 //
 // Classes (exact/view_edges.h on the canonical soup, the eye as a point light): PROFILE edges are

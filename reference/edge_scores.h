@@ -1,6 +1,5 @@
 #pragma once
-// Scores of an edge map against the exact ground truth (docs/edge-maps.md#scores, DESIGN section
-// 10): precision, recall and F1 of the thresholded intensities of one class (profile or inner)
+// Scores of an edge map against the exact ground truth (docs/edge-maps.md#scores): precision, recall and F1 of the thresholded intensities of one class (profile or inner)
 // against that class of reference/edge_ground_truth.h, over plain row-major arrays (row 0 at
 // the top), so that any detector can be scored: the GL edge maps (gpu/edge_map.h), the ground
 // truth itself, a test's hand-made image.
@@ -8,7 +7,7 @@
 // A pixel is DETECTED at threshold T when its intensity is strictly above T (gpu/edge_map.h's
 // convention: a threshold of 1 detects nothing). Two ways to match detections with the truth:
 //
-//   window (DESIGN section 10): a detection is TRUE when a truth edge pixel of its class lies
+//   window (docs/edge-maps.md#definitions): a detection is TRUE when a truth edge pixel of its class lies
 //     within its (2 radius + 1)^2 window (Chebyshev distance <= radius: 3 x 3 for radius 1,
 //     5 x 5 for 2, the pixel itself for 0); a truth pixel is FOUND when a detection lies in its
 //     window. Many detections may match one truth pixel (a two-pixel-wide line of detections
@@ -69,7 +68,7 @@ struct EdgeTolerance {
   [[nodiscard]] std::string name() const;
 };
 
-// The tolerances every table reports: one pixel (DESIGN section 10), two pixels, and bsds.
+// The tolerances every table reports: one pixel (the reference tolerance, docs/edge-maps.md#definitions), two pixels, and bsds.
 [[nodiscard]] std::vector<EdgeTolerance> standard_edge_tolerances();
 
 // The thresholds of the curve: fine where the GL filters' intensities live (an edge map's

@@ -1,5 +1,5 @@
 #pragma once
-// The exact soft reference (docs/smoothies.md#the-exact-soft-reference, DESIGN §9): how much of
+// The exact soft reference (docs/smoothies.md#the-exact-soft-reference): how much of
 // an area light reaches each receiver pixel, as the mean of exact hard verdicts over sample
 // lights on it. Fake soft shadows (PCF, PCSS, smoothies) are measured against it
 // (pipeline/soft_shadow_comparison.h).
@@ -103,7 +103,7 @@ struct SoftShadowOptions {
 [[nodiscard]] SoftShadowImage soft_shadow_image(const Soup& soup, std::span<const Light> samples, const Camera& camera,
                                                 const SoftShadowOptions& options = {});
 
-// The reference of DESIGN §9: the disk light around `light` (reference/disk_light.h) facing the
+// The reference (docs/smoothies.md#the-exact-soft-reference): the disk light around `light` (reference/disk_light.h) facing the
 // centre of the soup's bounds (scene_bounds_centre), sampled by `sampling`, imaged by
 // soft_shadow_image. sampling.radius == 0 gives the exact hard shadow (one sample). Throws what
 // disk_light_samples and soft_shadow_image throw.
