@@ -265,18 +265,16 @@ void register_benchmarks() {
 // Parses and removes this program's own flags (Google Benchmark rejects flags it does not know).
 void take_settings(int& argc, char** argv) {
   int kept = 1;
-  const auto size = [](std::string_view value, std::uint32_t& w, std::uint32_t& h) {
-    const std::size_t x = value.find('x');
-    if (x == std::string_view::npos) throw std::invalid_argument("a size is WxH, e.g. 1024x768");
-    w = static_cast<std::uint32_t>(std::stoul(std::string(value.substr(0, x))));
-    h = static_cast<std::uint32_t>(std::stoul(std::string(value.substr(x + 1))));
-  };
   for (int i = 1; i < argc; ++i) {
     const std::string_view arg = argv[i];
-    if (arg.rfind("--resolution=", 0) == 0) {
-      size(arg.substr(13), g_settings.width, g_settings.height);
-    } else if (arg.rfind("--mesh-resolution=", 0) == 0) {
-      size(arg.substr(18), g_settings.mesh_width, g_settings.mesh_height);
+    if (const auto size = bench::flag_value(arg, "--resolution=")) {
+      const auto [width, height] = bench::image_size(*size, "--resolution");
+      g_settings.width = width;
+      g_settings.height = height;
+    } else if (const auto mesh_size = bench::flag_value(arg, "--mesh-resolution=")) {
+      const auto [width, height] = bench::image_size(*mesh_size, "--mesh-resolution");
+      g_settings.mesh_width = width;
+      g_settings.mesh_height = height;
     } else {
       argv[kept++] = argv[i];
     }

@@ -179,39 +179,23 @@ void run_frames(benchmark::State& state, const BenchScene& s, const Variant& v, 
   state.counters["tris"] = static_cast<double>(s.triangles);
 }
 
-std::vector<std::uint64_t> numbers(const std::string& list) {
-  std::vector<std::uint64_t> out;
-  for (std::size_t begin = 0; begin <= list.size();) {
-    const std::size_t end = std::min(list.find(',', begin), list.size());
-    out.push_back(std::stoull(list.substr(begin, end - begin)));
-    begin = end + 1;
-  }
-  return out;
-}
-
 // Parses and removes this program's own flags (Google Benchmark rejects flags it does not know).
 Settings take_settings(int& argc, char** argv) {
   Settings settings;
   int kept = 1;
   for (int i = 1; i < argc; ++i) {
     const std::string_view arg = argv[i];
-    const auto value = [&](std::string_view flag) -> std::optional<std::string> {
-      if (arg.substr(0, flag.size()) != flag) return std::nullopt;
-      return std::string(arg.substr(flag.size()));
-    };
+    const auto value = [&](std::string_view flag) { return bench::flag_value(arg, flag); };
     if (const auto list = value("--resolutions=")) {
       settings.resolutions.clear();
       for (std::size_t begin = 0; begin <= list->size();) {
         const std::size_t end = std::min(list->find(',', begin), list->size());
-        const std::string size = list->substr(begin, end - begin);
-        const std::size_t x = size.find('x');
-        if (x == std::string::npos) throw std::invalid_argument("--resolutions expects WxH,..., e.g. 1024x768");
-        settings.resolutions.push_back({static_cast<std::uint32_t>(std::stoul(size.substr(0, x))),
-                                        static_cast<std::uint32_t>(std::stoul(size.substr(x + 1)))});
+        const auto [width, height] = bench::image_size(list->substr(begin, end - begin), "--resolutions");
+        settings.resolutions.push_back({width, height});
         begin = end + 1;
       }
     } else if (const auto triangles = value("--triangles=")) {
-      settings.grid_triangles = numbers(*triangles).front();
+      settings.grid_triangles = bench::count_list(*triangles).front();
     } else if (const auto sync = value("--stage-sync=")) {
       settings.stage_sync = bench::stage_sync_setting(*sync);
     } else {

@@ -373,14 +373,10 @@ Settings take_settings(int& argc, char** argv) {
   int kept = 1;
   for (int i = 1; i < argc; ++i) {
     const std::string_view arg = argv[i];
-    if (arg.substr(0, 13) == "--resolution=") {
-      const std::string size(arg.substr(13));
-      const std::size_t x = size.find('x');
-      if (x == std::string::npos) throw std::invalid_argument("--resolution expects WxH, e.g. 1024x768");
-      settings.resolutions.push_back({static_cast<std::uint32_t>(std::stoul(size.substr(0, x))),
-                                      static_cast<std::uint32_t>(std::stoul(size.substr(x + 1)))});
-    } else if (arg.substr(0, 11) == "--pictures=") {
-      settings.pictures = std::string(arg.substr(11));
+    if (const auto size = bench::flag_value(arg, "--resolution=")) {
+      settings.resolutions.push_back(bench::image_size(*size, "--resolution"));
+    } else if (const auto pictures = bench::flag_value(arg, "--pictures=")) {
+      settings.pictures = *pictures;
     } else if (arg == "--quick") {
       settings.quick = true;
     } else {

@@ -7,12 +7,16 @@
 // own, bench/CMakeLists.txt).
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+#include <array>
+#include <cstdint>
 #include <exception>
 #include <iostream>
 #include <optional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "gpu/egl_context.h"
 #include "gpu/gl_environment_error.h"
@@ -41,6 +45,33 @@ template <class Settings>
 bool take_command_line(std::string_view program, int& argc, char** argv, Settings& settings,
                        Settings (*take_settings)(int&, char**)) {
   return take_command_line(program, argc, argv, [&](int& n, char** args) { settings = take_settings(n, args); });
+}
+
+// The programs' own flags, `--name=VALUE`: VALUE when `arg` is that flag, else nullopt.
+inline std::optional<std::string> flag_value(std::string_view arg, std::string_view flag) {
+  if (arg.substr(0, flag.size()) != flag) return std::nullopt;
+  return std::string(arg.substr(flag.size()));
+}
+
+// A comma-separated list of counts ("32000,128000"); std::stoull's exceptions on a bad one.
+inline std::vector<std::uint64_t> count_list(const std::string& list) {
+  std::vector<std::uint64_t> out;
+  for (std::size_t begin = 0; begin <= list.size();) {
+    const std::size_t end = std::min(list.find(',', begin), list.size());
+    out.push_back(std::stoull(list.substr(begin, end - begin)));
+    begin = end + 1;
+  }
+  return out;
+}
+
+// "WxH" as {W, H}; throws std::invalid_argument("FLAG expects WxH, e.g. EXAMPLE") without the x.
+inline std::array<std::uint32_t, 2> image_size(const std::string& text, std::string_view flag,
+                                               std::string_view example = "1024x768") {
+  const std::size_t x = text.find('x');
+  if (x == std::string::npos)
+    throw std::invalid_argument(std::string(flag) + " expects WxH, e.g. " + std::string(example));
+  return {static_cast<std::uint32_t>(std::stoul(text.substr(0, x))),
+          static_cast<std::uint32_t>(std::stoul(text.substr(x + 1)))};
 }
 
 // The context `program` draws with, current on this thread; nullopt, after a message on stderr

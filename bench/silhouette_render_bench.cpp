@@ -145,13 +145,10 @@ Settings take_settings(int& argc, char** argv) {
   int kept = 1;
   for (int i = 1; i < argc; ++i) {
     const std::string_view arg = argv[i];
-    constexpr std::string_view kResolution = "--resolution=";
-    if (arg.substr(0, kResolution.size()) == kResolution) {
-      const std::string size(arg.substr(kResolution.size()));
-      const std::size_t x = size.find('x');
-      if (x == std::string::npos) throw std::invalid_argument("--resolution expects WxH, e.g. 1920x1080");
-      settings.width = static_cast<std::uint32_t>(std::stoul(size.substr(0, x)));
-      settings.height = static_cast<std::uint32_t>(std::stoul(size.substr(x + 1)));
+    if (const auto size = bench::flag_value(arg, "--resolution=")) {
+      const auto [width, height] = bench::image_size(*size, "--resolution", "1920x1080");
+      settings.width = width;
+      settings.height = height;
     } else {
       argv[kept++] = argv[i];
     }

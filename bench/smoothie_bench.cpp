@@ -170,22 +170,13 @@ Settings take_settings(int& argc, char** argv) {
   int kept = 1;
   for (int i = 1; i < argc; ++i) {
     const std::string_view arg = argv[i];
-    const auto value = [&](std::string_view flag) -> std::optional<std::string> {
-      if (arg.substr(0, flag.size()) != flag) return std::nullopt;
-      return std::string(arg.substr(flag.size()));
-    };
+    const auto value = [&](std::string_view flag) { return bench::flag_value(arg, flag); };
     if (const auto list = value("--triangles=")) {
-      settings.triangles.clear();
-      for (std::size_t begin = 0; begin <= list->size();) {
-        const std::size_t end = std::min(list->find(',', begin), list->size());
-        settings.triangles.push_back(std::stoull(list->substr(begin, end - begin)));
-        begin = end + 1;
-      }
+      settings.triangles = bench::count_list(*list);
     } else if (const auto size = value("--resolution=")) {
-      const std::size_t x = size->find('x');
-      if (x == std::string::npos) throw std::invalid_argument("--resolution expects WxH, e.g. 1024x768");
-      settings.width = static_cast<std::uint32_t>(std::stoul(size->substr(0, x)));
-      settings.height = static_cast<std::uint32_t>(std::stoul(size->substr(x + 1)));
+      const auto [width, height] = bench::image_size(*size, "--resolution");
+      settings.width = width;
+      settings.height = height;
     } else if (const auto sync = value("--stage-sync=")) {
       settings.stage_sync = bench::stage_sync_setting(*sync);
     } else {

@@ -195,15 +195,11 @@ Settings take_settings(int& argc, char** argv) {
   int kept = 1;
   for (int i = 1; i < argc; ++i) {
     const std::string_view arg = argv[i];
-    const auto value = [&](std::string_view flag) -> std::optional<std::string> {
-      if (arg.substr(0, flag.size()) != flag) return std::nullopt;
-      return std::string(arg.substr(flag.size()));
-    };
+    const auto value = [&](std::string_view flag) { return bench::flag_value(arg, flag); };
     if (const auto size = value("--resolution=")) {
-      const std::size_t x = size->find('x');
-      if (x == std::string::npos) throw std::invalid_argument("--resolution expects WxH, e.g. 1024x768");
-      settings.width = static_cast<std::uint32_t>(std::stoul(size->substr(0, x)));
-      settings.height = static_cast<std::uint32_t>(std::stoul(size->substr(x + 1)));
+      const auto [width, height] = bench::image_size(*size, "--resolution");
+      settings.width = width;
+      settings.height = height;
     } else if (const auto r = value("--light-radius=")) {
       settings.light_radius = std::stod(*r);
       if (!(settings.light_radius > 0.0) || !std::isfinite(settings.light_radius))
