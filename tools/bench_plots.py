@@ -152,6 +152,17 @@ def analytic_runs(bench):
     return out
 
 
+def contour_axes(ax, light, xlabel):
+    """Log-log axes of a contour-error panel of the analytic suite under `light`."""
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel("contour error, max (world units)")
+    ax.set_title(f"analytic suite, {light} light", fontsize=10)
+    ax.grid(True, which="both", linewidth=0.3, alpha=0.5)
+    ax.legend(fontsize=7)
+
+
 def contour_plots(bench, out_dir, index):
     by_light = analytic_runs(bench)
     if not by_light:
@@ -175,14 +186,8 @@ def contour_plots(bench, out_dir, index):
             for s, r in by_light[light]:
                 if s["name"] == shape and r["method"] == "discrete":
                     ax.axhline(max(r["error"]["contour"]["max"], 1e-6), color=colour, linestyle=":", linewidth=0.8)
-        ax.set_xscale("log")
-        ax.set_yscale("log")
+        contour_axes(ax, light, "smooth's eps (world units)")
         ax.invert_xaxis()
-        ax.set_xlabel("smooth's eps (world units)")
-        ax.set_ylabel("contour error, max (world units)")
-        ax.set_title(f"analytic suite, {light} light", fontsize=10)
-        ax.grid(True, which="both", linewidth=0.3, alpha=0.5)
-        ax.legend(fontsize=7)
     fig.tight_layout()
     save(fig, out_dir, "contour_vs_eps.png", "Contour error against eps",
          "smooth's largest distance from the analytic conic on the floor as eps falls, one line per caster "
@@ -201,13 +206,7 @@ def contour_plots(bench, out_dir, index):
                 ax.plot([t for t, _ in points], [max(m, 1e-6) for _, m in points], marker="o", markersize=3,
                         color=colours(i / max(1, len(ids) - 1)), label=run_id,
                         linestyle="--" if run_id in ("discrete", "accurate") else "-")
-        ax.set_xscale("log")
-        ax.set_yscale("log")
-        ax.set_xlabel("triangles of the scene (uv spheres 8x4 to 256x128, and the floor)")
-        ax.set_ylabel("contour error, max (world units)")
-        ax.set_title(f"analytic suite, {light} light", fontsize=10)
-        ax.grid(True, which="both", linewidth=0.3, alpha=0.5)
-        ax.legend(fontsize=7)
+        contour_axes(ax, light, "triangles of the scene (uv spheres 8x4 to 256x128, and the floor)")
     fig.tight_layout()
     save(fig, out_dir, "contour_vs_tessellation.png", "Contour error against tessellation",
          "the largest distance from the analytic conic for every silhouette run as the sphere gets finer "
