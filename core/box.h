@@ -39,4 +39,23 @@ struct Box {
   return bounding_box(used);
 }
 
+// The box of one triangle: `vertices` indexed by `t` (in range: the caller's precondition).
+[[nodiscard]] inline Box triangle_box(const std::vector<Vec3>& vertices, const Triangle& t) {
+  Box box{vertices[t[0]], vertices[t[0]]};
+  for (std::size_t k = 1; k < 3; ++k)
+    for (std::size_t i = 0; i < 3; ++i) {
+      box.lo[i] = std::min(box.lo[i], vertices[t[k]][i]);
+      box.hi[i] = std::max(box.hi[i], vertices[t[k]][i]);
+    }
+  return box;
+}
+
+// The box of every triangle of the soup, in order (the leaves of a box tree over it).
+[[nodiscard]] inline std::vector<Box> triangle_boxes(const Soup& soup) {
+  std::vector<Box> boxes;
+  boxes.reserve(soup.triangles.size());
+  for (const Triangle& t : soup.triangles) boxes.push_back(triangle_box(soup.vertices, t));
+  return boxes;
+}
+
 }  // namespace shadowcert

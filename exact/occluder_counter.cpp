@@ -8,6 +8,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "core/box.h"
 #include "exact/box_tree.h"
 #include "exact/count_certificate.h"
 #include "exact/face_crossing.h"
@@ -51,17 +52,9 @@ CasterSet casting_triangles(const Soup& soup, const Light& l) {
 
 // Each caster's box: its vertices' coordinates, exact.
 std::vector<Box> caster_boxes(const CasterSet& set) {
-  std::vector<Box> boxes(set.casters.size());
-  for (std::size_t i = 0; i < boxes.size(); ++i) {
-    const Triangle& t = set.casters[i];
-    Box& b = boxes[i];
-    b.lo = b.hi = set.vertices[t[0]];
-    for (int k = 1; k < 3; ++k)
-      for (int d = 0; d < 3; ++d) {
-        b.lo[d] = std::min(b.lo[d], set.vertices[t[k]][d]);
-        b.hi[d] = std::max(b.hi[d], set.vertices[t[k]][d]);
-      }
-  }
+  std::vector<Box> boxes;
+  boxes.reserve(set.casters.size());
+  for (const Triangle& t : set.casters) boxes.push_back(triangle_box(set.vertices, t));
   return boxes;
 }
 

@@ -20,6 +20,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/box.h"
 #include "core/pixel_ray.h"
 #include "core/vector3.h"
 #include "exact/box_tree.h"
@@ -70,19 +71,10 @@ struct Geometry {
   }
 };
 
-std::vector<Box> triangle_boxes(const Soup& soup, const std::vector<std::uint32_t>* subset) {
-  const std::size_t n = subset ? subset->size() : soup.triangles.size();
-  std::vector<Box> boxes(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const Triangle& t = soup.triangles[subset ? (*subset)[i] : i];
-    Box& b = boxes[i];
-    b.lo = b.hi = soup.vertices[t[0]];
-    for (std::size_t k = 1; k < 3; ++k)
-      for (std::size_t d = 0; d < 3; ++d) {
-        b.lo[d] = std::min(b.lo[d], soup.vertices[t[k]][d]);
-        b.hi[d] = std::max(b.hi[d], soup.vertices[t[k]][d]);
-      }
-  }
+std::vector<Box> subset_boxes(const Soup& soup, const std::vector<std::uint32_t>& subset) {
+  std::vector<Box> boxes;
+  boxes.reserve(subset.size());
+  for (const std::uint32_t t : subset) boxes.push_back(triangle_box(soup.vertices, soup.triangles[t]));
   return boxes;
 }
 
@@ -150,8 +142,8 @@ Geometry build_geometry(const Scene& scene, const AnalyticImageOptions& options)
                                      g.vertex(static_cast<std::uint32_t>(t), 2), scene.lights[k]);
     });
   }
-  g.tree = std::make_unique<detail::BoxTree>(triangle_boxes(g.soup, nullptr), detail::LeafTest::exact);
-  g.casting_tree = std::make_unique<detail::BoxTree>(triangle_boxes(g.soup, &g.casting), detail::LeafTest::exact);
+  g.tree = std::make_unique<detail::BoxTree>(triangle_boxes(g.soup), detail::LeafTest::exact);
+  g.casting_tree = std::make_unique<detail::BoxTree>(subset_boxes(g.soup, g.casting), detail::LeafTest::exact);
   return g;
 }
 

@@ -19,6 +19,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/box.h"
 #include "core/pixel_ray.h"
 #include "core/vector3.h"
 #include "exact/box_tree.h"
@@ -42,21 +43,6 @@ double cosine_of(double degrees, const char* what) {
   } catch (const std::invalid_argument&) {
     throw std::invalid_argument(std::string("edge_ground_truth: ") + what + " must lie in [0, 180] degrees");
   }
-}
-
-std::vector<Box> triangle_boxes(const Soup& soup) {
-  std::vector<Box> boxes(soup.triangles.size());
-  for (std::size_t i = 0; i < boxes.size(); ++i) {
-    const Triangle& t = soup.triangles[i];
-    Box& b = boxes[i];
-    b.lo = b.hi = soup.vertices[t[0]];
-    for (int k = 1; k < 3; ++k)
-      for (int d = 0; d < 3; ++d) {
-        b.lo[d] = std::min(b.lo[d], soup.vertices[t[static_cast<std::size_t>(k)]][d]);
-        b.hi[d] = std::max(b.hi[d], soup.vertices[t[static_cast<std::size_t>(k)]][d]);
-      }
-  }
-  return boxes;
 }
 
 // Marks per pixel: bit 0 a profile edge passes, bit 1 one touches; bits 2, 3 the same for inner.

@@ -29,6 +29,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/box.h"
 #include "core/pixel_ray.h"
 #include "exact/box_tree.h"
 #include "exact/edge_multiplicity.h"
@@ -106,21 +107,6 @@ std::vector<Sign> casting_sides(const std::vector<Sign>& sides, std::span<const 
   for (std::size_t t = 0; t < sides.size(); ++t)
     if (casts[t] != 0) out.push_back(sides[t]);
   return out;
-}
-
-std::vector<Box> triangle_boxes(const Soup& soup) {
-  std::vector<Box> boxes(soup.triangles.size());
-  for (std::size_t i = 0; i < boxes.size(); ++i) {
-    const Triangle& t = soup.triangles[i];
-    Box& b = boxes[i];
-    b.lo = b.hi = soup.vertices[t[0]];
-    for (int k = 1; k < 3; ++k)
-      for (int d = 0; d < 3; ++d) {
-        b.lo[d] = std::min(b.lo[d], soup.vertices[t[static_cast<std::size_t>(k)]][d]);
-        b.hi[d] = std::max(b.hi[d], soup.vertices[t[static_cast<std::size_t>(k)]][d]);
-      }
-  }
-  return boxes;
 }
 
 std::vector<Sign> light_sides(const Soup& soup, const Light& light) {
