@@ -514,7 +514,7 @@ void add_diff_command(CLI::App& app, int& exit_code) {
       "Certify GL shadow methods against the exact image (docs/definitions.md#pixel-protocol): per method and light, hard errors, "
       "ambiguous and agreeing pixels, and the exact closure of each volume method's captured volume. Exit 1 "
       "when a robust method (cpu, cs, gs, ts, pertri, discrete) has a hard error or any volume is open");
-  cmd->add_option("input", options->input, "Scene (.json), or a mesh file (.obj .off .ply .stl) framed over a floor with a light and a camera (docs/cli.md#inputs)")->required();
+  cmd->add_option("input", options->input, kImageInputHelp)->required();
   cmd->add_option("--methods", options->methods,
                   "Comma-separated methods to compare: cpu, cs, gs, ts, pertri, shadowmap, and the smooth-silhouette "
                   "methods discrete, accurate, smooth, smooth-gpu (docs/smooth-silhouettes.md), and the soft "

@@ -248,7 +248,7 @@ void add_edges_command(CLI::App& app, int& exit_code) {
       "Edge maps (Nienhaus & Doellner 2003; docs/edge-maps.md): a G-buffer of eye-space normals and linear depth, "
       "an image-space filter giving profile (depth) and inner (normal) edge intensities, and a style drawn from "
       "them, optionally with the shadows of any render method");
-  cmd->add_option("input", options->input, "Scene (.json), or a mesh file (.obj .off .ply .stl) framed over a floor with a light and a camera (docs/cli.md#inputs)")->required();
+  cmd->add_option("input", options->input, kImageInputHelp)->required();
   cmd->add_option("--filter", options->filter,
                   "diagonal (the paper's: the pairs A-H and C-F), c1 (the C1-discontinuity operator over the 3 x 3 "
                   "neighbourhood) or sobel (the baseline)")

@@ -14,6 +14,12 @@
 
 namespace shadowcert::cli {
 
+// The input of the commands that make images (render, diff, soft, edges): io/scene_input.h's
+// load_image_scene.
+inline constexpr const char* kImageInputHelp =
+    "Scene (.json), or a mesh file (.obj .off .ply .stl) framed over a floor with a light and a camera "
+    "(docs/cli.md#inputs)";
+
 // Sets camera.width and camera.height from "WxH" (e.g. "1024x768"); an empty string leaves
 // the scene camera's size. Throws CLI::ValidationError naming `option` otherwise.
 void apply_image_size(const std::string& size, Camera& camera, const std::string& option = "--size");

@@ -368,7 +368,7 @@ void add_render_command(CLI::App& app, int& exit_code) {
       "render",
       "Stencil shadow volumes with OpenGL 4.5 core (headless EGL; docs/definitions.md#counts, 5). Lights are drawn one after "
       "another; --counts, --mask and the pixel counts are for the FIRST light");
-  cmd->add_option("input", options->input, "Scene (.json), or a mesh file (.obj .off .ply .stl) framed over a floor with a light and a camera (docs/cli.md#inputs)")->required();
+  cmd->add_option("input", options->input, kImageInputHelp)->required();
   cmd->add_option("--method", options->method,
                   "How the volume is built: cpu (the exact chain of the float-rounded input from exact/, drawn as "
                   "is; exact/cpu_volume.h), cs (compute "

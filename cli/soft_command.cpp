@@ -148,7 +148,7 @@ void add_soft_command(CLI::App& app, int& exit_code) {
       "soft",
       "The exact soft reference (docs/smoothies.md#the-exact-soft-reference): a disk light of radius R around the "
       "light, K stratified samples on it, each receiver pixel's light the mean of their exact verdicts");
-  cmd->add_option("input", options->input, "Scene (.json), or a mesh file (.obj .off .ply .stl) framed over a floor with a light and a camera (docs/cli.md#inputs)")->required();
+  cmd->add_option("input", options->input, kImageInputHelp)->required();
   cmd->add_option("--radius,--light-radius", options->radius,
                   "The disk's radius R in world units, facing the centre of the scene's bounds (directional lights: "
                   "the tangent of the angular radius); 0: the exact hard shadow; default 1% of the scene's "
