@@ -97,7 +97,6 @@ gpu::RgbaImage edge_map_picture(const gpu::EdgeMapImage& map) {
 struct ShadowFrameSource {
   MethodInputs inputs;
   std::optional<SilhouetteVolumes> silhouette;
-  std::vector<gpu::ShadedSoupPart> parts;
 };
 
 // Prepares `method` as `render --method METHOD` does with its defaults (z-fail, exact signs, the
@@ -116,7 +115,6 @@ void prepare_shadows(ShadowFrameSource& source, gpu::ShadowMethod method, const 
   }
   const gpu::SceneBounds bounds = gpu::soup_bounds(merged);
   if (method == gpu::ShadowMethod::smoothie) add_smoothies(source.inputs, scene.lights, bounds);
-  source.parts = shaded_parts(scene);
 }
 
 int run_edges(const EdgesOptions& options) {
@@ -130,13 +128,14 @@ int run_edges(const EdgesOptions& options) {
   const Soup merged = merged_soup(scene);
   if (merged.triangles.empty()) throw InputError(options.input, "no triangle to draw");
 
+  // The scene's parts as GL draws them, shared by the shadow frame and the edge map.
+  const std::vector<gpu::ShadedSoupPart> parts = shaded_parts(scene);
   ShadowFrameSource shadow_source;
   if (v.shadows) prepare_shadows(shadow_source, *v.shadows, scene, merged);
 
   const gpu::EglContext context = gpu::open_gl_context("edges", options.device);
   const Camera& camera = scene.camera;
   const gpu::OffscreenTarget target(camera.width, camera.height);
-  const std::vector<gpu::ShadedSoupPart> parts = shaded_parts(scene);
   gpu::EdgeMapRenderer edges(parts);
   gpu::EdgeStyleRenderer style;
   const gpu::DepthRange range = edges.depth_range(camera);
@@ -149,7 +148,7 @@ int run_edges(const EdgesOptions& options) {
     gpu::ShadowMethodOptions method_options;
     method_options.light_radius =
         *v.shadows == gpu::ShadowMethod::pcss ? gpu::default_light_radius(gpu::soup_bounds(merged)) : 0.0;
-    shadow_renderer.emplace(*v.shadows, method_scene(shadow_source.inputs, shadow_source.parts, scene.lights),
+    shadow_renderer.emplace(*v.shadows, method_scene(shadow_source.inputs, parts, scene.lights),
                             method_options);
     frame = shadow_renderer->render(target, camera);
     try {
