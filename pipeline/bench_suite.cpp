@@ -497,10 +497,17 @@ BenchSceneResult bench_scene(const Scene& scene, const BenchSceneSpec& spec, con
       l.frame = {};  // the images are made; a frame per light and run would add up
       l.comparison.verdicts = {};
       b.run.lights.push_back(std::move(l));
-      // The contour error is the world scene's (its ellipsoids are in world space).
+      // The contour error is the world scene's (its ellipsoids are in world space); smooth-gpu's
+      // is measured on the volumes its GPU build draws, read back (this context is current).
       if (silhouette && spec.receiver_plane) {
-        if (const std::optional<ContourError> e = contour_error(scene, k, variant.method, variant.epsilon,
-                                                                *spec.receiver_plane, options.crease_angle_degrees)) {
+        const std::optional<ContourError> e =
+            variant.method == gpu::ShadowMethod::smooth_gpu
+                ? volume_contour_error(scene, k,
+                                       smooth_gpu_caster_volumes(scene, k, variant.epsilon, options.crease_angle_degrees),
+                                       *spec.receiver_plane)
+                : contour_error(scene, k, variant.method, variant.epsilon, *spec.receiver_plane,
+                                options.crease_angle_degrees);
+        if (e) {
           if (!contour) {
             contour = e;
           } else {
