@@ -1,6 +1,7 @@
 #include "pipeline/edge_map_comparison.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <optional>
 #include <stdexcept>
@@ -164,9 +165,30 @@ std::vector<EdgeScoreRow> edge_score_rows(const EdgeMapComparison& comparison) {
   return rows;
 }
 
-std::size_t best_threshold_of(const std::vector<EdgeMatchCounts>& curve) {
-  const std::vector<std::vector<EdgeMatchCounts>> one{curve};
-  return best_threshold(one);
+EdgeChannelThresholds default_edge_channel_thresholds(gpu::EdgeFilter filter, double crease_degrees) {
+  return {gpu::profile_threshold(filter, gpu::kDefaultEdgeDepthStep), gpu::inner_threshold(filter, crease_degrees)};
+}
+
+std::vector<EdgeMatchCounts> score_at_thresholds(const EdgeGroundTruth& truth, const gpu::EdgeMapImage& map,
+                                                 EdgeClass c, const EdgeChannelThresholds& thresholds,
+                                                 std::span<const EdgeTolerance> tolerances) {
+  if (map.width != truth.width || map.height != truth.height)
+    throw std::invalid_argument("score_at_thresholds: the edge map is " + std::to_string(map.width) + "x" +
+                                std::to_string(map.height) + ", the ground truth " + std::to_string(truth.width) + "x" +
+                                std::to_string(truth.height));
+  EdgeClassImages images = edge_class_images(truth, map, c);
+  double threshold = c == EdgeClass::inner ? thresholds.inner : thresholds.profile;
+  if (c == EdgeClass::any) {
+    // Two thresholds: the detections themselves, 1 or 0, scored at 1/2.
+    for (std::size_t p = 0; p < images.intensity.size(); ++p)
+      images.intensity[p] = map.profile[p] > thresholds.profile || map.inner[p] > thresholds.inner ? 1.0f : 0.0f;
+    threshold = 0.5;
+  }
+  const EdgeScoreInput input{truth.width, truth.height, images.truth, truth.grazing, images.intensity};
+  const std::array<double, 1> at{threshold};
+  std::vector<EdgeMatchCounts> out;
+  for (const EdgeTolerance& tolerance : tolerances) out.push_back(score_edges(input, tolerance, at).front());
+  return out;
 }
 
 }  // namespace shadowcert

@@ -103,10 +103,33 @@ struct EdgeMapComparison {
 // ground truth throw.
 [[nodiscard]] EdgeMapComparison compare_edge_maps(const Scene& scene, const EdgeMapComparisonOptions& options = {});
 
+// The thresholds `shadowcert edges` draws with by default, fixed in advance (gpu/edge_map.h):
+// profile, the filter's answer to a depth step of gpu::kDefaultEdgeDepthStep; inner, its answer
+// to a crease of `crease_degrees` (the ground truth's crease angle, so that both mean the same
+// crease). Nothing is fitted to any image.
+struct EdgeChannelThresholds {
+  double profile = 0.0;
+  double inner = 0.0;
+};
+[[nodiscard]] EdgeChannelThresholds default_edge_channel_thresholds(
+    gpu::EdgeFilter filter, double crease_degrees = gpu::kDefaultEdgeCreaseAngleDegrees);
+
+// One class of `map` against `truth` (same size, else std::invalid_argument
+// ("score_at_thresholds: ...")) at fixed thresholds per channel: profile intensities above
+// `thresholds.profile`, inner above `thresholds.inner`, and for any a pixel where either channel
+// is above its own (the outline `shadowcert edges` draws from both). The counts at each of
+// `tolerances`, in their order.
+[[nodiscard]] std::vector<EdgeMatchCounts> score_at_thresholds(const EdgeGroundTruth& truth, const gpu::EdgeMapImage& map,
+                                                               EdgeClass c, const EdgeChannelThresholds& thresholds,
+                                                               std::span<const EdgeTolerance> tolerances);
+
 // The threshold a filter's class is scored at where one is wanted (diff's table, the pictures):
 // the one with the best F1 at 1 px over every scene of bench/edge_score_bench at 1024x768
 // (docs/edge-maps.md#scores): diagonal 0.04 / 0.05 / 0.1 (profile / inner / any), c1 0.005 /
-// 0.03 / 0.03, sobel 0.01 / 0.25 / 0.25. Each lies in default_edge_thresholds().
+// 0.03 / 0.03, sobel 0.01 / 0.25 / 0.25. Each lies in default_edge_thresholds(). Fitted on those
+// scenes, so a score at it on one of them is in-sample but for what leaving that scene out
+// changes: the bench prints the threshold each leave-one-scene-out fold chose (docs/edge-maps.md
+// lists where a fold differs).
 [[nodiscard]] double measured_edge_threshold(gpu::EdgeFilter filter, EdgeClass c);
 
 // One filter and class of a comparison at its measured threshold (the comparison's threshold
@@ -119,9 +142,5 @@ struct EdgeScoreRow {
 };
 // Per run, the classes in kEdgeClasses order.
 [[nodiscard]] std::vector<EdgeScoreRow> edge_score_rows(const EdgeMapComparison& comparison);
-
-// The threshold index where one curve's F1 is highest (the first on a tie): a scene's own best,
-// the benchmark's "optimal image scale"; thresholds tuned on the test image itself.
-[[nodiscard]] std::size_t best_threshold_of(const std::vector<EdgeMatchCounts>& curve);
 
 }  // namespace shadowcert
