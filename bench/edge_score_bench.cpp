@@ -8,8 +8,11 @@
 // rule, and the Stanford bunny low over a wide floor). Thresholds are never tuned on the scene
 // they score: per filter, class and tolerance the main figures leave one scene out (each scene
 // scored at the threshold with the best F1 on all the others, counts summed); beside them the
-// real scenes at the threshold best on the synthetic ones, and their own best (an oracle). Then
-// F1 per scene, and the curve over thresholds of the real scenes.
+// real scenes at the threshold best on the synthetic ones, and their own best (an oracle); the
+// thresholds the folds chose, each with the scenes whose fold chose it when it is not the most
+// chosen. Before them, every scene at the filters' default thresholds (`shadowcert edges`'s,
+// fixed in advance: nothing fitted at all). Then F1 per scene, and the curve over thresholds of
+// the real scenes.
 // The passes' cost (G-buffer, filter, composite at 1024x768 and 1920x1080) is measured by
 // bench/edge_map_bench.cpp (docs/edge-maps.md#timing): this program registers no benchmark; it
 // takes Google Benchmark's flags only to report an unknown one. Progress and the ground truth's
@@ -194,6 +197,9 @@ struct CaseResult {
   std::uint64_t profile_pixels = 0, inner_pixels = 0, excluded_pixels = 0, grazing_pixels = 0;
   // curves[filter][class][tolerance][threshold]
   std::vector<std::array<std::vector<std::vector<EdgeMatchCounts>>, kEdgeClasses.size()>> curves;
+  // at_default[filter][class][tolerance]: the counts at the filter's default thresholds, those
+  // `shadowcert edges` draws with (default_edge_channel_thresholds: nothing fitted).
+  std::vector<std::array<std::vector<EdgeMatchCounts>, kEdgeClasses.size()>> at_default;
 };
 
 std::string filter_name(gpu::EdgeFilter f) { return std::string(gpu::edge_filter_name(f)); }
@@ -221,6 +227,37 @@ EdgeMatchCounts leave_one_out(const std::vector<CaseResult>& results, std::size_
   EdgeMatchCounts sum;
   for (std::size_t i = 0; i < results.size(); ++i)
     sum += results[i].curves[filter][cls][tolerance][left_out_threshold(results, i, filter, cls, tolerance)];
+  return sum;
+}
+
+// The threshold each leave-one-scene-out fold chose, every one with its count of folds, the most
+// chosen first, and for the others the scenes whose folds chose them: "0.04 (26)", or
+// "0.04 (25), 0.05 (1: box)".
+std::string fold_thresholds(const std::vector<CaseResult>& results, std::size_t filter, std::size_t cls,
+                            std::size_t tolerance, const std::vector<double>& thresholds) {
+  std::vector<std::vector<std::string>> scenes(thresholds.size());
+  for (std::size_t i = 0; i < results.size(); ++i)
+    scenes[left_out_threshold(results, i, filter, cls, tolerance)].push_back(results[i].name);
+  std::vector<std::size_t> order(thresholds.size());
+  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return scenes[a].size() > scenes[b].size(); });
+  std::string out;
+  for (std::size_t n = 0; n < order.size() && !scenes[order[n]].empty(); ++n) {
+    const std::vector<std::string>& names = scenes[order[n]];
+    out += fmt::format("{}{:g} ({}", n == 0 ? "" : ", ", thresholds[order[n]], names.size());
+    if (n > 0)
+      for (std::size_t j = 0; j < names.size(); ++j) out += (j == 0 ? ": " : "; ") + names[j];
+    out += ")";
+  }
+  return out;
+}
+
+EdgeMatchCounts summed_at_default(const std::vector<CaseResult>& results, std::optional<bool> training,
+                                  std::size_t filter, std::size_t cls, std::size_t tolerance) {
+  EdgeMatchCounts sum;
+  for (const CaseResult& r : results)
+    if (!training || r.training == *training) sum += r.at_default[filter][cls][tolerance];
   return sum;
 }
 
@@ -292,7 +329,13 @@ void print_tables(const Settings& settings) {
         r.grazing_pixels += comparison.truth.grazing[p];
       }
       if (!settings.pictures.empty()) write_pictures(settings.pictures, comparison, c.name, w, h);
-      for (EdgeFilterRun& run : comparison.runs) r.curves.push_back(std::move(run.curves));
+      for (EdgeFilterRun& run : comparison.runs) {
+        const EdgeChannelThresholds fixed = default_edge_channel_thresholds(run.filter, options.crease_degrees);
+        auto& at = r.at_default.emplace_back();
+        for (std::size_t k = 0; k < kEdgeClasses.size(); ++k)
+          at[k] = score_at_thresholds(comparison.truth, run.map, kEdgeClasses[k], fixed, options.tolerances);
+        r.curves.push_back(std::move(run.curves));
+      }
       const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       std::cerr << fmt::format("{}x{} {:<48} truth {:6.2f} s (classes {:.2f}, hits {:.2f}, visibility {:.2f}), all {:6.2f} s\n", w, h,
                                c.name, r.truth_stats.seconds, r.truth_stats.class_seconds, r.truth_stats.image_seconds,
@@ -309,10 +352,34 @@ void print_tables(const Settings& settings) {
       std::cout << fmt::format("| {} | {} | {} | {} | {} | {} | {} | {:.2f} |\n", r.name, r.training ? "train" : "test",
                                r.triangles, r.profile_pixels, r.inner_pixels, r.excluded_pixels, r.grazing_pixels,
                                r.truth_stats.seconds);
+    // At the default thresholds: nothing fitted, every scene out of sample.
+    std::cout << "\nAt the default thresholds (`shadowcert edges`'s: a 2 % depth step, a 30-degree crease; "
+                 "nothing fitted), counts summed over every scene:\n\n"
+                 "| filter | class | thresholds (profile, inner) | tolerance | P | R | F1 | real F1 | "
+                 "grazing false / grazing px |\n";
+    std::cout << "| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
+    for (std::size_t f = 0; f < options.filters.size(); ++f) {
+      const EdgeChannelThresholds fixed = default_edge_channel_thresholds(options.filters[f], options.crease_degrees);
+      for (std::size_t c = 0; c < kEdgeClasses.size(); ++c)
+        for (std::size_t k = 0; k < tol.size(); ++k) {
+          const EdgeMatchCounts all = summed_at_default(results, std::nullopt, f, c, k);
+          const EdgeMatchCounts real = summed_at_default(results, false, f, c, k);
+          const std::string used = kEdgeClasses[c] == EdgeClass::profile ? fmt::format("{:.4g}", fixed.profile)
+                                   : kEdgeClasses[c] == EdgeClass::inner
+                                       ? fmt::format("{:.4g}", fixed.inner)
+                                       : fmt::format("{:.4g}, {:.4g}", fixed.profile, fixed.inner);
+          std::cout << fmt::format("| {} | {} | {} | {} | {:.3f} | {:.3f} | {:.3f} | {:.3f} | {} / {} |\n",
+                                   filter_name(options.filters[f]), edge_class_name(kEdgeClasses[c]), used,
+                                   tol[k].name(), all.precision(), all.recall(), all.f1(), real.f1(), all.grazing_false,
+                                   all.grazing_pixels);
+        }
+    }
     // Leave one scene out over every scene; the synthetic -> real split; the oracle.
-    std::cout << "\n| filter | class | tolerance | P | R | F1 | detections / truth px | threshold (all scenes) | "
+    std::cout << "\nLeave one scene out (each scene at the threshold best on all the others, counts summed):\n\n"
+                 "| filter | class | tolerance | P | R | F1 | detections / truth px | threshold (all scenes) | "
+                 "thresholds the folds chose (folds) | "
                  "real F1, threshold from synthetic | real F1, best threshold (oracle) | grazing false / grazing px |\n";
-    std::cout << "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
+    std::cout << "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
     for (std::size_t f = 0; f < options.filters.size(); ++f)
       for (std::size_t c = 0; c < kEdgeClasses.size(); ++c)
         for (std::size_t k = 0; k < tol.size(); ++k) {
@@ -323,11 +390,12 @@ void print_tables(const Settings& settings) {
           const std::size_t oracle = best_on(results, false, f, c, k);
           const EdgeMatchCounts test_best = summed(results, false, f, c, k, oracle);
           std::cout << fmt::format(
-              "| {} | {} | {} | {:.3f} | {:.3f} | {:.3f} | {:.2f} | {:g} | {:.3f} ({:g}) | {:.3f} ({:g}) | {} / {} |\n",
+              "| {} | {} | {} | {:.3f} | {:.3f} | {:.3f} | {:.2f} | {:g} | {} | {:.3f} ({:g}) | {:.3f} ({:g}) | {} / {} |\n",
               filter_name(options.filters[f]), edge_class_name(kEdgeClasses[c]), tol[k].name(), loo.precision(),
               loo.recall(), loo.f1(),
               loo.truth == 0 ? 0.0 : static_cast<double>(loo.detections) / static_cast<double>(loo.truth), t[all],
-              test.f1(), t[best], test_best.f1(), t[oracle], loo.grazing_false, loo.grazing_pixels);
+              fold_thresholds(results, f, c, k, t), test.f1(), t[best], test_best.f1(), t[oracle], loo.grazing_false,
+              loo.grazing_pixels);
         }
     // Per scene, F1 at 1 px at the threshold best on the other scenes: profile / inner / any.
     std::cout << "\nF1 per scene at 1 px, each filter at the thresholds best on the other scenes (profile / inner / "
