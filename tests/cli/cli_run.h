@@ -5,6 +5,7 @@
 // stderr together; the JSON and text files it writes; a folder of each test's own under the
 // system's temporary folder; and whether a command that renders found no EGL device. Test code
 // only.
+#include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -15,6 +16,8 @@
 #include <sstream>
 #include <string>
 #include <string_view>
+
+#include "support/test_requirements.h"
 
 namespace shadowcert::cli_test {
 
@@ -67,9 +70,21 @@ inline std::string read_text(const std::filesystem::path& file) {
 }
 
 // The commands that render need EGL (a GPU's or Mesa's llvmpipe); without an EGL device they
-// exit 2 naming EGL, and the tests of them skip rather than fail on machines with no GL at all.
+// exit 2 naming EGL. Tests use SHADOWCERT_SKIP_WITHOUT_GL below, never this alone.
 inline bool render_unavailable(const RunResult& r) {
   return r.exit_code == 2 && r.output.find("EGL") != std::string::npos;
 }
 
 }  // namespace shadowcert::cli_test
+
+// In a test body (or SetUp), after a command that renders: when it found no EGL device, skip
+// the test on a machine with no GL at all, or fail it under SHADOWCERT_REQUIRE_GL=1 (CI), so a
+// broken EGL cannot turn the CLI's tests into skips (support/test_requirements.h).
+#define SHADOWCERT_SKIP_WITHOUT_GL(run)                                                         \
+  do {                                                                                          \
+    const ::shadowcert::cli_test::RunResult& shadowcert_run = (run);                            \
+    if (::shadowcert::cli_test::render_unavailable(shadowcert_run)) {                           \
+      if (::shadowcert::test::gl_required()) FAIL() << "SHADOWCERT_REQUIRE_GL=1 but: " << shadowcert_run.output; \
+      GTEST_SKIP() << shadowcert_run.output;                                                    \
+    }                                                                                           \
+  } while (false)

@@ -172,7 +172,7 @@ void capture_and_certify(const std::string& method) {
   const fs::path volume = temp_dir("cli_test") / ("capture_" + method + ".vol");
   const RunResult render =
       run_cli("render " + kDefaultScene + " --method " + method + " --size 64x48 --capture " + volume.string());
-  if (render_unavailable(render)) GTEST_SKIP() << render.output;
+  SHADOWCERT_SKIP_WITHOUT_GL(render);
   ASSERT_EQ(render.exit_code, 0) << render.output;
   const fs::path json = temp_dir("cli_test") / ("capture_" + method + ".json");
   const RunResult r = run_cli("certify --volume " + volume.string() + " --json " + json.string());
@@ -197,7 +197,7 @@ TEST(CliCapture, GsVolumeAsDrawn_IsClosed) { capture_and_certify("gs"); }
 TEST(CliCapture, PlantedFault_OneFaceDeleted_ExitsOneWithUnbalancedEdges) {
   const fs::path volume = temp_dir("cli_test") / "capture_fault.vol";
   const RunResult render = run_cli("render " + kDefaultScene + " --method cs --size 64x48 --capture " + volume.string());
-  if (render_unavailable(render)) GTEST_SKIP() << render.output;
+  SHADOWCERT_SKIP_WITHOUT_GL(render);
   ASSERT_EQ(render.exit_code, 0) << render.output;
   std::ifstream in(volume);
   std::ostringstream kept;
@@ -292,7 +292,7 @@ TimedRender render_timed(const std::string& method) {
 
 TEST(CliTiming, VolumeMethod_GpuStagesAndFrameInJson) {
   const TimedRender r = render_timed("cs");
-  if (render_unavailable(r.run)) GTEST_SKIP() << r.run.output;
+  SHADOWCERT_SKIP_WITHOUT_GL(r.run);
   ASSERT_EQ(r.run.exit_code, 0) << r.run.output;
   EXPECT_NE(r.run.output.find("frame"), std::string::npos) << r.run.output;  // the printed table
   EXPECT_GE(r.report["frame_ms"].get<double>(), 0.0);
@@ -301,7 +301,7 @@ TEST(CliTiming, VolumeMethod_GpuStagesAndFrameInJson) {
 
 TEST(CliTiming, CpuMethod_VolumeStageIsEmpty) {
   const TimedRender r = render_timed("cpu");
-  if (render_unavailable(r.run)) GTEST_SKIP() << r.run.output;
+  SHADOWCERT_SKIP_WITHOUT_GL(r.run);
   ASSERT_EQ(r.run.exit_code, 0) << r.run.output;
   const nlohmann::json& t = r.report["timing"];
   check_timing(t, {"volume", "depth", "stencil", "lit"});
@@ -313,7 +313,7 @@ TEST(CliTiming, CpuMethod_VolumeStageIsEmpty) {
 
 TEST(CliTiming, ShadowMap_DepthShadowMapAndLitStages) {
   const TimedRender r = render_timed("shadowmap");
-  if (render_unavailable(r.run)) GTEST_SKIP() << r.run.output;
+  SHADOWCERT_SKIP_WITHOUT_GL(r.run);
   ASSERT_EQ(r.run.exit_code, 0) << r.run.output;
   check_timing(r.report["timing"], {"depth", "shadow_map", "lit"});
 }
@@ -405,7 +405,7 @@ TEST(CliFuzz, TinyGlCampaign_ExitsZeroJsonHasEveryGlMethod) {
   const fs::path json = dir / "gl.json";
   const RunResult r = run_cli("fuzz --gl --seed 1 --cases 12 --triangles 30 --gl-size 32x24 --out " +
                               (dir / "out").string() + " --json " + json.string());
-  if (render_unavailable(r)) GTEST_SKIP() << r.output;
+  SHADOWCERT_SKIP_WITHOUT_GL(r);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("gl-pertri"), std::string::npos) << r.output;  // the GL table
   const nlohmann::json j = read_json(json);
@@ -444,7 +444,7 @@ TEST(CliFuzz, GlFailure_ShrunkToASceneThatDiffReplays) {
   // Float signs: the light within rounding of a plane still fails them (exact signs do not).
   const RunResult r = run_cli("fuzz --gl --sign float --seed 2 --cases 20 --triangles 30 --methods exact --gl-methods cs "
                               "--max-reproducers 1 --out " + (dir / "out").string() + " --json " + json.string());
-  if (render_unavailable(r)) GTEST_SKIP() << r.output;
+  SHADOWCERT_SKIP_WITHOUT_GL(r);
   ASSERT_EQ(r.exit_code, 1) << r.output;
   const nlohmann::json j = read_json(json);
   EXPECT_EQ(j["must_not_fail_failed"], true);
@@ -473,7 +473,7 @@ TEST(CliFuzz, CasesThatFailFloatSigns_PassWithExactSigns) {
   const RunResult r = run_cli("fuzz --gl --seed 2 --cases 20 --triangles 30 --methods exact --gl-methods cs,pertri "
                               "--max-reproducers 0 --out " + (temp_dir("cli_test") / "unused").string() + " --json " +
                               json.string());
-  if (render_unavailable(r)) GTEST_SKIP() << r.output;
+  SHADOWCERT_SKIP_WITHOUT_GL(r);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const nlohmann::json j = read_json(json);
   EXPECT_EQ(j["gl"]["sign"], "exact");
@@ -516,7 +516,7 @@ TEST(CliDiff, DefaultScene_EveryMethodInJsonImagesAndOfflineReport) {
   const fs::path report = temp_dir("cli_test") / "diff_default.html";
   const RunResult r = run_cli("diff " + kDefaultScene + " --size 64x48 --out " + dir.string() + " --json " +
                               json.string() + " --report " + report.string());
-  if (render_unavailable(r)) GTEST_SKIP() << r.output;
+  SHADOWCERT_SKIP_WITHOUT_GL(r);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const nlohmann::json j = read_json(json);
   EXPECT_GT(j["exact_seconds"].get<double>(), 0.0);
@@ -555,7 +555,7 @@ TEST(CliDiff, DefaultScene_EveryMethodInJsonImagesAndOfflineReport) {
 TEST(CliDiff, MethodsOption_ComparesOnlyThose) {
   const fs::path json = temp_dir("cli_test") / "diff_methods.json";
   const RunResult r = run_cli("diff " + kDefaultScene + " --size 48x36 --methods gs,shadowmap --json " + json.string());
-  if (render_unavailable(r)) GTEST_SKIP() << r.output;
+  SHADOWCERT_SKIP_WITHOUT_GL(r);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const nlohmann::json j = read_json(json);
   EXPECT_EQ(j["methods"].size(), 2u);
@@ -569,7 +569,7 @@ TEST(CliDiff, RobustMethodWithHardErrors_ExitsOne) {
   const fs::path json = temp_dir("cli_test") / "diff_zpass.json";
   const RunResult r = run_cli("diff " + kHardScenes + "camera_inside_volume.json --size 48x36 --methods cpu --zpass --json " +
                               json.string());
-  if (render_unavailable(r)) GTEST_SKIP() << r.output;
+  SHADOWCERT_SKIP_WITHOUT_GL(r);
   EXPECT_EQ(r.exit_code, 1) << r.output;
   const nlohmann::json j = read_json(json);
   EXPECT_GT(j["methods"]["cpu"]["hard_errors"].get<int>(), 0);
@@ -583,7 +583,7 @@ TEST(CliDiff, ShadowMapHardErrors_ExitZero) {
   const fs::path json = temp_dir("cli_test") / "diff_shadowmap.json";
   const RunResult r = run_cli("diff " + kHardScenes + "light_inside_closed_caster.json --size 48x36 --methods shadowmap "
                               "--shadowmap-size 64 --json " + json.string());
-  if (render_unavailable(r)) GTEST_SKIP() << r.output;
+  SHADOWCERT_SKIP_WITHOUT_GL(r);
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_GT(read_json(json)["methods"]["shadowmap"]["hard_errors"].get<int>(), 0);
 }
@@ -603,7 +603,7 @@ TEST(CliDiff, BadOptions_ExitTwo) {
 TEST(CliStencil, RenderAuto_PlainSceneProvenZPassInTextAndJson) {
   const fs::path json = temp_dir("cli_test") / "render_auto.json";
   const RunResult r = run_cli("render " + kDefaultScene + " --size 48x36 --stencil auto --json " + json.string());
-  if (render_unavailable(r)) GTEST_SKIP() << r.output;
+  SHADOWCERT_SKIP_WITHOUT_GL(r);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("cpu/auto"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("light 0: zpass (proven"), std::string::npos) << r.output;
@@ -623,7 +623,7 @@ TEST(CliStencil, DiffAuto_CameraInsideVolumePicksZFailAndPasses) {
   const fs::path json = temp_dir("cli_test") / "diff_auto.json";
   const RunResult r = run_cli("diff " + kHardScenes + "camera_inside_volume.json --size 48x36 --methods cpu,cs "
                               "--stencil auto --json " + json.string());
-  if (render_unavailable(r)) GTEST_SKIP() << r.output;
+  SHADOWCERT_SKIP_WITHOUT_GL(r);
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("light 1: zfail (camera in volume: n(eye) = 2)"), std::string::npos) << r.output;
   const nlohmann::json j = read_json(json);
@@ -642,7 +642,7 @@ TEST(CliStencil, AliasesAndRequestedMethods_SayRequested) {
     SCOPED_TRACE(option);
     const fs::path json = temp_dir("cli_test") / "render_requested.json";
     const RunResult r = run_cli("render " + kDefaultScene + " --size 32x24 " + option + " --json " + json.string());
-    if (render_unavailable(r)) GTEST_SKIP() << r.output;
+    SHADOWCERT_SKIP_WITHOUT_GL(r);
     ASSERT_EQ(r.exit_code, 0) << r.output;
     const nlohmann::json j = read_json(json);
     EXPECT_EQ(j["stencil"], "zpass");
@@ -679,7 +679,7 @@ TEST(CliSilhouette, DiffDefaultScene_NonManifoldMeshesFallBackWithTheirReports) 
   const fs::path json = temp_dir("cli_test") / "diff_silhouette.json";
   const RunResult r = run_cli("diff " + kDefaultScene + " --size 96x72 --methods discrete,accurate,smooth,smooth-gpu --json " +
                               json.string());
-  if (render_unavailable(r)) GTEST_SKIP() << r.output;
+  SHADOWCERT_SKIP_WITHOUT_GL(r);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const nlohmann::json j = read_json(json);
   EXPECT_EQ(j["methods"]["discrete"]["hard_errors"], 0);
@@ -706,7 +706,7 @@ TEST(CliSilhouette, RenderSmoothSphere_OneLoopAndAShadow) {
   const fs::path json = temp_dir("cli_test") / "render_smooth.json";
   const RunResult r = run_cli("render " + kSource + "/data/scenes/smooth_sphere.json --method smooth --epsilon 0.003 "
                               "--size 160x120 --json " + json.string());
-  if (render_unavailable(r)) GTEST_SKIP() << r.output;
+  SHADOWCERT_SKIP_WITHOUT_GL(r);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const nlohmann::json j = read_json(json);
   EXPECT_GT(j["shadowed_pixels"].get<int>(), 200);
@@ -723,7 +723,7 @@ TEST(CliSilhouette, DiffSmoothSphere_ReportsTheAnalyticErrorAndKeepsTheExitCode)
   const fs::path json = temp_dir("cli_test") / "diff_analytic.json";
   const RunResult r = run_cli("diff " + kSource + "/data/scenes/smooth_sphere.json --size 160x120 --methods "
                               "cpu,discrete,smooth --json " + json.string());
-  if (render_unavailable(r)) GTEST_SKIP() << r.output;
+  SHADOWCERT_SKIP_WITHOUT_GL(r);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("analytic shadow of sphere as ellipsoid"), std::string::npos) << r.output;
   const nlohmann::json j = read_json(json);
@@ -772,7 +772,7 @@ TEST(CliSilhouette, CertifyAndRenderSmoothGpu_ClosedAndAShadow) {
   const fs::path json = temp_dir("cli_test") / "certify_smooth_gpu.json";
   const RunResult r = run_cli("certify " + kSource + "/data/scenes/closed_casters.json --method smooth-gpu --json " +
                               json.string());
-  if (render_unavailable(r)) GTEST_SKIP() << r.output;
+  SHADOWCERT_SKIP_WITHOUT_GL(r);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const nlohmann::json j = read_json(json);
   EXPECT_EQ(j["closed"], true);

@@ -21,7 +21,7 @@ TEST(CliDiffEdges, ScoresJoinTheTableJsonFilesAndReport) {
   const std::string scene = std::string(SHADOWCERT_SOURCE_DIR) + "/data/scenes/default.json";
   const RunResult r = run_cli("diff " + scene + " --size 160x120 --methods cpu --edges --out " + (dir / "out").string() +
                               " --json " + (dir / "diff.json").string() + " --report " + (dir / "diff.html").string());
-  if (render_unavailable(r)) GTEST_SKIP() << r.output;
+  SHADOWCERT_SKIP_WITHOUT_GL(r);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("edge maps against the exact ground truth"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("diagonal  profile"), std::string::npos) << r.output;

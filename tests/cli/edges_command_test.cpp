@@ -51,7 +51,7 @@ TEST(CliEdges, EveryFilterAndStyle_WithAndWithoutShadows_SameEdgePixels) {
         const EdgesRun r = edges(filter + "_" + style + "_" + shadows,
                                  "--filter " + filter + " --style " + style +
                                      (shadows.empty() ? "" : " --shadows " + shadows));
-        if (render_unavailable(r.run)) GTEST_SKIP() << r.run.output;
+        SHADOWCERT_SKIP_WITHOUT_GL(r.run);
         ASSERT_EQ(r.run.exit_code, 0) << r.run.output;
         EXPECT_TRUE(fs::file_size(r.out) > 0 && fs::file_size(r.edge_map) > 0);
         const nlohmann::json& j = r.report;
@@ -84,7 +84,7 @@ TEST(CliEdges, EveryFilterAndStyle_WithAndWithoutShadows_SameEdgePixels) {
 
 TEST(CliEdges, ThresholdAndCreaseAngle_MeanWhatTheySay) {
   const EdgesRun none = edges("none", "--threshold 1 --crease-angle 180");
-  if (render_unavailable(none.run)) GTEST_SKIP() << none.run.output;
+  SHADOWCERT_SKIP_WITHOUT_GL(none.run);
   ASSERT_EQ(none.run.exit_code, 0) << none.run.output;
   EXPECT_EQ(none.report["edge_pixels"]["profile"], 0) << "no intensity exceeds 1";
   EXPECT_EQ(none.report["edge_pixels"]["inner"], 0) << "no crease is sharper than 180 degrees";
@@ -99,7 +99,7 @@ TEST(CliEdges, ThresholdAndCreaseAngle_MeanWhatTheySay) {
 
 TEST(CliEdges, Timing_PassesAndFrameInJson) {
   const EdgesRun r = edges("timing", "--timing --frames 3");
-  if (render_unavailable(r.run)) GTEST_SKIP() << r.run.output;
+  SHADOWCERT_SKIP_WITHOUT_GL(r.run);
   ASSERT_EQ(r.run.exit_code, 0) << r.run.output;
   const nlohmann::json& t = r.report["timing"];
   EXPECT_EQ(t["frames"], 3);
@@ -135,7 +135,7 @@ TEST(CliEdges, CameraSeesNothing_ExitsTwoSayingSo) {
   std::ofstream(scene) << R"({"meshes": [{"generator": "floor", "params": {"half_size": 2}}],
     "camera": {"eye": [0, 1, 10], "target": [0, 1, 20], "size": [64, 48]}})";
   const RunResult r = run_cli("edges " + scene.string());
-  if (render_unavailable(r)) GTEST_SKIP() << r.output;
+  SHADOWCERT_SKIP_WITHOUT_GL(r);
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("sees nothing"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("looking_away.json"), std::string::npos) << r.output;
@@ -149,7 +149,7 @@ TEST(CliEdges, MeshFarFromTheOrigin_FramedAndEdged) {
   std::ofstream(mesh) << "OFF\n4 4 0\n5000 5000 5000\n6000 5000 5000\n5000 6000 5000\n5000 5000 6000\n"
                          "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
   const EdgesRun r = edges("far_mesh", "--style gooch --shadows cs", mesh.string());
-  if (render_unavailable(r.run)) GTEST_SKIP() << r.run.output;
+  SHADOWCERT_SKIP_WITHOUT_GL(r.run);
   ASSERT_EQ(r.run.exit_code, 0) << r.run.output;
   // The floor covers most of the image; the tetrahedron's outline is a profile edge.
   EXPECT_GT(r.report["edge_pixels"]["covered"].get<int>(), 160 * 120 / 4);

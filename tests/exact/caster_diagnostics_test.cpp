@@ -18,6 +18,7 @@
 #include "io/soup_file.h"
 #include "exact/triangle_soup_topology.h"
 #include "scene/procedural_mesh.h"
+#include "support/mesh_data.h"
 
 namespace {
 
@@ -380,17 +381,11 @@ TEST(DiagnoseCasterInvariance, ExactTranslation_SameAnswers) {
   expect_same_except_time(diagnose_caster(s), diagnose_caster(moved));
 }
 
-// ---- The shared real meshes (data/README.md) ------------------------------------------
+// ---- The real meshes (data/meshes/README.md, and a developer checkout's shared ones) ------------------------------------------
 
 constexpr std::int64_t kNotStated = -1;
 
-std::filesystem::path shared_file(const char* name) { return std::filesystem::path(SHADOWCERT_SHARED_DATA) / name; }
-
-std::string test_name_of(const char* file) {
-  std::string name = std::filesystem::path(file).stem().string();
-  std::replace_if(name.begin(), name.end(), [](char c) { return !std::isalnum(static_cast<unsigned char>(c)); }, '_');
-  return name;
-}
+std::string test_name_of(const char* file) { return shadowcert::test::mesh_test_name(file); }
 
 void expect_stated(std::int64_t stated, std::uint64_t measured, const char* column) {
   if (stated != kNotStated) {
@@ -414,8 +409,8 @@ class SharedMeshReadme : public testing::TestWithParam<ReadmeTopology> {};
 
 TEST_P(SharedMeshReadme, IndexTopology_MatchesReadmeColumns) {
   const ReadmeTopology& f = GetParam();
-  const auto file = shared_file(f.file);
-  if (!std::filesystem::exists(file)) GTEST_SKIP() << "missing " << file;
+  SHADOWCERT_REQUIRE_MESH(f.file);
+  const auto file = shadowcert::test::mesh_file(f.file);
   const shadowcert::SoupTopology t = shadowcert::analyze_topology(shadowcert::read_soup(file));
   expect_stated(f.border_edges, t.border_edges, "bnd");
   expect_stated(f.nonmanifold_edges, t.nonmanifold_edges, "NM-e");
@@ -467,8 +462,8 @@ class SharedMeshWelded : public testing::TestWithParam<WeldedFigures> {};
 
 TEST_P(SharedMeshWelded, DiagnoseCaster_MatchesDocumentedFigures) {
   const WeldedFigures& f = GetParam();
-  const auto file = shared_file(f.file);
-  if (!std::filesystem::exists(file)) GTEST_SKIP() << "missing " << file;
+  SHADOWCERT_REQUIRE_MESH(f.file);
+  const auto file = shadowcert::test::mesh_file(f.file);
   const CasterDiagnostics d = diagnose_caster(shadowcert::read_soup(file));
   EXPECT_EQ(d.vertices, f.vertices);
   EXPECT_EQ(d.welded_vertices, f.welded_vertices);

@@ -17,10 +17,12 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
 #include "core/input_error.h"
+#include "support/mesh_data.h"
 
 namespace shadowcert {
 namespace {
@@ -28,7 +30,6 @@ namespace {
 namespace fs = std::filesystem;
 
 const fs::path kTestData = SHADOWCERT_TEST_DATA;
-const fs::path kSharedData = SHADOWCERT_SHARED_DATA;
 
 // A directory of its own for each test, removed afterwards.
 class ScratchDirectory {
@@ -387,62 +388,76 @@ TEST(ReadSoup, EmptyPath_ThrowsInvalidArgument) { EXPECT_THROW((void)read_soup("
 
 // ------------------------------------------------------------------------ real meshes
 
-TEST(ReadSoup, SharedMeshes_TriangleCountsOfTheReadme) {
-  if (!fs::is_directory(kSharedData)) GTEST_SKIP() << kSharedData << " not found";
-  const std::map<std::string, std::size_t> triangles = {
-      {"closed_manifold/thingi10k_65004.stl", 1466},
-      {"closed_manifold/spot.obj", 5856},
-      {"closed_manifold/thingi10k_908460.stl", 36074},
-      {"closed_manifold/nefertiti.obj", 99938},
-      {"closed_defective/horse.ply", 96966},
-      {"closed_defective/beast.obj", 64618},
-      {"closed_defective/manifold_self_intersectA.obj", 17160},
-      {"soups/trimesh_bunny.ply", 16301},
-      {"soups/trimesh_cycloidal.ply", 43368},
-      {"soups/trimesh_chair_model.obj", 12756},
-      {"soups/beetle.obj", 2053},
-      {"soups/stanford-bunny.obj", 69451},
-      {"soups/ogre.obj", 124008},
-      {"edge_cases/trimesh_multibody.stl", 32},
-      {"edge_cases/manifold_openscad-nonmanifold-crash.obj", 1442},
-      {"edge_cases/trimesh_featuretype.STL", 3476},
-      {"edge_cases/trimesh_shared.STL", 24},
-      {"edge_cases/teapot.obj", 6320},
-  };
-  for (const auto& [file, count] : triangles) {
-    SCOPED_TRACE(file);
-    const fs::path path = kSharedData / file;
-    if (!fs::exists(path)) continue;
-    const Soup soup = read_soup(path);
-    EXPECT_EQ(soup.triangles.size(), count);
-    if (file == "closed_defective/horse.ply") {
-      EXPECT_EQ(soup.normals.size(), soup.vertices.size());
-    }
+// Each real mesh's triangle count (fan-triangulated polygons) and, where its source states it,
+// its vertex count (STL: after exact welding of bitwise-equal points). The bundled meshes
+// (data/meshes/) must be there; the shared ones skip when absent unless
+// SHADOWCERT_REQUIRE_SHARED_DATA=1 (support/mesh_data.h).
+struct RealMeshCounts {
+  const char* file;
+  std::size_t triangles;
+  std::size_t vertices;  // 0: not stated
+};
+
+void PrintTo(const RealMeshCounts& m, std::ostream* os) { *os << m.file; }
+
+class RealMesh : public ::testing::TestWithParam<RealMeshCounts> {};
+
+TEST_P(RealMesh, Read_TriangleAndVertexCountsOfItsSource) {
+  const RealMeshCounts& m = GetParam();
+  SHADOWCERT_REQUIRE_MESH(m.file);
+  const Soup soup = read_soup(test::mesh_file(m.file));
+  EXPECT_EQ(soup.triangles.size(), m.triangles);
+  if (m.vertices != 0) {
+    EXPECT_EQ(soup.vertices.size(), m.vertices);
+  }
+  if (std::string_view(m.file) == "closed_defective/horse.ply") {
+    EXPECT_EQ(soup.normals.size(), soup.vertices.size());
   }
 }
 
-// The largest shared mesh on its own, so that gtest's time for this test is its read time
-// (docs/soup-files.md; speed targets belong to bench/, this asserts only the count).
-TEST(ReadSoup, LargestSharedMesh_OgreReadsAllTriangles) {
-  const fs::path ogre = kSharedData / "soups" / "ogre.obj";
-  if (!fs::exists(ogre)) GTEST_SKIP() << ogre << " not found";
-  EXPECT_EQ(read_soup(ogre).triangles.size(), 124008U);
-}
+INSTANTIATE_TEST_SUITE_P(
+    Meshes, RealMesh,
+    ::testing::Values(RealMeshCounts{"closed_manifold/thingi10k_65004.stl", 1466, 731},
+                      RealMeshCounts{"closed_manifold/spot.obj", 5856, 2930},
+                      RealMeshCounts{"closed_manifold/thingi10k_908460.stl", 36074, 18035},
+                      RealMeshCounts{"closed_manifold/nefertiti.obj", 99938, 49971},
+                      RealMeshCounts{"closed_defective/horse.ply", 96966, 0},
+                      RealMeshCounts{"closed_defective/beast.obj", 64618, 0},
+                      RealMeshCounts{"closed_defective/manifold_self_intersectA.obj", 17160, 0},
+                      RealMeshCounts{"soups/trimesh_bunny.ply", 16301, 0},
+                      RealMeshCounts{"soups/trimesh_cycloidal.ply", 43368, 0},
+                      RealMeshCounts{"soups/trimesh_chair_model.obj", 12756, 0},
+                      RealMeshCounts{"soups/beetle.obj", 2053, 0},
+                      RealMeshCounts{"soups/stanford-bunny.obj", 69451, 0},
+                      RealMeshCounts{"soups/ogre.obj", 124008, 0},  // the largest: gtest's time is its read time
+                      RealMeshCounts{"edge_cases/trimesh_multibody.stl", 32, 0},
+                      RealMeshCounts{"edge_cases/manifold_openscad-nonmanifold-crash.obj", 1442, 0},
+                      RealMeshCounts{"edge_cases/trimesh_featuretype.STL", 3476, 0},
+                      RealMeshCounts{"edge_cases/trimesh_shared.STL", 24, 0},
+                      RealMeshCounts{"edge_cases/teapot.obj", 6320, 0}),
+    [](const ::testing::TestParamInfo<RealMeshCounts>& info) { return test::mesh_test_name(info.param.file); });
 
-TEST(ReadSoup, SharedMeshes_VertexCountsOfTheReadme) {
-  if (!fs::is_directory(kSharedData)) GTEST_SKIP() << kSharedData << " not found";
-  // STL vertex counts are after CGAL's exact welding, the README's V column.
-  const std::map<std::string, std::size_t> vertices = {
-      {"closed_manifold/thingi10k_65004.stl", 731},
-      {"closed_manifold/spot.obj", 2930},
-      {"closed_manifold/thingi10k_908460.stl", 18035},
-      {"closed_manifold/nefertiti.obj", 49971},
+// The bundled meshes are byte-identical to their sources: the sizes data/meshes/README.md's
+// checksums were taken of (a cheap guard against an editor's or git's line-ending rewrite).
+TEST(BundledMeshes, EveryFile_PresentWithItsSourceSize) {
+  const std::map<std::string, std::uintmax_t> sizes = {
+      {"closed_manifold/thingi10k_65004.stl", 73384},
+      {"closed_manifold/spot.obj", 330624},
+      {"closed_defective/manifold_self_intersectA.obj", 873958},
+      {"soups/trimesh_bunny.ply", 658744},
+      {"soups/trimesh_chair_model.obj", 639979},
+      {"soups/trimesh_cycloidal.ply", 1079764},
+      {"edge_cases/trimesh_multibody.stl", 8216},
+      {"edge_cases/manifold_openscad-nonmanifold-crash.obj", 72429},
+      {"edge_cases/trimesh_featuretype.STL", 173884},
+      {"edge_cases/trimesh_shared.STL", 1284},
   };
-  for (const auto& [file, count] : vertices) {
-    SCOPED_TRACE(file);
-    if (fs::exists(kSharedData / file)) {
-      EXPECT_EQ(read_soup(kSharedData / file).vertices.size(), count);
-    }
+  ASSERT_EQ(sizes.size(), test::kBundledMeshes.size());
+  for (const std::string_view mesh : test::kBundledMeshes) {
+    SCOPED_TRACE(mesh);
+    const fs::path file = test::bundled_mesh_dir() / std::string(mesh);
+    ASSERT_TRUE(fs::is_regular_file(file));
+    EXPECT_EQ(fs::file_size(file), sizes.at(std::string(mesh)));
   }
 }
 

@@ -38,6 +38,7 @@
 #include "reference/pixel_comparison.h"
 #include "scene/framed_scene.h"
 #include "support/gl_test_support.h"
+#include "support/mesh_data.h"
 #include "support/volume_test_support.h"
 
 namespace shadowcert::gpu {
@@ -222,7 +223,8 @@ TEST(HardSceneList, IsNotEmpty) { EXPECT_GE(hard_scenes().size(), 10u); }
 
 // ---- real meshes over a floor ------------------------------------------------------------------
 
-// The real meshes of ../shared/data/ (its README), each lit over a floor as a user would view it:
+// The real meshes (data/meshes/ and, in a developer checkout, the shared ones; support/mesh_data.h),
+// each lit over a floor as a user would view it:
 // scene/framed_scene.h's rule (the mesh's vertex box, centre c and half-diagonal r; a floor 6r
 // wide just under it; a point light at c + r (1.5, 3, 1); the camera at c + r (2.4, 1.6, 3.2)
 // looking at c; the near plane fitted), the floor casting too.
@@ -247,8 +249,8 @@ std::vector<std::string> shared_meshes() {
 }
 
 void expect_shared_mesh_exact(const std::string& mesh, std::uint32_t width, std::uint32_t height) {
-  const std::filesystem::path file = std::filesystem::path(SHADOWCERT_SHARED_DATA) / mesh;
-  if (!std::filesystem::exists(file)) GTEST_SKIP() << file << " is not here (../shared/data/ is a dev checkout's)";
+  SHADOWCERT_REQUIRE_MESH(mesh);
+  const std::filesystem::path file = ::shadowcert::test::mesh_file(mesh);
   const Scene scene = shared_mesh_scene(read_soup(file), mesh, width, height);
   const SceneComparison c = compare_scene(scene, std::vector<ShadowMethod>(kRobustMethods.begin(), kRobustMethods.end()), {});
   // Not vacuous: the mesh shades part of the floor or itself (n > 0 at some visible pixels).
@@ -270,8 +272,8 @@ void expect_shared_mesh_exact(const std::string& mesh, std::uint32_t width, std:
 // mesh, the robust chain of the others) has no hard error; every volume is closed; the report
 // says which meshes qualified (the closed manifolds must, the non-manifold soups must not).
 void expect_shared_mesh_silhouettes(const std::string& mesh) {
-  const std::filesystem::path file = std::filesystem::path(SHADOWCERT_SHARED_DATA) / mesh;
-  if (!std::filesystem::exists(file)) GTEST_SKIP() << file << " is not here (../shared/data/ is a dev checkout's)";
+  SHADOWCERT_REQUIRE_MESH(mesh);
+  const std::filesystem::path file = ::shadowcert::test::mesh_file(mesh);
   const Scene scene = shared_mesh_scene(read_soup(file), mesh, 256, 192);
   const SceneComparison c = compare_scene(
       scene, {ShadowMethod::discrete, ShadowMethod::accurate, ShadowMethod::smooth, ShadowMethod::smooth_gpu}, {});

@@ -17,6 +17,7 @@
 #include "io/soup_file.h"
 #include "scene/light_orbit.h"
 #include "scene/procedural_mesh.h"
+#include "support/mesh_data.h"
 
 namespace {
 
@@ -196,12 +197,11 @@ TEST(TrackingMesh, BundledTrackingScenes_LoadAndQualify) {
   EXPECT_EQ(scenes, 4u);
 }
 
-// A real closed mesh (../shared/data/): continue and full miss nothing along the default orbit.
-TEST(CompareTracking, SharedMeshes_ContinueAndFullMissNothing) {
+// Real closed meshes (data/meshes/): continue and full miss nothing along the default orbit.
+TEST(CompareTracking, BundledMeshes_ContinueAndFullMissNothing) {
   for (const char* mesh : {"closed_manifold/spot.obj", "closed_manifold/thingi10k_65004.stl"}) {
-    const std::filesystem::path file = std::filesystem::path(SHADOWCERT_SHARED_DATA) / mesh;
-    if (!std::filesystem::exists(file)) GTEST_SKIP() << file << " is not here (../shared/data/ is a dev checkout's)";
-    const Soup soup = read_soup(file);
+    SHADOWCERT_REQUIRE_MESH(mesh);
+    const Soup soup = read_soup(test::mesh_file(mesh));
     const std::vector<TrackingMesh> meshes = one(mesh, soup);
     ASSERT_TRUE(meshes[0].tracked()) << meshes[0].qualification;
     const std::vector<Light> lights = orbit_lights(default_light_orbit(used_vertex_box(soup)), 90);

@@ -3,19 +3,16 @@
 // machine has no EGL device at all (any other GL environment failure is a failure).
 #include <gtest/gtest.h>
 
-#include <cstdlib>
 #include <optional>
-#include <string>
 
 #include "gpu/egl_context.h"
 #include "gpu/gl_environment_error.h"
+#include "support/test_requirements.h"
 
 namespace shadowcert::gpu::test {
 
-inline bool gl_required() {
-  const char* value = std::getenv("SHADOWCERT_REQUIRE_GL");
-  return value != nullptr && std::string(value) == "1";
-}
+// SHADOWCERT_REQUIRE_GL=1 (CI): no EGL device is a failure, not a skip (support/test_requirements.h).
+using ::shadowcert::test::gl_required;
 
 class GlTest : public ::testing::Test {
  protected:
