@@ -155,12 +155,11 @@ std::vector<std::int32_t> ComputeShadowVolume::read_triangle_signs() const {
 }
 
 std::uint64_t ComputeShadowVolume::read_requested_vertices() const {
-  return read_buffer<Command>(command_.name(), 0, 1).front().requested;
+  return compute_pass::read_command(command_.name(), "ComputeShadowVolume readback").requested;
 }
 
 std::vector<VolumeTriangle> ComputeShadowVolume::read_triangles() const {
-  const Command command = read_buffer<Command>(command_.name(), 0, 1).front();
-  return read_buffer<VolumeTriangle>(volume_.name(), 0, command.count / 3);
+  return compute_pass::read_drawn_triangles<VolumeTriangle>(command_.name(), volume_.name(), "ComputeShadowVolume readback");
 }
 
 }  // namespace shadowcert::gpu

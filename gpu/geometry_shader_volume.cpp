@@ -146,16 +146,11 @@ void GeometryShaderShadowVolume::build(const Light& light) {
 }
 
 std::uint64_t GeometryShaderShadowVolume::read_requested_vertices() const {
-  return compute_pass::read_buffer<Command>(command_.name(), 0, 1, "GeometryShaderShadowVolume readback")
-      .front()
-      .requested;
+  return compute_pass::read_command(command_.name(), "GeometryShaderShadowVolume readback").requested;
 }
 
 std::vector<VolumeTriangle> GeometryShaderShadowVolume::read_triangles() const {
-  const Command command =
-      compute_pass::read_buffer<Command>(command_.name(), 0, 1, "GeometryShaderShadowVolume readback").front();
-  return compute_pass::read_buffer<VolumeTriangle>(volume_.name(), 0, command.count / 3,
-                                                   "GeometryShaderShadowVolume readback");
+  return compute_pass::read_drawn_triangles<VolumeTriangle>(command_.name(), volume_.name(), "GeometryShaderShadowVolume readback");
 }
 
 }  // namespace shadowcert::gpu

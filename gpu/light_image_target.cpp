@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <string>
 
+#include "gpu/detail/gl_readback.h"
 #include "gpu/gl_error.h"
 
 namespace shadowcert::gpu {
@@ -46,17 +47,8 @@ void LightImageTarget::clear() const {
 }
 
 std::vector<float> LightImageTarget::read_light() const {
-  std::vector<float> light(std::size_t{width_} * height_);
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer_.name());
-  glReadBuffer(GL_COLOR_ATTACHMENT0);
-  glPixelStorei(GL_PACK_ALIGNMENT, 4);
-  glReadPixels(0, 0, static_cast<GLsizei>(width_), static_cast<GLsizei>(height_), GL_RED, GL_FLOAT, light.data());
-  check_gl_errors("LightImageTarget::read_light");
-  // GL rows run bottom-up; the image's top-down.
-  for (std::uint32_t top = 0, bottom = height_ - 1; top < bottom; ++top, --bottom)
-    std::swap_ranges(light.begin() + static_cast<std::ptrdiff_t>(top) * static_cast<std::ptrdiff_t>(width_), light.begin() + static_cast<std::ptrdiff_t>(top + 1) * static_cast<std::ptrdiff_t>(width_),
-                     light.begin() + static_cast<std::ptrdiff_t>(bottom) * static_cast<std::ptrdiff_t>(width_));
-  return light;
+  return detail::read_framebuffer<float>(framebuffer_.name(), GL_COLOR_ATTACHMENT0, GL_RED, GL_FLOAT,
+                                         {width_, height_, 1}, "LightImageTarget::read_light");
 }
 
 }  // namespace shadowcert::gpu

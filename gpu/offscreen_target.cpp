@@ -5,21 +5,13 @@
 #include <cstring>
 #include <string>
 
+#include "gpu/detail/gl_readback.h"
 #include "gpu/gl_error.h"
 
 namespace shadowcert::gpu {
 namespace {
 
 std::string size_text(std::uint32_t w, std::uint32_t h) { return std::to_string(w) + "x" + std::to_string(h); }
-
-// GL rows run bottom-up; images run top-down.
-template <int Channels>
-void flip_rows(Image<Channels>& image) {
-  const std::size_t stride = std::size_t{image.width} * Channels;
-  for (std::uint32_t top = 0, bottom = image.height - 1; top < bottom; ++top, --bottom) {
-    std::swap_ranges(image.at(0, top), image.at(0, top) + stride, image.at(0, bottom));
-  }
-}
 
 }  // namespace
 
@@ -66,24 +58,17 @@ void OffscreenTarget::clear(const std::array<float, 4>& colour) const {
 
 RgbaImage OffscreenTarget::read_colour() const {
   RgbaImage image(width_, height_);
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer_.name());
-  glReadBuffer(GL_COLOR_ATTACHMENT0);
-  glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glReadPixels(0, 0, static_cast<GLsizei>(width_), static_cast<GLsizei>(height_), GL_RGBA, GL_UNSIGNED_BYTE,
-               image.pixels.data());
-  check_gl_errors("OffscreenTarget::read_colour");
-  flip_rows(image);
+  image.pixels = detail::read_framebuffer<std::uint8_t>(framebuffer_.name(), GL_COLOR_ATTACHMENT0, GL_RGBA,
+                                                        GL_UNSIGNED_BYTE, {width_, height_, 4},
+                                                        "OffscreenTarget::read_colour");
   return image;
 }
 
 GrayImage OffscreenTarget::read_stencil() const {
   GrayImage image(width_, height_);
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer_.name());
-  glPixelStorei(GL_PACK_ALIGNMENT, 1);  // one byte per pixel: rows are not 4-aligned
-  glReadPixels(0, 0, static_cast<GLsizei>(width_), static_cast<GLsizei>(height_), GL_STENCIL_INDEX,
-               GL_UNSIGNED_BYTE, image.pixels.data());
-  check_gl_errors("OffscreenTarget::read_stencil");
-  flip_rows(image);
+  image.pixels = detail::read_framebuffer<std::uint8_t>(framebuffer_.name(), GL_NONE, GL_STENCIL_INDEX,
+                                                        GL_UNSIGNED_BYTE, {width_, height_, 1},
+                                                        "OffscreenTarget::read_stencil");
   return image;
 }
 

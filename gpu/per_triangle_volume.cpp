@@ -126,12 +126,11 @@ std::vector<std::int32_t> PerTriangleShadowVolume::read_triangle_signs() const {
 }
 
 std::uint64_t PerTriangleShadowVolume::read_requested_vertices() const {
-  return read_buffer<Command>(command_.name(), 0, 1).front().requested;
+  return compute_pass::read_command(command_.name(), "PerTriangleShadowVolume readback").requested;
 }
 
 std::vector<VolumeTriangle> PerTriangleShadowVolume::read_triangles() const {
-  const Command command = read_buffer<Command>(command_.name(), 0, 1).front();
-  return read_buffer<VolumeTriangle>(volume_.name(), 0, command.count / 3);
+  return compute_pass::read_drawn_triangles<VolumeTriangle>(command_.name(), volume_.name(), "PerTriangleShadowVolume readback");
 }
 
 }  // namespace shadowcert::gpu

@@ -39,6 +39,7 @@
 #include "gpu/gpu_stage_timer.h"
 #include "gpu/light_image_target.h"
 #include "gpu/offscreen_target.h"
+#include "gpu/shadow_method.h"
 #include "gpu/smoothie_map.h"
 #include "gpu/stencil_shadow_renderer.h"
 
@@ -61,7 +62,7 @@ inline constexpr float kDefaultShadowMapBias = 1.0e-4f;
 // edge-on from the light (where the constant bias alone would have to be large).
 inline constexpr float kDefaultShadowMapSlope = 2.0f;
 
-enum class ShadowFilter { hard, pcf, pcss, smoothie };
+// ShadowFilter (hard, pcf, pcss, smoothie) is gpu/shadow_method.h's: each method names its filter there.
 
 // pcf: K x K taps, K odd, from 1 (the hard map, pixel for pixel) to this (225 taps).
 inline constexpr std::uint32_t kDefaultPcfKernel = 3;

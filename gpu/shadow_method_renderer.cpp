@@ -87,35 +87,6 @@ using Clock = std::chrono::steady_clock;
 
 }  // namespace
 
-std::string_view shadow_method_name(ShadowMethod method) {
-  switch (method) {
-    case ShadowMethod::cpu: return "cpu";
-    case ShadowMethod::cs: return "cs";
-    case ShadowMethod::gs: return "gs";
-    case ShadowMethod::ts: return "ts";
-    case ShadowMethod::pertri: return "pertri";
-    case ShadowMethod::shadowmap: return "shadowmap";
-    case ShadowMethod::discrete: return "discrete";
-    case ShadowMethod::accurate: return "accurate";
-    case ShadowMethod::smooth: return "smooth";
-    case ShadowMethod::smooth_gpu: return "smooth-gpu";
-    case ShadowMethod::pcf: return "pcf";
-    case ShadowMethod::pcss: return "pcss";
-    case ShadowMethod::smoothie: return "smoothie";
-  }
-  throw std::invalid_argument("shadow_method_name: unknown method " + std::to_string(static_cast<int>(method)));
-}
-
-std::optional<ShadowMethod> parse_shadow_method(std::string_view name) {
-  for (ShadowMethod m : kShadowMethods)
-    if (shadow_method_name(m) == name) return m;
-  for (ShadowMethod m : kSilhouetteMethods)
-    if (shadow_method_name(m) == name) return m;
-  for (ShadowMethod m : kSoftShadowMethods)
-    if (shadow_method_name(m) == name) return m;
-  return std::nullopt;
-}
-
 std::vector<RenderStage> method_stages(ShadowMethod method) {
   if (method == ShadowMethod::smoothie)
     return {RenderStage::depth, RenderStage::shadow_map, RenderStage::smoothie_map, RenderStage::lit};

@@ -1,5 +1,5 @@
 #pragma once
-// One shadow method rendering one scene: the layer `shadowcert render`, the
+// One shadow method (gpu/shadow_method.h: the methods and their traits) rendering one scene: the layer `shadowcert render`, the
 // benchmark (bench/render_bench.cpp) and the image comparison share, so that "scene S by
 // method M" means the same frames everywhere.
 //
@@ -50,6 +50,7 @@
 #include "gpu/gpu_stage_timer.h"
 #include "gpu/offscreen_target.h"
 #include "gpu/shadow_map_renderer.h"
+#include "gpu/shadow_method.h"
 #include "gpu/sign_mode.h"
 #include "gpu/stencil_shadow_renderer.h"
 #include "scene/edge_table.h"
@@ -59,66 +60,6 @@ namespace shadowcert::gpu {
 class ComputeVolumeSoup;  // gpu/compute_volume.h
 class SmoothCasterBuffers;  // gpu/smooth_silhouette_volume.h
 struct SmoothCasterArrays;
-
-enum class ShadowMethod { cpu, cs, gs, ts, pertri, shadowmap, discrete, accurate, smooth, smooth_gpu, pcf, pcss, smoothie };
-// The chain methods and the shadow map: what `--methods all` means (the smooth-silhouette
-// methods are asked for by name: they need casters that qualify, docs/smooth-silhouettes.md).
-inline constexpr std::array<ShadowMethod, 6> kShadowMethods{ShadowMethod::cpu, ShadowMethod::cs,
-                                                           ShadowMethod::gs,  ShadowMethod::ts,
-                                                           ShadowMethod::pertri, ShadowMethod::shadowmap};
-inline constexpr std::array<ShadowMethod, 4> kSilhouetteMethods{ShadowMethod::discrete, ShadowMethod::accurate,
-                                                               ShadowMethod::smooth, ShadowMethod::smooth_gpu};
-// The soft shadow-map methods (docs/smoothies.md), asked for by name as well: the filtered maps
-// and the smoothies.
-inline constexpr std::array<ShadowMethod, 3> kSoftShadowMethods{ShadowMethod::pcf, ShadowMethod::pcss,
-                                                              ShadowMethod::smoothie};
-
-// "cpu", "cs", "gs", "ts", "pertri", "shadowmap", "discrete", "accurate", "smooth", "smooth-gpu",
-// "pcf", "pcss", "smoothie" (the CLI's --method values).
-[[nodiscard]] std::string_view shadow_method_name(ShadowMethod method);
-// The method of that name; nullopt for any other string.
-[[nodiscard]] std::optional<ShadowMethod> parse_shadow_method(std::string_view name);
-// Whether the method is the shadow map or one of its filters (shadowmap, pcf, pcss, smoothie):
-// no volume, one depth map per light (gpu/shadow_map_renderer.h).
-[[nodiscard]] constexpr bool uses_shadow_map(ShadowMethod m) {
-  return m == ShadowMethod::shadowmap || m == ShadowMethod::pcf || m == ShadowMethod::pcss ||
-         m == ShadowMethod::smoothie;
-}
-// The shadow-map filter of such a method (hard for shadowmap).
-[[nodiscard]] constexpr ShadowFilter shadow_filter(ShadowMethod m) {
-  return m == ShadowMethod::pcf        ? ShadowFilter::pcf
-         : m == ShadowMethod::pcss     ? ShadowFilter::pcss
-         : m == ShadowMethod::smoothie ? ShadowFilter::smoothie
-                                       : ShadowFilter::hard;
-}
-// Whether the method counts a shadow volume in the stencil (all but the shadow-map methods), and
-// whether the GPU builds it from the canonical soup (cs, gs, ts, pertri).
-[[nodiscard]] constexpr bool draws_volume(ShadowMethod m) { return !uses_shadow_map(m); }
-[[nodiscard]] constexpr bool builds_volume_on_gpu(ShadowMethod m) {
-  return m == ShadowMethod::cs || m == ShadowMethod::gs || m == ShadowMethod::ts || m == ShadowMethod::pertri;
-}
-// The smooth-silhouette methods (docs/smooth-silhouettes.md): discrete, accurate, smooth,
-// smooth-gpu.
-[[nodiscard]] constexpr bool is_silhouette_method(ShadowMethod m) {
-  return m == ShadowMethod::discrete || m == ShadowMethod::accurate || m == ShadowMethod::smooth ||
-         m == ShadowMethod::smooth_gpu;
-}
-// Whether the method shadows the smooth surface the corner normals describe rather than the
-// polyhedral one (accurate, smooth, smooth-gpu): its disagreement with the exact image is its
-// error, and its stencil counts are not n(P).
-[[nodiscard]] constexpr bool shadows_smooth_surface(ShadowMethod m) {
-  return m == ShadowMethod::accurate || m == ShadowMethod::smooth || m == ShadowMethod::smooth_gpu;
-}
-// Whether the caller hands the method one volume per light (ShadowMethodScene::cpu_volumes):
-// cpu and the smooth-silhouette methods (for smooth-gpu, the volume of the meshes it does not
-// build; it may be empty).
-[[nodiscard]] constexpr bool draws_given_volume(ShadowMethod m) {
-  return m == ShadowMethod::cpu || is_silhouette_method(m);
-}
-// The stages a frame of the method runs, in order: volume, depth, stencil, lit for the
-// volume methods (cpu's volume stage is empty: 0), depth, shadow_map, lit for shadowmap, pcf
-// and pcss, depth, shadow_map, smoothie_map, lit for smoothie.
-[[nodiscard]] std::vector<RenderStage> method_stages(ShadowMethod method);
 
 // What the methods need of a scene. Everything is read (uploaded) during construction only,
 // except cpu_volumes, which first_volume() returns: those must outlive the renderer.

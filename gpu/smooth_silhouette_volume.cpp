@@ -40,11 +40,6 @@ using compute_pass::Command;
 using compute_pass::kVertexBytes;
 using compute_pass::upload;
 
-template <class T>
-std::vector<T> read_buffer(GLuint buffer, std::size_t offset_items, std::size_t count) {
-  return compute_pass::read_buffer<T>(buffer, offset_items, count, "SmoothSilhouetteVolume readback");
-}
-
 bool finite(const Vec3& v) { return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]); }
 
 std::uint32_t float_bits(float x) {
@@ -168,12 +163,11 @@ void SmoothSilhouetteVolume::build(const Light& light) {
 }
 
 std::uint64_t SmoothSilhouetteVolume::read_requested_vertices() const {
-  return read_buffer<Command>(command_.name(), 0, 1).front().requested;
+  return compute_pass::read_command(command_.name(), "SmoothSilhouetteVolume readback").requested;
 }
 
 std::vector<VolumeTriangle> SmoothSilhouetteVolume::read_triangles() const {
-  const Command command = read_buffer<Command>(command_.name(), 0, 1).front();
-  return read_buffer<VolumeTriangle>(volume_.name(), 0, command.count / 3);
+  return compute_pass::read_drawn_triangles<VolumeTriangle>(command_.name(), volume_.name(), "SmoothSilhouetteVolume readback");
 }
 
 }  // namespace shadowcert::gpu

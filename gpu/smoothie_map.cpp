@@ -8,6 +8,7 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include "gpu/detail/gl_readback.h"
 #include "gpu/embedded_shaders.h"
 #include "gpu/gl_error.h"
 #include "gpu/shader_compiler.h"
@@ -115,12 +116,8 @@ void SmoothieMap::render(const SmoothieQuads& quads, const glm::mat4& light_to_c
 }
 
 std::vector<float> SmoothieMap::read() const {
-  std::vector<float> texels(2 * std::size_t{size_} * size_);
-  glPixelStorei(GL_PACK_ALIGNMENT, 4);
-  glGetTextureImage(texture_.name(), 0, GL_RG, GL_FLOAT, static_cast<GLsizei>(texels.size() * sizeof(float)),
-                    texels.data());
-  check_gl_errors("SmoothieMap::read");
-  return texels;
+  return detail::read_texture<float>(texture_.name(), GL_RG, GL_FLOAT, {size_, size_, 2}, detail::RowOrder::gl,
+                                     "SmoothieMap::read");
 }
 
 }  // namespace shadowcert::gpu

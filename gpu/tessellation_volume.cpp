@@ -192,16 +192,11 @@ std::uint32_t TessellationShadowVolume::read_deferred_records() const {
 }
 
 std::uint64_t TessellationShadowVolume::read_requested_vertices() const {
-  return compute_pass::read_buffer<Command>(command_.name(), 0, 1, "TessellationShadowVolume readback")
-      .front()
-      .requested;
+  return compute_pass::read_command(command_.name(), "TessellationShadowVolume readback").requested;
 }
 
 std::vector<VolumeTriangle> TessellationShadowVolume::read_triangles() const {
-  const Command command =
-      compute_pass::read_buffer<Command>(command_.name(), 0, 1, "TessellationShadowVolume readback").front();
-  return compute_pass::read_buffer<VolumeTriangle>(volume_.name(), 0, command.count / 3,
-                                                   "TessellationShadowVolume readback");
+  return compute_pass::read_drawn_triangles<VolumeTriangle>(command_.name(), volume_.name(), "TessellationShadowVolume readback");
 }
 
 }  // namespace shadowcert::gpu

@@ -2,7 +2,7 @@
 // Plumbing shared by the GPU-built volumes (gpu/compute_volume.h `cs`,
 // gpu/per_triangle_volume.h `pertri`, and the capture and finish passes of `gs` and `ts`):
 // storage uploads, 1D work split over a 2D grid, the indirect draw command with its request
-// counter, the light uniform, and synchronous readbacks. Internal to gpu/: the shaders'
+// counter, the light uniform, and the volume readbacks (over gpu/detail/gl_readback.h). Internal to gpu/: the shaders'
 // layouts (Command, local size 64) are fixed here once.
 #include <algorithm>
 #include <array>
@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/light.h"
+#include "gpu/detail/gl_readback.h"
 #include "gpu/gl_error.h"
 #include "gpu/gl_object.h"
 
@@ -61,14 +62,15 @@ inline void dispatch(std::uint32_t items) {
   glDispatchCompute(x, (groups + x - 1) / x, 1);
 }
 
-template <class T>
-std::vector<T> read_buffer(GLuint buffer, std::size_t offset_items, std::size_t count, const char* what) {
-  std::vector<T> out(count);
-  if (count != 0)
-    glGetNamedBufferSubData(buffer, static_cast<GLintptr>(offset_items * sizeof(T)),
-                            static_cast<GLsizeiptr>(count * sizeof(T)), out.data());
-  check_gl_errors(what);
-  return out;
+using detail::read_buffer;  // gpu/detail/gl_readback.h: every readback of gpu/ is there
+
+// What a build left in its indirect command: the vertices drawn (count) and reserved (requested).
+inline Command read_command(GLuint command, const char* what) { return read_buffer<Command>(command, 0, 1, what).front(); }
+
+// The triangles a build drew: the command's `count` vertices of `volume`, three per triangle.
+template <class Triangle>
+std::vector<Triangle> read_drawn_triangles(GLuint command, GLuint volume, const char* what) {
+  return read_buffer<Triangle>(volume, 0, read_command(command, what).count / 3, what);
 }
 
 // A vertex array reading `volume` as tightly packed vec4 at attribute 0 (what

@@ -6,19 +6,13 @@
 #include <stdexcept>
 #include <string>
 
+#include "gpu/detail/gl_readback.h"
 #include "gpu/gl_error.h"
 
 namespace shadowcert::gpu::detail {
 namespace {
 
 std::string size_text(std::uint32_t w, std::uint32_t h) { return std::to_string(w) + "x" + std::to_string(h); }
-
-// GL rows run bottom-up, images top-down: the same flip both ways.
-void flip_rows(float* rgba, std::uint32_t width, std::uint32_t height) {
-  const std::size_t stride = std::size_t{width} * 4;
-  for (std::uint32_t top = 0, bottom = height == 0 ? 0 : height - 1; top < bottom; ++top, --bottom)
-    std::swap_ranges(rgba + top * stride, rgba + top * stride + stride, rgba + bottom * stride);
-}
 
 }  // namespace
 
@@ -71,13 +65,8 @@ void RenderTexture::clear(const float (&colour)[4]) const {
 }
 
 std::vector<float> RenderTexture::read_rgba() const {
-  std::vector<float> rgba(std::size_t{width_} * height_ * 4);
-  glPixelStorei(GL_PACK_ALIGNMENT, 4);
-  glGetTextureImage(texture_.name(), 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(rgba.size() * sizeof(float)),
-                    rgba.data());
-  check_gl_errors((name_ + " read").c_str());
-  flip_rows(rgba.data(), width_, height_);
-  return rgba;
+  return read_texture<float>(texture_.name(), GL_RGBA, GL_FLOAT, {width_, height_, 4}, RowOrder::top_first,
+                             (name_ + " read").c_str());
 }
 
 void RenderTexture::upload_rgba(const std::vector<float>& rgba_top_first) const {
@@ -89,7 +78,7 @@ void RenderTexture::upload_rgba(const std::vector<float>& rgba_top_first) const 
 
 void RenderTexture::upload_rgba(const float* rgba_top_first) const {
   std::vector<float> rows(rgba_top_first, rgba_top_first + std::size_t{width_} * height_ * 4);
-  flip_rows(rows.data(), width_, height_);
+  flip_rows(rows.data(), ReadbackShape{width_, height_, 4});
   glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
   glTextureSubImage2D(texture_.name(), 0, 0, 0, static_cast<GLsizei>(width_), static_cast<GLsizei>(height_), GL_RGBA,
                       GL_FLOAT, rows.data());
