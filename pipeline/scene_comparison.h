@@ -25,6 +25,7 @@
 #include "gpu/offscreen_target.h"
 #include "gpu/shadow_method_renderer.h"
 #include "pipeline/analytic_comparison.h"
+#include "pipeline/method_registry.h"
 #include "pipeline/scene_smoothies.h"
 #include "pipeline/silhouette_volumes.h"
 #include "pipeline/soft_reference.h"
@@ -33,17 +34,8 @@
 
 namespace shadowcert {
 
-// Robust methods must show zero hard errors and closed volumes (docs/definitions.md#pixel-protocol); the shadow map
-// is the baseline whose errors are its speed-against-error figures (docs/definitions.md#speed-against-error), and
-// so are its filters pcf, pcss and smoothie (docs/smoothies.md: their lit mask is where the light
-// is at least kLitThreshold): reported, never a failure.
-// `discrete` is held to the robust rule (on a qualifying caster it draws the exact chain's
-// shadow); `accurate`, `smooth` and `smooth-gpu` shadow a smooth surface that is not the polyhedral one, so
-// their disagreement with the exact image is their error, never a failure
-// (docs/smooth-silhouettes.md). Every volume must be closed all the same.
-[[nodiscard]] constexpr bool robust(gpu::ShadowMethod method) {
-  return !gpu::uses_shadow_map(method) && !gpu::shadows_smooth_surface(method);
-}
+// Which methods must show zero hard errors and closed volumes, and which are reported only
+// (baselines, smooth surfaces): pipeline/method_registry.h's robust(), MethodEntry::robust.
 
 // One method against one light.
 struct LightRun {
