@@ -13,12 +13,14 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <new>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "cli/bench_file.h"
 #include "cli/bench_outputs.h"
 #include "cli/comparison_json.h"
 #include "cli/exit_code.h"
@@ -26,6 +28,7 @@
 #include "cli/option_values.h"
 #include "core/input_error.h"
 #include "gpu/egl_context.h"
+#include "gpu/gl_environment_error.h"
 #include "gpu/png_image.h"
 #include "io/output_file.h"
 #include "pipeline/bench_suite.h"
@@ -247,16 +250,19 @@ std::string write_image(const fs::path& dir, const std::string& relative, const 
   return relative;
 }
 
+// One scene's record. `r`: its result, null for a scene that did not run (`skipped` says why)
+// or that failed before its figures; `failure`: null, or what threw (failure_json).
 nlohmann::json scene_json(std::size_t index, const BenchSceneSpec& spec, const BenchSceneResult* r, bool synchronised,
-                          const fs::path& dir, const std::string& skipped, std::uint32_t soft_samples) {
+                          const fs::path& dir, const std::string& skipped, std::uint32_t soft_samples,
+                          const nlohmann::json& failure = nullptr) {
   nlohmann::json j{{"index", index},          {"suite", spec.suite},  {"name", spec.name},
                    {"input", spec.input},     {"skipped", nullptr},   {"triangles", nullptr},
                    {"lights", nullptr},       {"size", nullptr},      {"exact_seconds", nullptr},
                    {"soft_reference", nullptr}, {"analytic", nullptr}, {"edge_truth_seconds", nullptr},
-                   {"seconds", 0.0},
+                   {"seconds", 0.0},          {"failure", failure},
                    {"images", nlohmann::json::object()},            {"runs", nlohmann::json::array()}};
   if (r == nullptr) {
-    j["skipped"] = skipped;
+    if (!skipped.empty()) j["skipped"] = skipped;
     return j;
   }
   j["triangles"] = r->triangles;
@@ -350,8 +356,18 @@ std::string make_plots(const fs::path& dir, bool no_plots) {
   return {};
 }
 
+// Writes `value` to `file` through FILE.partial and a rename, so that a reader, or a run killed
+// meanwhile, finds the previous file or the new one whole, never half of one.
+void replace_json_file(const fs::path& file, const nlohmann::json& value) {
+  const fs::path partial = file.string() + ".partial";
+  write_json_file(partial, value);
+  std::error_code ec;
+  fs::rename(partial, file, ec);
+  if (ec) throw InputError(file.string(), "cannot replace it with " + partial.string() + ": " + ec.message());
+}
+
 void write_outputs(const nlohmann::json& bench, const fs::path& dir, bool no_plots, std::string& plots_note) {
-  write_json_file(dir / "bench.json", bench);
+  replace_json_file(dir / "bench.json", bench);
   write_text(dir / "bench.csv", bench_csv(bench));
   write_text(dir / "bench.md", bench_markdown(bench));
   std::string plot_error;
@@ -365,16 +381,29 @@ void write_outputs(const nlohmann::json& bench, const fs::path& dir, bool no_plo
   if (!plot_error.empty()) throw std::runtime_error(plot_error);
 }
 
+// bench.json's "totals" of the scenes this command wrote (scene_json's).
 nlohmann::json totals_json(const nlohmann::json& scenes) {
-  std::size_t skipped = 0, runs = 0, failed = 0;
+  std::size_t skipped = 0, runs = 0, failed = 0, failed_scenes = 0;
   for (const nlohmann::json& s : scenes) {
-    if (!s["skipped"].is_null()) ++skipped;
-    for (const nlohmann::json& r : s["runs"]) {
+    if (!s.at("skipped").is_null()) ++skipped;
+    if (!s.at("failure").is_null()) ++failed_scenes;
+    for (const nlohmann::json& r : s.at("runs")) {
       ++runs;
-      if (r["failed"].get<bool>()) ++failed;
+      if (r.at("failed").get<bool>()) ++failed;
     }
   }
-  return {{"scenes", scenes.size()}, {"skipped_scenes", skipped}, {"runs", runs}, {"failed_runs", failed}};
+  return {{"scenes", scenes.size()},
+          {"skipped_scenes", skipped},
+          {"runs", runs},
+          {"failed_runs", failed},
+          {"failed_scenes", failed_scenes}};
+}
+
+// A scene's "failure" record (docs/bench.md, "A scene that fails"): the run that threw (null:
+// loading the scene or its references), the kind of error by the exit code it would have
+// given alone (input and environment: 2, internal: 3, cli/exit_code.h), and its message.
+nlohmann::json failure_json(const std::string& run, const char* kind, const std::string& message) {
+  return {{"run", run.empty() ? nlohmann::json(nullptr) : nlohmann::json(run)}, {"kind", kind}, {"message", message}};
 }
 
 int run_from(const BenchCommandOptions& options) {
@@ -386,13 +415,27 @@ int run_from(const BenchCommandOptions& options) {
   } catch (const nlohmann::json::parse_error& e) {
     throw InputError(options.from, std::string("not JSON: ") + e.what());
   }
-  if (!bench.is_object() || bench.value("schema", "") != "shadowcert-bench/1")
-    throw InputError(options.from, "not a bench.json (schema shadowcert-bench/1)");
+  if (!bench.is_object() || !bench.contains("schema"))
+    throw InputError(options.from, std::string("not a bench.json (no key 'schema'; ") + kBenchSchema + ")");
+  // Every key the outputs read, with its type: exit 2 naming the key, never a read of a key
+  // that is not there (cli/bench_file.h).
+  const BenchFileStatus status = check_bench_file(bench, options.from);
+  if (!status.complete)
+    fmt::print(stderr,
+               "bench: {} is incomplete (\"complete\": false): {} of its shard's {} scenes, an interrupted run; "
+               "the outputs show those\n",
+               options.from, status.scenes, status.shard_scenes);
   const fs::path dir(options.out);
   const fs::path from_dir = fs::absolute(fs::path(options.from)).parent_path();
-  // The images stay where they are: the report reads them from the JSON's folder.
-  if (fs::weakly_canonical(from_dir) != fs::weakly_canonical(fs::absolute(dir)) && fs::exists(from_dir / "images"))
-    fs::copy(from_dir / "images", dir / "images", fs::copy_options::recursive | fs::copy_options::update_existing);
+  // The images go with the tables: the report reads them from --out. (Copied into a folder made
+  // first: fs::copy into a missing --out failed, exit 3.)
+  if (fs::weakly_canonical(from_dir) != fs::weakly_canonical(fs::absolute(dir)) && fs::exists(from_dir / "images")) {
+    std::error_code ec;
+    fs::create_directories(dir / "images", ec);
+    if (!ec)
+      fs::copy(from_dir / "images", dir / "images", fs::copy_options::recursive | fs::copy_options::update_existing, ec);
+    if (ec) throw InputError((dir / "images").string(), "cannot copy the images of " + options.from + " here: " + ec.message());
+  }
   std::string plots_note;
   write_outputs(bench, dir, options.no_plots, plots_note);
   fmt::print("bench: wrote {0}/bench.json, bench.csv, bench.md, report.html{1}\n", dir.string(),
@@ -453,33 +496,16 @@ int run_bench(const BenchCommandOptions& options) {
   nlohmann::json run_ids = nlohmann::json::array();
   for (const BenchVariant& v : variants) run_ids.push_back(v.id);
   const fs::path dir(options.out);
-  nlohmann::json scenes = nlohmann::json::array();
   std::size_t shard_scenes = 0;
   for (std::size_t i = 0; i < specs.size(); ++i)
     if (in_shard(i, shard.k, shard.n)) ++shard_scenes;
-  std::size_t done = 0;
-  bool failed = false;
-  for (std::size_t i = 0; i < specs.size(); ++i) {
-    if (!in_shard(i, shard.k, shard.n)) continue;
-    const BenchSceneSpec& spec = specs[i];
-    ++done;
-    if (!spec.missing.empty()) {
-      fmt::print(stderr, "[{}/{}] {}/{}: skipped: {}\n", done, shard_scenes, spec.suite, spec.name, spec.missing);
-      scenes.push_back(scene_json(i, spec, nullptr, software, dir, spec.missing, bench_options.soft_samples));
-      continue;
-    }
-    const Scene scene = load_bench_scene(spec, size_camera.width, size_camera.height);
-    const BenchSceneResult result = bench_scene(scene, spec, variants, bench_options);
-    std::size_t scene_failed = 0;
-    for (const BenchRun& b : result.runs) scene_failed += b.failed() ? 1 : 0;
-    failed = failed || scene_failed > 0;
-    fmt::print(stderr, "[{}/{}] {}/{}: {} triangles, {} runs{}, {:.1f} s\n", done, shard_scenes, spec.suite, spec.name,
-               result.triangles, result.runs.size(),
-               scene_failed > 0 ? fmt::format(", {} FAILED", scene_failed) : std::string(), result.seconds);
-    scenes.push_back(scene_json(i, spec, &result, software, dir, {}, bench_options.soft_samples));
-  }
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  nlohmann::json bench{{"schema", "shadowcert-bench/1"},
+  const auto seconds_so_far = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
+  // bench.json is rewritten after every scene with "complete": false (docs/bench.md, "Written as
+  // it goes"), so that a run killed midway (a cluster job out of time) leaves what it finished;
+  // the first write, before any scene, replaces a file an earlier run left in --out.
+  nlohmann::json bench{{"schema", kBenchSchema},
                        {"command", options.command},
                        {"suite", suite},
                        {"shard", {{"index", shard.k}, {"count", shard.n}}},
@@ -489,17 +515,77 @@ int run_bench(const BenchCommandOptions& options) {
                        {"frames", options.frames},
                        {"methods", run_ids},
                        {"environment", environment_json(context, software)},
-                       {"seconds", seconds},
-                       {"totals", totals_json(scenes)},
-                       {"scenes", scenes}};
+                       {"complete", false},
+                       {"seconds", 0.0},
+                       {"totals", totals_json(nlohmann::json::array())},
+                       {"scenes", nlohmann::json::array()}};
+  replace_json_file(dir / "bench.json", bench);
+  std::size_t done = 0;
+  bool failed = false;
+  for (std::size_t i = 0; i < specs.size(); ++i) {
+    if (!in_shard(i, shard.k, shard.n)) continue;
+    const BenchSceneSpec& spec = specs[i];
+    ++done;
+    nlohmann::json& scenes = bench["scenes"];
+    if (!spec.missing.empty()) {
+      fmt::print(stderr, "[{}/{}] {}/{}: skipped: {}\n", done, shard_scenes, spec.suite, spec.name, spec.missing);
+      scenes.push_back(scene_json(i, spec, nullptr, software, dir, spec.missing, bench_options.soft_samples));
+    } else {
+      // A scene (or one of its runs) that throws is recorded with its error and the bench goes on
+      // (docs/bench.md, "A scene that fails"); the runs it finished are kept.
+      const auto scene_start = std::chrono::steady_clock::now();
+      BenchSceneResult result;
+      nlohmann::json failure = nullptr;
+      try {
+        const Scene scene = load_bench_scene(spec, size_camera.width, size_camera.height);
+        bench_scene_into(result, scene, spec, variants, bench_options);
+      } catch (const InputError& e) {
+        failure = failure_json(result.running, "input", e.what());
+      } catch (const gpu::GlEnvironmentError& e) {
+        failure = failure_json(result.running, "environment", e.what());
+      } catch (const std::bad_alloc&) {
+        failure = failure_json(result.running, "environment", "out of memory");
+      } catch (const std::exception& e) {
+        failure = failure_json(result.running, "internal", e.what());
+      }
+      std::size_t scene_failed = 0;
+      for (const BenchRun& b : result.runs) scene_failed += b.failed() ? 1 : 0;
+      failed = failed || scene_failed > 0 || !failure.is_null();
+      if (failure.is_null()) {
+        fmt::print(stderr, "[{}/{}] {}/{}: {} triangles, {} runs{}, {:.1f} s\n", done, shard_scenes, spec.suite,
+                   spec.name, result.triangles, result.runs.size(),
+                   scene_failed > 0 ? fmt::format(", {} FAILED", scene_failed) : std::string(), result.seconds);
+        scenes.push_back(scene_json(i, spec, &result, software, dir, {}, bench_options.soft_samples));
+      } else {
+        fmt::print(stderr, "[{}/{}] {}/{}: FAILED{} ({} error): {}; {} runs kept, the bench goes on\n", done,
+                   shard_scenes, spec.suite, spec.name,
+                   failure.at("run").is_null() ? std::string() : " in run " + failure.at("run").get<std::string>(),
+                   failure.at("kind").get<std::string>(), failure.at("message").get<std::string>(), result.runs.size());
+        // Before its figures (width 0: it threw loading or checking the scene) it has none.
+        nlohmann::json j = scene_json(i, spec, result.width == 0 ? nullptr : &result, software, dir, {},
+                                      bench_options.soft_samples, failure);
+        j["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - scene_start).count();
+        scenes.push_back(std::move(j));
+      }
+    }
+    bench["seconds"] = seconds_so_far();
+    bench["totals"] = totals_json(scenes);
+    replace_json_file(dir / "bench.json", bench);
+  }
+  bench["complete"] = true;
+  bench["seconds"] = seconds_so_far();
+  const double seconds = bench["seconds"].get<double>();
   std::string plots_note;
   if (!options.json_file.empty()) write_json_file(options.json_file, bench);
   write_outputs(bench, dir, options.no_plots, plots_note);
   const nlohmann::json& totals = bench["totals"];
-  fmt::print("bench {}{}: {} scenes ({} skipped), {} runs, {} failed, {:.1f} s on {}\n", suite,
+  const std::size_t failed_scenes = totals.at("failed_scenes").get<std::size_t>();
+  fmt::print("bench {}{}: {} scenes ({} skipped{}), {} runs, {} failed, {:.1f} s on {}\n", suite,
              shard.n > 1 ? fmt::format(" shard {}/{}", shard.k, shard.n) : std::string(),
-             totals["scenes"].get<std::size_t>(), totals["skipped_scenes"].get<std::size_t>(),
-             totals["runs"].get<std::size_t>(), totals["failed_runs"].get<std::size_t>(), seconds, context.renderer());
+             totals.at("scenes").get<std::size_t>(), totals.at("skipped_scenes").get<std::size_t>(),
+             failed_scenes > 0 ? fmt::format(", {} FAILED", failed_scenes) : std::string(),
+             totals.at("runs").get<std::size_t>(), totals.at("failed_runs").get<std::size_t>(), seconds,
+             context.renderer());
   fmt::print("  wrote {0}/bench.json, bench.csv, bench.md, report.html, images/{1}\n", dir.string(),
              plots_note.empty() ? ", plots/" : "; " + plots_note);
   if (!plots_note.empty()) fmt::print(stderr, "bench: {}\n", plots_note);

@@ -59,7 +59,7 @@ std::string error_text(std::optional<double> v) { return v ? fmt::format("{:.4f}
 std::string signed_text(std::optional<double> v) { return v ? fmt::format("{:+.4f}", *v) : "-"; }
 
 std::string closed_text(const json& run) {
-  const json& c = run["error"]["closed"];
+  const json& c = run.at("error").at("closed");
   return c.is_null() ? "-" : c.get<bool>() ? "yes" : "NO";
 }
 
@@ -73,7 +73,29 @@ double median(std::vector<double> v) {
 }
 
 std::string scene_key(const json& scene) {
-  return scene["suite"].get<std::string>() + "/" + scene["name"].get<std::string>();
+  return scene.at("suite").get<std::string>() + "/" + scene.at("name").get<std::string>();
+}
+
+// A scene's failure record (docs/bench.md, "A scene that fails"), or null: absent in files
+// written before it existed.
+const json& scene_failure(const json& scene) {
+  static const json none = nullptr;
+  return scene.contains("failure") ? scene.at("failure") : none;
+}
+
+std::size_t failed_scene_count(const json& bench) {
+  const json& scenes = bench.at("scenes");
+  return static_cast<std::size_t>(
+      std::count_if(scenes.begin(), scenes.end(), [](const json& s) { return !scene_failure(s).is_null(); }));
+}
+
+// "FAILED in run pcf/3 (internal error): MESSAGE; 2 runs finished before it".
+std::string failure_text(const json& scene) {
+  const json& f = scene_failure(scene);
+  const std::size_t runs = scene.at("runs").size();
+  return fmt::format("FAILED{} ({} error): {}; {} run{} finished before it",
+                     f.at("run").is_null() ? std::string(" before its runs") : " in run " + f.at("run").get<std::string>(),
+                     f.at("kind").get<std::string>(), f.at("message").get<std::string>(), runs, runs == 1 ? "" : "s");
 }
 
 // ------------------------------------------------------------------ tables
@@ -95,22 +117,22 @@ Table summary_table(const json& bench) {
            "mean over the scenes with a soft reference; contour: the largest over the analytic scenes.";
   t.header = {"run", "scenes", "frame ms", "build ms", "hard errors", "scenes with hard errors", "failed",
               "soft mean error", "contour max"};
-  for (const json& id_json : bench["methods"]) {
+  for (const json& id_json : bench.at("methods")) {
     const std::string id = id_json.get<std::string>();
     std::vector<double> frame, build;
     double hard = 0.0, soft_sum = 0.0;
     std::size_t scenes = 0, with_hard = 0, failed = 0, soft_n = 0;
     std::optional<double> contour;
-    for (const json& scene : bench["scenes"])
-      for (const json& run : scene["runs"]) {
-        if (run["id"] != id) continue;
+    for (const json& scene : bench.at("scenes"))
+      for (const json& run : scene.at("runs")) {
+        if (run.at("id") != id) continue;
         ++scenes;
         frame.push_back(frame_ms(run));
         build.push_back(number_at(run, {"time", "build_ms"}).value_or(0.0));
         const double h = number_at(run, {"error", "hard_errors"}).value_or(0.0);
         hard += h;
         with_hard += h > 0 ? 1 : 0;
-        failed += run["failed"].get<bool>() ? 1 : 0;
+        failed += run.at("failed").get<bool>() ? 1 : 0;
         if (const auto s = number_at(run, {"error", "soft", "mean_error"})) {
           soft_sum += *s;
           ++soft_n;
@@ -132,9 +154,9 @@ Table summary_table(const json& bench) {
 std::vector<Table> analytic_tables(const json& bench, bool contour) {
   std::vector<std::string> lights;
   std::map<std::string, std::vector<const json*>> by_light;
-  for (const json& scene : bench["scenes"]) {
-    if (scene["suite"] != "analytic" || !scene["skipped"].is_null()) continue;
-    const std::string name = scene["name"];
+  for (const json& scene : bench.at("scenes")) {
+    if (scene.at("suite") != "analytic" || !scene.at("skipped").is_null()) continue;
+    const std::string name = scene.at("name");
     const std::size_t dash = name.rfind('-');
     const std::string light = dash == std::string::npos ? "" : name.substr(dash + 1);
     if (by_light.count(light) == 0) lights.push_back(light);
@@ -144,9 +166,9 @@ std::vector<Table> analytic_tables(const json& bench, bool contour) {
   for (const std::string& light : lights) {
     std::vector<std::string> ids;
     for (const json* scene : by_light[light])
-      for (const json& run : (*scene)["runs"])
-        if (run["family"] == "silhouette" && std::find(ids.begin(), ids.end(), run["id"]) == ids.end())
-          ids.push_back(run["id"]);
+      for (const json& run : (*scene).at("runs"))
+        if (run.at("family") == "silhouette" && std::find(ids.begin(), ids.end(), run.at("id")) == ids.end())
+          ids.push_back(run.at("id"));
     if (ids.empty()) continue;
     Table t;
     const std::string light_text = light == "point" ? "point light at (1.2, 4, 0.8)"
@@ -164,13 +186,13 @@ std::vector<Table> analytic_tables(const json& bench, bool contour) {
     t.header = {"caster"};
     t.header.insert(t.header.end(), ids.begin(), ids.end());
     for (const json* scene : by_light[light]) {
-      std::string name = (*scene)["name"];
+      std::string name = (*scene).at("name");
       name = name.substr(0, name.rfind('-'));
       std::vector<std::string> row{name};
       for (const std::string& id : ids) {
         std::string cell = "-";
-        for (const json& run : (*scene)["runs"]) {
-          if (run["id"] != id) continue;
+        for (const json& run : (*scene).at("runs")) {
+          if (run.at("id") != id) continue;
           if (contour) {
             const auto max = number_at(run, {"error", "contour", "max"});
             const auto mean = number_at(run, {"error", "contour", "mean"});
@@ -195,7 +217,7 @@ std::vector<Table> analytic_tables(const json& bench, bool contour) {
 // The soft-shadow error of one scene: the runs compared with its soft reference, cpu (the exact
 // hard shadow) and the shadow-map family.
 std::optional<Table> soft_table(const json& scene) {
-  if (scene["soft_reference"].is_null()) return std::nullopt;
+  if (scene.at("soft_reference").is_null()) return std::nullopt;
   Table t;
   t.title = "Soft-shadow error, " + scene_key(scene);
   t.note = fmt::format("Against the exact soft reference: a disk light of radius {:.4g}, {} samples ({:.1f} s). Mean "
@@ -205,11 +227,11 @@ std::optional<Table> soft_table(const json& scene) {
                        thousands(number_at(scene, {"soft_reference", "samples"}).value_or(0.0)),
                        number_at(scene, {"soft_reference", "seconds"}).value_or(0.0));
   t.header = {"run", "mean", "umbra", "penumbra", "outside", "signed", "leaks", "acne", "ms"};
-  for (const json& run : scene["runs"]) {
-    if (run["family"] != "shadowmap" && run["id"] != "cpu") continue;
-    if (run["error"]["soft"].is_null()) continue;
-    const json& s = run["error"]["soft"];
-    t.rows.push_back({run["id"], error_text(number_at(s, {"mean_error"})), error_text(number_at(s, {"umbra_mean_error"})),
+  for (const json& run : scene.at("runs")) {
+    if (run.at("family") != "shadowmap" && run.at("id") != "cpu") continue;
+    if (run.at("error").at("soft").is_null()) continue;
+    const json& s = run.at("error").at("soft");
+    t.rows.push_back({run.at("id"), error_text(number_at(s, {"mean_error"})), error_text(number_at(s, {"umbra_mean_error"})),
                       error_text(number_at(s, {"penumbra_mean_error"})),
                       error_text(number_at(s, {"outside_penumbra_mean_error"})),
                       signed_text(number_at(s, {"mean_signed_error"})),
@@ -225,26 +247,27 @@ std::optional<Table> soft_table(const json& scene) {
 Table scene_table(const json& scene) {
   Table t;
   t.title = scene_key(scene);
-  const json& size = scene["size"];
+  const json& size = scene.at("size");
   t.note = fmt::format("`{}`: {} triangles, {} light(s), {}x{}; exact image {:.2f} s; scene {:.1f} s.",
-                       scene["input"].get<std::string>(), count_text(number_at(scene, {"triangles"})),
-                       count_text(number_at(scene, {"lights"})), size.is_array() ? size[0].get<int>() : 0,
-                       size.is_array() ? size[1].get<int>() : 0, number_at(scene, {"exact_seconds"}).value_or(0.0),
+                       scene.at("input").get<std::string>(), count_text(number_at(scene, {"triangles"})),
+                       count_text(number_at(scene, {"lights"})), size.is_array() ? size.at(0).get<int>() : 0,
+                       size.is_array() ? size.at(1).get<int>() : 0, number_at(scene, {"exact_seconds"}).value_or(0.0),
                        number_at(scene, {"seconds"}).value_or(0.0));
+  if (!scene_failure(scene).is_null()) t.note = failure_text(scene) + ". " + t.note;
   t.header = {"run", "frame ms", "min", "max", "build ms", "hard errors", "ambiguous", "closed", "soft mean",
               "contour max", "analytic floor / caster"};
-  for (const json& run : scene["runs"]) {
-    const json& e = run["error"];
+  for (const json& run : scene.at("runs")) {
+    const json& e = run.at("error");
     const auto floor = number_at(e, {"analytic", "receiver_disagree"});
     const auto self = number_at(e, {"analytic", "caster_disagree"});
-    t.rows.push_back({run["id"].get<std::string>() + (run["robust"].get<bool>() ? "" : " (baseline)"),
+    t.rows.push_back({run.at("id").get<std::string>() + (run.at("robust").get<bool>() ? "" : " (baseline)"),
                       ms_text(frame_ms(run)), ms_text(number_at(run, {"time", "frame_ms", "min"})),
                       ms_text(number_at(run, {"time", "frame_ms", "max"})), ms_text(number_at(run, {"time", "build_ms"})),
                       count_text(number_at(e, {"hard_errors"})), count_text(number_at(e, {"ambiguous"})),
                       closed_text(run), error_text(number_at(e, {"soft", "mean_error"})),
                       error_text(number_at(e, {"contour", "max"})),
                       floor && self ? thousands(*floor) + " / " + thousands(*self) : "-"});
-    t.failed.push_back(run["failed"].get<bool>());
+    t.failed.push_back(run.at("failed").get<bool>());
   }
   return t;
 }
@@ -262,15 +285,15 @@ Table stage_table(const json& scene, bool synchronised) {
   std::vector<const char*> stages;
   for (const char* stage : {"volume", "depth", "stencil", "shadow_map", "smoothie_map", "lit", "g_buffer", "edge_filter",
                             "composite"})
-    if (std::any_of(scene["runs"].begin(), scene["runs"].end(),
+    if (std::any_of(scene.at("runs").begin(), scene.at("runs").end(),
                     [&](const json& run) { return number_at(run, {"time", "gpu_ms", stage, "median"}).has_value(); }))
       stages.push_back(stage);
   t.header = {"run"};
   t.header.insert(t.header.end(), stages.begin(), stages.end());
   t.header.push_back("frame (wall)");
   t.header.push_back("frame (GPU)");
-  for (const json& run : scene["runs"]) {
-    std::vector<std::string> row{run["id"]};
+  for (const json& run : scene.at("runs")) {
+    std::vector<std::string> row{run.at("id")};
     for (const char* stage : stages) row.push_back(ms_text(number_at(run, {"time", source, stage, "median"})));
     row.push_back(ms_text(number_at(run, {"time", "cpu_ms", "frame", "median"})));
     row.push_back(ms_text(number_at(run, {"time", "gpu_ms", "frame", "median"})));
@@ -289,11 +312,11 @@ std::optional<Table> edges_table(const json& bench) {
            "each class's F1.";
   t.header = {"scene", "run", "precision", "recall", "F1", "profile F1", "inner F1", "frame ms"};
   t.left_columns = 2;
-  for (const json& scene : bench["scenes"])
-    for (const json& run : scene["runs"]) {
-      if (run["error"]["edges"].is_null()) continue;
-      const json& e = run["error"]["edges"];
-      t.rows.push_back({scene_key(scene), run["id"], error_text(number_at(e, {"precision"})),
+  for (const json& scene : bench.at("scenes"))
+    for (const json& run : scene.at("runs")) {
+      if (run.at("error").at("edges").is_null()) continue;
+      const json& e = run.at("error").at("edges");
+      t.rows.push_back({scene_key(scene), run.at("id"), error_text(number_at(e, {"precision"})),
                         error_text(number_at(e, {"recall"})), error_text(number_at(e, {"f1"})),
                         error_text(number_at(e, {"profile", "f1"})), error_text(number_at(e, {"inner", "f1"})),
                         ms_text(frame_ms(run))});
@@ -303,32 +326,57 @@ std::optional<Table> edges_table(const json& bench) {
   return t;
 }
 
+// The scenes that threw: where and why (the bench went on without them).
+std::optional<Table> failures_table(const json& bench) {
+  Table t;
+  t.title = "Scenes that failed";
+  t.note = "A scene or run that threw: recorded, and the bench went on; the scene's finished runs are in its table.";
+  t.header = {"scene", "run", "kind", "message"};
+  t.left_columns = 4;  // text
+  for (const json& scene : bench.at("scenes")) {
+    const json& f = scene_failure(scene);
+    if (f.is_null()) continue;
+    t.rows.push_back({scene_key(scene), f.at("run").is_null() ? "-" : f.at("run").get<std::string>(),
+                      f.at("kind").get<std::string>(), f.at("message").get<std::string>()});
+    t.failed.push_back(true);
+  }
+  if (t.rows.empty()) return std::nullopt;
+  return t;
+}
+
 std::vector<std::pair<std::string, std::string>> facts(const json& bench) {
-  const json& env = bench["environment"];
+  const json& env = bench.at("environment");
   const auto text = [](const json& v) { return v.is_null() ? std::string("unknown") : v.is_string() ? v.get<std::string>() : v.dump(); };
-  std::string commit = text(env["git_commit"]);
-  if (env["git_dirty"].is_boolean() && env["git_dirty"].get<bool>()) commit += " (with uncommitted changes)";
-  const json& totals = bench["totals"];
-  return {{"command", bench["command"].get<std::string>()},
-          {"suite", fmt::format("{} ({} of {} scenes{})", bench["suite"].get<std::string>(),
-                                totals["scenes"].get<std::size_t>(), bench["scene_count"].get<std::size_t>(),
-                                bench["shard"]["count"].get<std::size_t>() > 1
-                                    ? fmt::format(", shard {}/{}", bench["shard"]["index"].get<std::size_t>(),
-                                                  bench["shard"]["count"].get<std::size_t>())
+  std::string commit = text(env.at("git_commit"));
+  if (env.at("git_dirty").is_boolean() && env.at("git_dirty").get<bool>()) commit += " (with uncommitted changes)";
+  const json& totals = bench.at("totals");
+  return {{"command", bench.at("command").get<std::string>()},
+          {"suite", fmt::format("{} ({} of {} scenes{})", bench.at("suite").get<std::string>(),
+                                totals.at("scenes").get<std::size_t>(), bench.at("scene_count").get<std::size_t>(),
+                                bench.at("shard").at("count").get<std::size_t>() > 1
+                                    ? fmt::format(", shard {}/{}", bench.at("shard").at("index").get<std::size_t>(),
+                                                  bench.at("shard").at("count").get<std::size_t>())
                                     : std::string())},
-          {"runs", fmt::format("{} ({} failed), {} skipped scenes", totals["runs"].get<std::size_t>(),
-                               totals["failed_runs"].get<std::size_t>(), totals["skipped_scenes"].get<std::size_t>())},
-          {"size", fmt::format("{}x{}", bench["size"][0].get<int>(), bench["size"][1].get<int>())},
-          {"frames", fmt::format("{} timed after {} warm-up, stages {}", bench["frames"].get<std::size_t>(),
-                                 bench["warm_up_frames"].get<std::size_t>(),
-                                 text(env["stage_sync"]) == "finish"
+          {"runs", fmt::format("{} ({} failed), {} skipped scenes{}", totals.at("runs").get<std::size_t>(),
+                               totals.at("failed_runs").get<std::size_t>(), totals.at("skipped_scenes").get<std::size_t>(),
+                               failed_scene_count(bench) > 0 ? fmt::format(", {} FAILED scenes", failed_scene_count(bench))
+                                                        : std::string())},
+          {"complete", bench.value("complete", true)
+                           ? std::string("yes")
+                           : fmt::format("NO: the run was interrupted after {} scenes (bench.json is written after "
+                                         "every scene)",
+                                         totals.at("scenes").get<std::size_t>())},
+          {"size", fmt::format("{}x{}", bench.at("size").at(0).get<int>(), bench.at("size").at(1).get<int>())},
+          {"frames", fmt::format("{} timed after {} warm-up, stages {}", bench.at("frames").get<std::size_t>(),
+                                 bench.at("warm_up_frames").get<std::size_t>(),
+                                 text(env.at("stage_sync")) == "finish"
                                      ? "bounded by glFinish (software renderer: wall ms)"
                                      : "from GL timer queries")},
-          {"renderer", text(env["renderer"]) + ", GL " + text(env["gl_version"])},
-          {"device", text(env["device"])},
-          {"build", text(env["build_type"]) + ", " + text(env["version"])},
+          {"renderer", text(env.at("renderer")) + ", GL " + text(env.at("gl_version"))},
+          {"device", text(env.at("device"))},
+          {"build", text(env.at("build_type")) + ", " + text(env.at("version"))},
           {"commit", commit},
-          {"date", text(env["date"])},
+          {"date", text(env.at("date"))},
           {"host", fmt::format("{} CPUs", number_at(env, {"host", "cpus"}).value_or(0.0))},
           {"seconds", fmt::format("{:.1f} s", number_at(bench, {"seconds"}).value_or(0.0))}};
 }
@@ -443,34 +491,38 @@ std::string plots_html(const fs::path& dir, const std::string& plots_note) {
 }
 
 std::string scene_html(const json& scene, const fs::path& dir, bool synchronised) {
-  std::string html = fmt::format("<details><summary>{}</summary>\n", html_escape(scene_key(scene)));
-  if (!scene["skipped"].is_null()) return html + "<p>skipped: " + html_escape(scene["skipped"].get<std::string>()) + "</p>\n</details>\n";
+  const bool failed = !scene_failure(scene).is_null();
+  std::string html =
+      fmt::format("<details><summary>{}{}</summary>\n", html_escape(scene_key(scene)), failed ? " (FAILED)" : "");
+  if (!scene.at("skipped").is_null()) return html + "<p>skipped: " + html_escape(scene.at("skipped").get<std::string>()) + "</p>\n</details>\n";
+  if (failed && scene.at("runs").empty())
+    return html + "<p class=\"missing\">" + html_escape(failure_text(scene)) + "</p>\n</details>\n";
   html += html_table(scene_table(scene), "h4");
   html += html_table(stage_table(scene, synchronised), "h4");
   if (const std::optional<Table> soft = soft_table(scene)) html += html_table(*soft, "h4");
-  const json& images = scene["images"];
+  const json& images = scene.at("images");
   if (!images.empty()) {
     html += "<div class=\"figures\">\n";
-    if (images.contains("exact_mask")) html += image_figure(dir, images["exact_mask"], "exact lit mask (first light)");
+    if (images.contains("exact_mask")) html += image_figure(dir, images.at("exact_mask"), "exact lit mask (first light)");
     if (images.contains("exact_counts"))
-      html += image_figure(dir, images["exact_counts"], "exact counts n(P) (first light; legend below)");
+      html += image_figure(dir, images.at("exact_counts"), "exact counts n(P) (first light; legend below)");
     if (images.contains("exact_ambiguous"))
-      html += image_figure(dir, images["exact_ambiguous"], "exact image: ambiguous pixels (white)");
+      html += image_figure(dir, images.at("exact_ambiguous"), "exact image: ambiguous pixels (white)");
     html += "</div>\n" + counts_legend_html(static_cast<std::uint32_t>(number_at(scene, {"count_scale"}).value_or(1.0)));
   }
   html += "<p class=\"legend\">Overlays: <span class=\"swatch\" style=\"background:#f00\"></span><span class=\"label\">"
           "hard error</span><span class=\"swatch\" style=\"background:#ff0\"></span><span class=\"label\">ambiguous "
           "pixel</span> over the rendered frame (first light). Soft error: method minus reference, blue too dark, red "
           "too bright, green where coverage differs.</p>\n<div class=\"figures\">\n";
-  for (const json& run : scene["runs"]) {
-    const json& run_images = run["error"]["images"];
+  for (const json& run : scene.at("runs")) {
+    const json& run_images = run.at("error").at("images");
     if (run_images.contains("overlay"))
-      html += image_figure(dir, run_images["overlay"],
-                           fmt::format("{}: {} hard errors", run["id"].get<std::string>(),
+      html += image_figure(dir, run_images.at("overlay"),
+                           fmt::format("{}: {} hard errors", run.at("id").get<std::string>(),
                                        count_text(number_at(run, {"error", "hard_errors"}))));
     if (run_images.contains("soft_error"))
-      html += image_figure(dir, run_images["soft_error"],
-                           fmt::format("{}: soft error, mean {}", run["id"].get<std::string>(),
+      html += image_figure(dir, run_images.at("soft_error"),
+                           fmt::format("{}: soft error, mean {}", run.at("id").get<std::string>(),
                                        error_text(number_at(run, {"error", "soft", "mean_error"}))));
   }
   return html + "</div>\n</details>\n";
@@ -515,18 +567,18 @@ std::string bench_csv(const json& bench) {
     csv += kColumns[c];
   }
   csv += "\n";
-  for (const json& scene : bench["scenes"])
-    for (const json& run : scene["runs"]) {
-      const json& e = run["error"];
-      const json& p = run["parameter"];
-      const std::vector<json> row{scene["suite"], scene["name"], scene["input"], at(scene, {"size"}).is_array() ? scene["size"][0] : json(),
-                                  at(scene, {"size"}).is_array() ? scene["size"][1] : json(), scene["triangles"],
-                                  scene["lights"], run["id"], run["method"], run["family"], at(p, {"sign"}),
+  for (const json& scene : bench.at("scenes"))
+    for (const json& run : scene.at("runs")) {
+      const json& e = run.at("error");
+      const json& p = run.at("parameter");
+      const std::vector<json> row{scene.at("suite"), scene.at("name"), scene.at("input"), at(scene, {"size"}).is_array() ? scene.at("size").at(0) : json(),
+                                  at(scene, {"size"}).is_array() ? scene.at("size").at(1) : json(), scene.at("triangles"),
+                                  scene.at("lights"), run.at("id"), run.at("method"), run.at("family"), at(p, {"sign"}),
                                   at(p, {"shadow_map_size"}), at(p, {"pcf_kernel"}), at(p, {"light_radius"}),
-                                  at(p, {"epsilon"}), at(p, {"smoothie_width"}), run["robust"], run["failed"],
+                                  at(p, {"epsilon"}), at(p, {"smoothie_width"}), run.at("robust"), run.at("failed"),
                                   at(run, {"time", "frame_ms", "median"}), at(run, {"time", "frame_ms", "min"}),
-                                  at(run, {"time", "frame_ms", "max"}), at(run, {"time", "build_ms"}), e["hard_errors"],
-                                  e["ambiguous"], e["agree"], e["closed"], e["volume_triangles"],
+                                  at(run, {"time", "frame_ms", "max"}), at(run, {"time", "build_ms"}), e.at("hard_errors"),
+                                  e.at("ambiguous"), e.at("agree"), e.at("closed"), e.at("volume_triangles"),
                                   at(e, {"soft", "mean_error"}), at(e, {"soft", "max_error"}),
                                   at(e, {"soft", "umbra_mean_error"}), at(e, {"soft", "penumbra_mean_error"}),
                                   at(e, {"soft", "outside_penumbra_mean_error"}), at(e, {"soft", "mean_signed_error"}),
@@ -552,17 +604,22 @@ std::string bench_markdown(const json& bench) {
         "before the frames (inputs, volumes, upload). Errors: pixels against the exact image (hard errors, ambiguous), "
         "closure, soft-shadow error against the exact soft reference, contour error against the analytic conic, "
         "pixels against the analytic shadow (docs/bench.md).\n\n";
+  if (const std::optional<Table> t = failures_table(bench)) md += markdown_table(*t, "##");
   md += markdown_table(summary_table(bench), "##");
   for (const Table& t : analytic_tables(bench, true)) md += markdown_table(t, "##");
   for (const Table& t : analytic_tables(bench, false)) md += markdown_table(t, "##");
-  for (const json& scene : bench["scenes"])
+  for (const json& scene : bench.at("scenes"))
     if (const std::optional<Table> t = soft_table(scene)) md += markdown_table(*t, "##");
   if (const std::optional<Table> t = edges_table(bench)) md += markdown_table(*t, "##");
   md += "## Every run, per scene\n\n";
-  const bool synchronised = bench["environment"].value("stage_sync", std::string()) == "finish";
-  for (const json& scene : bench["scenes"]) {
-    if (!scene["skipped"].is_null()) {
-      md += fmt::format("### {}\n\nskipped: {}\n\n", scene_key(scene), scene["skipped"].get<std::string>());
+  const bool synchronised = bench.at("environment").value("stage_sync", std::string()) == "finish";
+  for (const json& scene : bench.at("scenes")) {
+    if (!scene.at("skipped").is_null()) {
+      md += fmt::format("### {}\n\nskipped: {}\n\n", scene_key(scene), scene.at("skipped").get<std::string>());
+      continue;
+    }
+    if (!scene_failure(scene).is_null() && scene.at("runs").empty()) {  // else its table's note says it
+      md += fmt::format("### {}\n\n{}\n\n", scene_key(scene), failure_text(scene));
       continue;
     }
     md += markdown_table(scene_table(scene), "###");
@@ -575,19 +632,20 @@ std::string bench_report_html(const json& bench, const fs::path& dir, const std:
   std::string html = fmt::format("<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
                                  "<title>shadowcert bench: {0}</title>\n<style>{1}</style>\n</head>\n<body>\n"
                                  "<h1>shadowcert bench: {0}</h1>\n<ul>\n",
-                                 html_escape(bench["suite"].get<std::string>()), kBenchReportStyle);
+                                 html_escape(bench.at("suite").get<std::string>()), kBenchReportStyle);
   for (const auto& [what, value] : facts(bench))
     html += fmt::format("<li>{}: {}</li>\n", html_escape(what), html_escape(value));
   html += "</ul>\n";
   html += plots_html(dir, plots_note);
+  if (const std::optional<Table> t = failures_table(bench)) html += html_table(*t, "h2");
   html += html_table(summary_table(bench), "h2");
   for (const Table& t : analytic_tables(bench, true)) html += html_table(t, "h2");
   for (const Table& t : analytic_tables(bench, false)) html += html_table(t, "h2");
   if (const std::optional<Table> t = edges_table(bench)) html += html_table(*t, "h2");
   html += "<h2>Scenes</h2>\n<p class=\"note\">Each scene's runs, its soft-shadow error, its exact pictures and every "
           "run's overlay (click to open).</p>\n";
-  const bool synchronised = bench["environment"].value("stage_sync", std::string()) == "finish";
-  for (const json& scene : bench["scenes"]) html += scene_html(scene, dir, synchronised);
+  const bool synchronised = bench.at("environment").value("stage_sync", std::string()) == "finish";
+  for (const json& scene : bench.at("scenes")) html += scene_html(scene, dir, synchronised);
   return html + "</body>\n</html>\n";
 }
 

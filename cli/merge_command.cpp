@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "campaign/case_shard.h"
+#include "cli/bench_file.h"
 #include "cli/exit_code.h"
 #include "core/input_error.h"
 #include "io/output_file.h"
@@ -26,7 +27,6 @@ namespace {
 using nlohmann::json;
 
 constexpr const char* kFuzzSchema = "shadowcert-fuzz/1";
-constexpr const char* kBenchSchema = "shadowcert-bench/1";
 
 struct MergeOptions {
   std::vector<std::string> files;
@@ -162,7 +162,18 @@ json merge_fuzz(const std::vector<Part>& parts) {
       for (const char* key : {"size", "sign", "methods"})
         if (need(p, g, key, "gl.") != need(first, first_gl, key, "gl."))
           throw InputError(p.file, fmt::format("'gl.{}' is {}, but {} has {}: not a shard of the same run", key,
-                                               g[key].dump(), first.file, first_gl[key].dump()));
+                                               g.at(key).dump(), first.file, first_gl.at(key).dump()));
+  }
+  // The keys the summary prints, with their types (the other shards' are held to the first's).
+  (void)need_count(first, first.value, "seed");
+  (void)need_count(first, first.value, "triangles");
+  for (const char* key : {"families", "placements", "methods"})
+    if (!need(first, first.value, key).is_object())
+      throw InputError(first.file, fmt::format("'{}' must be an object of tallies", key));
+  for (const auto& [run, tally] : first.value.at("methods").items()) {
+    (void)need_count(first, tally, "failures", "methods." + run + ".");
+    if (!need(first, tally, "must_not_fail", "methods." + run + ".").is_boolean())
+      throw InputError(first.file, fmt::format("'methods.{}.must_not_fail' must be true or false", run));
   }
   const std::vector<std::string> runs = need_names(first, first.value, "runs");
   const std::vector<std::string> gl_runs = gl ? need_names(first, first_gl, "methods", "gl.") : std::vector<std::string>();
@@ -195,10 +206,10 @@ json merge_fuzz(const std::vector<Part>& parts) {
       add_counts(out["placements"], need(p, p.value, "placements"), p, "placements");
       add_counts(out["methods"], need(p, p.value, "methods"), p, "methods");
     }
-    json shard{{"file", p.file}, {"index", p.index}, {"cases", held}, {"seconds", p.value["seconds"]},
-               {"threads", p.value["threads"]}, {"renderer", nullptr}};
+    json shard{{"file", p.file}, {"index", p.index}, {"cases", held}, {"seconds", p.value.at("seconds")},
+               {"threads", p.value.at("threads")}, {"renderer", nullptr}};
     if (gl) {
-      const json& g = p.value["gl"];
+      const json& g = p.value.at("gl");
       const std::uint64_t gl_held = need_count(p, g, "cases", "gl.");
       if (gl_held != expected)
         throw InputError(p.file, fmt::format("'gl.cases' is {}, but shard {}/{} of {} cases has {}", gl_held, p.index,
@@ -242,10 +253,10 @@ json merge_fuzz(const std::vector<Part>& parts) {
   // the order of gl.methods. Each shard wrote the first ones of its own cases, a superset of
   // the whole run's among them; keep the whole run's, in its order.
   const auto rank = [&](const json& r) {
-    const std::string run = r["run"].get<std::string>();
+    const std::string run = r.at("run").get<std::string>();
     const auto exact_at = std::find(runs.begin(), runs.end(), run);
-    if (exact_at != runs.end()) return std::make_tuple(0, r["case"].get<std::uint64_t>(), exact_at - runs.begin());
-    return std::make_tuple(1, r["case"].get<std::uint64_t>(), std::find(gl_runs.begin(), gl_runs.end(), run) - gl_runs.begin());
+    if (exact_at != runs.end()) return std::make_tuple(0, r.at("case").get<std::uint64_t>(), exact_at - runs.begin());
+    return std::make_tuple(1, r.at("case").get<std::uint64_t>(), std::find(gl_runs.begin(), gl_runs.end(), run) - gl_runs.begin());
   };
   std::stable_sort(reproducers.begin(), reproducers.end(),
                    [&](const json& a, const json& b) { return rank(a) < rank(b); });
@@ -253,7 +264,7 @@ json merge_fuzz(const std::vector<Part>& parts) {
   std::map<std::string, std::uint64_t> kept_per_run;
   json kept = json::array();
   for (const json& r : reproducers)
-    if (kept_per_run[r["run"].get<std::string>()]++ < max_reproducers) kept.push_back(r);
+    if (kept_per_run[r.at("run").get<std::string>()]++ < max_reproducers) kept.push_back(r);
   out["reproducers"] = kept;
   out["shards"] = shards;
   return out;
@@ -261,16 +272,22 @@ json merge_fuzz(const std::vector<Part>& parts) {
 
 // ---- bench (docs/bench.md, "Shards and their merge") -----------------------------------------
 
+// The merged scenes' totals (bench's totals_json; every shard file is checked by then).
 json totals_of(const json& scenes) {
-  std::uint64_t skipped = 0, runs = 0, failed = 0;
+  std::uint64_t skipped = 0, runs = 0, failed = 0, failed_scenes = 0;
   for (const json& s : scenes) {
-    if (!s["skipped"].is_null()) ++skipped;
-    for (const json& r : s["runs"]) {
+    if (!s.at("skipped").is_null()) ++skipped;
+    if (s.contains("failure") && !s.at("failure").is_null()) ++failed_scenes;
+    for (const json& r : s.at("runs")) {
       ++runs;
-      if (r["failed"].get<bool>()) ++failed;
+      if (r.at("failed").get<bool>()) ++failed;
     }
   }
-  return {{"scenes", scenes.size()}, {"skipped_scenes", skipped}, {"runs", runs}, {"failed_runs", failed}};
+  return {{"scenes", scenes.size()},
+          {"skipped_scenes", skipped},
+          {"runs", runs},
+          {"failed_runs", failed},
+          {"failed_scenes", failed_scenes}};
 }
 
 json without_date(json environment) {
@@ -279,50 +296,37 @@ json without_date(json environment) {
 }
 
 json merge_bench(const std::vector<Part>& parts) {
+  // Each file whole and consistent first (cli/bench_file.h): its scenes are then exactly its
+  // shard's, in index order, and every key below is there with its type.
+  for (const Part& p : parts) {
+    const BenchFileStatus status = check_bench_file(p.value, p.file);
+    // A shard that was interrupted (its bench.json is written after every scene, with
+    // "complete": false until the end) is refused: the merge would be a run with scenes missing.
+    if (!status.complete)
+      throw InputError(p.file, fmt::format("'complete' is false: shard {}/{} was interrupted after {} of its {} scenes; "
+                                           "run it again (bench --from {} shows what it finished)",
+                                           p.index, p.count, status.scenes, status.shard_scenes, p.file));
+  }
   for (const char* key : {"suite", "scene_count", "size", "warm_up_frames", "frames", "methods"}) require_same(parts, key);
   const Part& first = parts.front();
-  const std::uint64_t scene_count = need_count(first, first.value, "scene_count");
-  std::map<std::uint64_t, std::pair<json, const Part*>> scenes;
+  std::vector<const json*> scenes;  // by index: shard k's j-th scene has index (k - 1) + j N
   double seconds = 0.0;
   bool environments_differ = false;
   json environments = json::array();
   for (const Part& p : parts) {
-    const json& list = need(p, p.value, "scenes");
-    if (!list.is_array()) throw InputError(p.file, "'scenes' must be an array");
-    for (const json& s : list) {
-      const std::uint64_t index = need_count(p, s, "index", "scenes[].");
-      need(p, s, "skipped", "scenes[].");
-      const json& runs = need(p, s, "runs", "scenes[].");
-      if (!runs.is_array()) throw InputError(p.file, "'scenes[].runs' must be an array");
-      for (const json& r : runs)
-        if (!need(p, r, "failed", "scenes[].runs[].").is_boolean())
-          throw InputError(p.file, "'scenes[].runs[].failed' must be true or false");
-      if (index >= scene_count)
-        throw InputError(p.file, fmt::format("scene index {} is beyond scene_count {}", index, scene_count));
-      if (index % p.count != p.index - 1)
-        throw InputError(p.file, fmt::format("scene index {} is not in shard {}/{} (index % {} == {})", index, p.index,
-                                             p.count, p.count, p.index - 1));
-      const auto [at, fresh] = scenes.try_emplace(index, s, &p);
-      if (!fresh)
-        throw InputError(p.file, fmt::format("scene index {} again: {} holds it too", index, at->second.second->file));
-    }
-    seconds += need_seconds(p, p.value, "seconds");
-    const json& environment = need(p, p.value, "environment");
+    for (const json& s : p.value.at("scenes")) scenes.push_back(&s);
+    seconds += p.value.at("seconds").get<double>();
+    const json& environment = p.value.at("environment");
     environments.push_back(environment);
-    environments_differ = environments_differ || without_date(environment) != without_date(first.value["environment"]);
+    environments_differ = environments_differ || without_date(environment) != without_date(first.value.at("environment"));
   }
-  // Every index of the suite once: a missing one is its shard's (an unfinished run).
-  for (std::uint64_t i = 0; i < scene_count; ++i)
-    if (!scenes.contains(i)) {
-      const std::uint64_t k = i % first.count + 1;
-      const auto holder = std::find_if(parts.begin(), parts.end(), [k](const Part& p) { return p.index == k; });
-      throw InputError(holder->file, fmt::format("scene index {} of shard {}/{} is missing (an unfinished run?)", i, k,
-                                                 first.count));
-    }
+  std::sort(scenes.begin(), scenes.end(),
+            [](const json* a, const json* b) { return a->at("index").get<std::uint64_t>() < b->at("index").get<std::uint64_t>(); });
   json out = first.value;
   json merged = json::array();
-  for (auto& [index, scene] : scenes) merged.push_back(std::move(scene.first));
+  for (const json* scene : scenes) merged.push_back(*scene);
   out["shard"] = {{"index", 1}, {"count", 1}};
+  out["complete"] = true;
   out["seconds"] = seconds;  // machine time: the shards' sum
   out["totals"] = totals_of(merged);
   out["scenes"] = std::move(merged);
@@ -340,7 +344,7 @@ int run_merge(const MergeOptions& options) {
       throw InputError(p.file, fmt::format("no key 'schema': not a file of fuzz --json ({}) or of bench ({})",
                                            kFuzzSchema, kBenchSchema));
   const Part& first = parts.front();
-  const json& schema = first.value["schema"];
+  const json& schema = first.value.at("schema");
   if (schema != kFuzzSchema && schema != kBenchSchema)
     throw InputError(first.file, fmt::format("schema {} is neither {} (fuzz --json) nor {} (bench.json)", schema.dump(),
                                              kFuzzSchema, kBenchSchema));
@@ -357,24 +361,28 @@ int run_merge(const MergeOptions& options) {
   write_json_file(options.json_file, merged);
   if (fuzz) {
     fmt::print("merged {} shards of fuzz seed {}: {} cases of {} triangles{}; {}\n", parts.size(),
-               merged["seed"].get<std::uint64_t>(), merged["cases"].get<std::uint64_t>(),
-               merged["triangles"].get<std::uint64_t>(), merged["gl"].is_null() ? "" : ", GL methods too",
-               merged["must_not_fail_failed"].get<bool>() ? "A METHOD THAT MUST NOT FAIL FAILED"
+               merged.at("seed").get<std::uint64_t>(), merged.at("cases").get<std::uint64_t>(),
+               merged.at("triangles").get<std::uint64_t>(), merged.at("gl").is_null() ? "" : ", GL methods too",
+               merged.at("must_not_fail_failed").get<bool>() ? "A METHOD THAT MUST NOT FAIL FAILED"
                                                           : "no method that must not fail failed");
-    for (const auto& [run, tally] : merged["methods"].items())
-      fmt::print("  {:<16} {:>8} failures{}\n", run, tally["failures"].get<std::uint64_t>(),
-                 tally["must_not_fail"].get<bool>() ? " (must not fail)" : "");
+    for (const auto& [run, tally] : merged.at("methods").items())
+      fmt::print("  {:<16} {:>8} failures{}\n", run, tally.at("failures").get<std::uint64_t>(),
+                 tally.at("must_not_fail").get<bool>() ? " (must not fail)" : "");
   } else {
-    const json& totals = merged["totals"];
-    fmt::print("merged {} shards of bench {}: {} scenes ({} skipped), {} runs, {} failed\n", parts.size(),
-               merged["suite"].get<std::string>(), totals["scenes"].get<std::uint64_t>(),
-               totals["skipped_scenes"].get<std::uint64_t>(), totals["runs"].get<std::uint64_t>(),
-               totals["failed_runs"].get<std::uint64_t>());
+    const json& totals = merged.at("totals");
+    const std::uint64_t failed_scenes = totals.at("failed_scenes").get<std::uint64_t>();
+    fmt::print("merged {} shards of bench {}: {} scenes ({} skipped{}), {} runs, {} failed\n", parts.size(),
+               merged.at("suite").get<std::string>(), totals.at("scenes").get<std::uint64_t>(),
+               totals.at("skipped_scenes").get<std::uint64_t>(),
+               failed_scenes > 0 ? fmt::format(", {} FAILED", failed_scenes) : std::string(),
+               totals.at("runs").get<std::uint64_t>(), totals.at("failed_runs").get<std::uint64_t>());
   }
   fmt::print("wrote {}{}\n", options.json_file,
              fuzz ? "" : " (shadowcert bench --from it --out DIR writes its tables, plots and report)");
-  const bool check_failed = fuzz ? merged["must_not_fail_failed"].get<bool>()
-                                 : merged["totals"]["failed_runs"].get<std::uint64_t>() > 0;
+  // A bench fails a check, as the whole run would, with a failed run or a scene that failed.
+  const bool check_failed = fuzz ? merged.at("must_not_fail_failed").get<bool>()
+                                 : merged.at("totals").at("failed_runs").get<std::uint64_t>() > 0 ||
+                                       merged.at("totals").at("failed_scenes").get<std::uint64_t>() > 0;
   return check_failed ? kExitCheckFailed : kExitOk;
 }
 

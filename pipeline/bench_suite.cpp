@@ -373,11 +373,18 @@ Scene load_bench_scene(const BenchSceneSpec& spec, std::uint32_t width, std::uin
 
 BenchSceneResult bench_scene(const Scene& scene, const BenchSceneSpec& spec, const std::vector<BenchVariant>& variants,
                              const BenchOptions& options) {
+  BenchSceneResult result;
+  bench_scene_into(result, scene, spec, variants, options);
+  return result;
+}
+
+void bench_scene_into(BenchSceneResult& result, const Scene& scene, const BenchSceneSpec& spec,
+                      const std::vector<BenchVariant>& variants, const BenchOptions& options) {
+  result = BenchSceneResult{};
   const Clock::time_point scene_start = Clock::now();
   if (scene.lights.empty()) throw InputError(spec.input, "the scene has no light");
   const Soup merged = merged_soup(scene);
   if (merged.triangles.empty()) throw InputError(spec.input, "no triangle to render");
-  BenchSceneResult result;
   result.triangles = merged.triangles.size();
   result.lights = scene.lights.size();
   result.width = scene.camera.width;
@@ -436,6 +443,7 @@ BenchSceneResult bench_scene(const Scene& scene, const BenchSceneSpec& spec, con
   }
 
   for (const BenchVariant& variant : variants) {
+    result.running = variant.id;
     if (variant.family == BenchFamily::edges) {
       result.runs.push_back(edge_run(variant, *edge_truth, parts, target, drawn, options));
       continue;
@@ -531,8 +539,8 @@ BenchSceneResult bench_scene(const Scene& scene, const BenchSceneSpec& spec, con
                                    b.build_ms));
     result.runs.push_back(std::move(b));
   }
+  result.running.clear();
   result.seconds = ms_since(scene_start) / 1000.0;
-  return result;
 }
 
 }  // namespace shadowcert

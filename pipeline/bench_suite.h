@@ -179,6 +179,9 @@ struct BenchSceneResult {
   gpu::RgbaImage exact_counts;
   std::uint32_t count_scale = 0;
   gpu::GrayImage exact_ambiguous;
+  // bench_scene_into: the id of the run under way (empty before the first and after the last),
+  // so that when it throws, the run that threw.
+  std::string running;
 };
 
 // Every variant of `variants` that applies to `scene` (the smooth-silhouette ones only when some
@@ -186,6 +189,12 @@ struct BenchSceneResult {
 // scene's references (the exact edges too when an edges run is asked for). A GL context must be current. Throws what compare_scene throws.
 [[nodiscard]] BenchSceneResult bench_scene(const Scene& scene, const BenchSceneSpec& spec,
                                            const std::vector<BenchVariant>& variants, const BenchOptions& options);
+// The same, filling `result` as it goes (it is reset first), so that when a run throws the
+// caller keeps what finished (`shadowcert bench` records the failure and goes on,
+// docs/bench.md): the runs done, in order, and in `result.running` the id of the run that threw
+// (empty: the scene's checks or references threw, before any run).
+void bench_scene_into(BenchSceneResult& result, const Scene& scene, const BenchSceneSpec& spec,
+                      const std::vector<BenchVariant>& variants, const BenchOptions& options);
 
 // Whether scene number `index` (0-based, in the whole suite's order) belongs to shard K of N
 // (1 <= K <= N): index % N == K - 1.

@@ -4,11 +4,23 @@
 // bench renders: without an EGL device it exits 2 naming EGL, and these tests skip.
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/types.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "cli_run.h"
@@ -39,7 +51,7 @@ class BenchOutputs : public ::testing::Test {
     delete run_;
   }
   void SetUp() override {
-    if (render_unavailable(*run_)) GTEST_SKIP() << run_->output;
+    SHADOWCERT_SKIP_WITHOUT_GL(*run_);
     ASSERT_EQ(run_->exit_code, 0) << run_->output;
   }
   static fs::path* dir_;
@@ -67,7 +79,7 @@ TEST_F(BenchOutputs, TinyScene_WritesEveryOutput) {
 TEST_F(BenchOutputs, BenchJson_HasTheSchemasKeys) {
   const nlohmann::json j = read_json(*dir_ / "bench.json");
   for (const char* key : {"schema", "command", "suite", "shard", "scene_count", "size", "warm_up_frames", "frames",
-                          "methods", "environment", "seconds", "totals", "scenes"})
+                          "methods", "environment", "complete", "seconds", "totals", "scenes"})
     EXPECT_TRUE(j.contains(key)) << key;
   EXPECT_EQ(j["schema"], "shadowcert-bench/1");
   EXPECT_EQ(j["suite"], "scenes");
@@ -85,7 +97,7 @@ TEST_F(BenchOutputs, BenchJson_HasTheSchemasKeys) {
   ASSERT_EQ(j["scenes"].size(), 1u);
   const nlohmann::json& scene = j["scenes"][0];
   for (const char* key : {"index", "suite", "name", "input", "skipped", "triangles", "lights", "size", "exact_seconds",
-                          "soft_reference", "analytic", "edge_truth_seconds", "seconds", "images", "runs"})
+                          "soft_reference", "analytic", "edge_truth_seconds", "seconds", "failure", "images", "runs"})
     EXPECT_TRUE(scene.contains(key)) << key;
   EXPECT_EQ(scene["index"], 0);
   EXPECT_EQ(scene["name"], "default");
@@ -93,7 +105,8 @@ TEST_F(BenchOutputs, BenchJson_HasTheSchemasKeys) {
   EXPECT_EQ(scene["triangles"], 56);
   EXPECT_FALSE(scene["soft_reference"].is_null());  // a shadow-map run asks for it
   ASSERT_EQ(scene["runs"].size(), 7u);
-  EXPECT_EQ(j["totals"], (nlohmann::json{{"scenes", 1}, {"skipped_scenes", 0}, {"runs", 7}, {"failed_runs", 0}}));
+  EXPECT_EQ(j["totals"], (nlohmann::json{{"scenes", 1}, {"skipped_scenes", 0}, {"runs", 7}, {"failed_runs", 0},
+                                         {"failed_scenes", 0}}));
   for (const nlohmann::json& run : scene["runs"]) {
     SCOPED_TRACE(run["id"].get<std::string>());
     for (const char* key : {"id", "method", "family", "parameter", "robust", "failed", "time", "error"})
@@ -165,14 +178,55 @@ TEST_F(BenchOutputs, From_RewritesTheSameTablesWithoutRendering) {
   EXPECT_NE(read_text(again / "report.html").find("data:image/png;base64,"), std::string::npos);
 }
 
+// The keys of bench.json that are not figures of the scenes, and so may differ between a whole
+// run and the merge of its shards: how long something took or when it ran (every "seconds" and
+// "*_seconds": the command's, a scene's, its exact image's, its soft reference's, its analytic
+// image's, its exact edges'; a run's "time": its frame, stage and build ms; the environment's
+// "date"), the state of the source tree when the command ran ("git_commit" and "git_dirty":
+// other work may commit between the runs) and the command line ("command": --shard and --out
+// differ). Every other key, at every depth, must be equal.
+namespace {
+
+const std::set<std::string> kNotFigures{"seconds",  "exact_seconds", "edge_truth_seconds", "time",
+                                        "date",     "git_commit",    "git_dirty",          "command"};
+
+// a == b recursively but for kNotFigures, each difference reported with its key path.
+void expect_same_figures(const nlohmann::json& a, const nlohmann::json& b, const std::string& path = "") {
+  if (a.is_object() && b.is_object()) {
+    std::set<std::string> keys;
+    for (const auto& item : a.items()) keys.insert(item.key());
+    for (const auto& item : b.items()) keys.insert(item.key());
+    for (const std::string& key : keys) {
+      if (kNotFigures.count(key) != 0) continue;
+      const std::string at = path.empty() ? key : path + "." + key;
+      if (!a.contains(key) || !b.contains(key)) {
+        ADD_FAILURE() << at << " is in one file only";
+        continue;
+      }
+      expect_same_figures(a.at(key), b.at(key), at);
+    }
+  } else if (a.is_array() && b.is_array()) {
+    EXPECT_EQ(a.size(), b.size()) << path;
+    for (std::size_t i = 0; i < std::min(a.size(), b.size()); ++i)
+      expect_same_figures(a.at(i), b.at(i), path + "[" + std::to_string(i) + "]");
+  } else {
+    EXPECT_EQ(a, b) << path;
+  }
+}
+
+}  // namespace
+
 // Shard K of N runs the scenes whose index i has i % N == K - 1; together the shards run every
-// scene once, with the single run's totals.
+// scene once, and their merge is the single run, every figure but the times.
 TEST(BenchShards, TwoShards_SplitTheScenesByIndex) {
   const std::string scenes = kDefaultScene + " " + kSoftContact + " " + kSphere;
-  const std::string options = " --size 16x12 --frames 1 --methods cpu,shadowmap/512";
+  // A run of each family: pixel, closure, soft, silhouette and edge figures compared (no plots:
+  // they are drawn from bench.json and cost seconds each).
+  const std::string options =
+      " --size 16x12 --frames 1 --methods cpu,cs/exact,shadowmap/512,pcf/3,smooth/0.01,edges/sobel --no-plots";
   const fs::path dir = empty_temp_dir("bench_test", "shards");
   const RunResult whole = run_cli("bench " + scenes + options + " --out " + (dir / "whole").string());
-  if (render_unavailable(whole)) GTEST_SKIP() << whole.output;
+  SHADOWCERT_SKIP_WITHOUT_GL(whole);
   ASSERT_EQ(whole.exit_code, 0) << whole.output;
   std::set<std::string> names;
   std::size_t runs = 0;
@@ -202,21 +256,10 @@ TEST(BenchShards, TwoShards_SplitTheScenesByIndex) {
   ASSERT_EQ(m.exit_code, 0) << m.output;
   const nlohmann::json j = read_json(merged);
   EXPECT_EQ(j["shard"], (nlohmann::json{{"index", 1}, {"count", 1}}));
-  EXPECT_EQ(j["totals"], w["totals"]);
+  EXPECT_EQ(j["complete"], true);
   ASSERT_EQ(j["scenes"].size(), w["scenes"].size());
-  for (std::size_t i = 0; i < j["scenes"].size(); ++i) {
-    EXPECT_EQ(j["scenes"][i]["index"], w["scenes"][i]["index"]);
-    EXPECT_EQ(j["scenes"][i]["name"], w["scenes"][i]["name"]);
-    ASSERT_EQ(j["scenes"][i]["runs"].size(), w["scenes"][i]["runs"].size());
-    for (std::size_t r = 0; r < j["scenes"][i]["runs"].size(); ++r) {
-      const nlohmann::json& a = j["scenes"][i]["runs"][r];
-      const nlohmann::json& b = w["scenes"][i]["runs"][r];
-      EXPECT_EQ(a["id"], b["id"]);
-      // The exact figures do not depend on the shard (times do).
-      EXPECT_EQ(a["error"]["hard_errors"], b["error"]["hard_errors"]) << a["id"];
-      EXPECT_EQ(a["error"]["agree"], b["error"]["agree"]) << a["id"];
-    }
-  }
+  // Every figure but the times, key by key: the merge is the whole run.
+  expect_same_figures(j, w);
   const RunResult from = run_cli("bench --from " + merged.string() + " --no-plots --out " + (dir / "merged").string());
   ASSERT_EQ(from.exit_code, 0) << from.output;
   const std::string md = read_text(dir / "merged/bench.md");
@@ -232,7 +275,7 @@ TEST(BenchAnalytic, FirstShapeUnderThePointLight_SmoothContourBeatsDiscrete) {
   const fs::path dir = empty_temp_dir("bench_test", "analytic");
   const RunResult r = run_cli("bench --suite analytic --shard 1/16 --size 32x24 --frames 1 --methods "
                               "discrete,smooth/0.01 --no-plots --out " + dir.string());
-  if (render_unavailable(r)) GTEST_SKIP() << r.output;
+  SHADOWCERT_SKIP_WITHOUT_GL(r);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const nlohmann::json j = read_json(dir / "bench.json");
   EXPECT_EQ(j["scene_count"], 16);
@@ -277,7 +320,7 @@ TEST(DiffCountsPicture, OutAndReport_HaveTheViridisCountsAndItsLegend) {
   const fs::path dir = empty_temp_dir("bench_test", "diff_counts");
   const RunResult r = run_cli("diff " + kDefaultScene + " --size 48x36 --methods cpu --out " + dir.string() +
                               " --report " + (dir / "report.html").string());
-  if (render_unavailable(r)) GTEST_SKIP() << r.output;
+  SHADOWCERT_SKIP_WITHOUT_GL(r);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_TRUE(fs::exists(dir / "exact_counts.png"));
   EXPECT_TRUE(fs::exists(dir / "exact_counts_viridis.png"));
@@ -285,5 +328,192 @@ TEST(DiffCountsPicture, OutAndReport_HaveTheViridisCountsAndItsLegend) {
   EXPECT_NE(html.find("exact_counts (viridis, legend below)"), std::string::npos);
   EXPECT_NE(html.find("exact counts n(P), viridis:"), std::string::npos);
   EXPECT_NE(html.find("rgb(68,1,84)"), std::string::npos);  // viridis at count 0
+  fs::remove_all(dir);
+}
+
+// A scene that throws (here a mesh file that exists but is no mesh: it passes the check that the
+// given files are there and fails when the scene is read) is recorded in bench.json with its
+// error; the scenes after it run; the command exits 1 after writing every output
+// (docs/bench.md, "A scene that fails").
+TEST(BenchFailure, OneSceneThrows_RecordedAndTheOthersRun) {
+  const fs::path dir = empty_temp_dir("bench_test", "failure");
+  const fs::path bad = dir / "not_a_mesh.obj";
+  std::ofstream(bad) << "this is not a mesh\nv 1 2\nf 1 2 3\n";
+  const RunResult r = run_cli("bench " + bad.string() + " " + kDefaultScene +
+                              " --size 16x12 --frames 1 --methods cpu,shadowmap/512 --no-plots --out " +
+                              (dir / "out").string());
+  SHADOWCERT_SKIP_WITHOUT_GL(r);
+  ASSERT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("FAILED"), std::string::npos) << r.output;
+  const nlohmann::json j = read_json(dir / "out/bench.json");
+  EXPECT_EQ(j["complete"], true);
+  ASSERT_EQ(j["scenes"].size(), 2u);
+  const nlohmann::json& failed = j["scenes"][0];
+  EXPECT_EQ(failed["name"], "not_a_mesh");
+  ASSERT_TRUE(failed["failure"].is_object()) << failed.dump(2);
+  EXPECT_TRUE(failed["failure"]["run"].is_null());  // it threw reading the mesh, before any run
+  EXPECT_EQ(failed["failure"]["kind"], "input");
+  EXPECT_NE(failed["failure"]["message"].get<std::string>().find("not_a_mesh.obj"), std::string::npos)
+      << failed["failure"]["message"];
+  EXPECT_TRUE(failed["runs"].empty());
+  EXPECT_TRUE(failed["triangles"].is_null());
+  EXPECT_TRUE(failed["skipped"].is_null());
+  const nlohmann::json& good = j["scenes"][1];
+  EXPECT_EQ(good["name"], "default");
+  EXPECT_TRUE(good["failure"].is_null());
+  ASSERT_EQ(good["runs"].size(), 2u);
+  EXPECT_EQ(good["runs"][0]["error"]["hard_errors"], 0);
+  EXPECT_EQ(j["totals"], (nlohmann::json{{"scenes", 2}, {"skipped_scenes", 0}, {"runs", 2}, {"failed_runs", 0},
+                                         {"failed_scenes", 1}}));
+  for (const char* file : {"bench.csv", "bench.md", "report.html"}) EXPECT_TRUE(fs::exists(dir / "out" / file)) << file;
+  const std::string md = read_text(dir / "out/bench.md");
+  EXPECT_NE(md.find("## Scenes that failed"), std::string::npos);
+  EXPECT_NE(md.find("| **scenes/not_a_mesh FAILED** | - | input | " + bad.string() + ":1: "), std::string::npos) << md;
+  EXPECT_NE(read_text(dir / "out/report.html").find("scenes/not_a_mesh (FAILED)"), std::string::npos);
+  // The file reads back (bench --from, into a folder that is not there yet: it copied the images
+  // into it before making it, exit 3), and a merge of it fails the check as the run did.
+  const RunResult from = run_cli("bench --from " + (dir / "out/bench.json").string() + " --no-plots --out " +
+                                 (dir / "from").string());
+  EXPECT_EQ(from.exit_code, 0) << from.output;
+  EXPECT_EQ(read_text(dir / "from/bench.md"), md);
+  const RunResult merge = run_cli("merge " + (dir / "out/bench.json").string() + " --json " + (dir / "m.json").string());
+  EXPECT_EQ(merge.exit_code, 1) << merge.output;
+  EXPECT_EQ(read_json(dir / "m.json")["totals"]["failed_scenes"], 1);
+  fs::remove_all(dir);
+}
+
+// bench.json is rewritten after every scene with "complete": false, through a temporary file
+// and a rename: a run killed after its first scene leaves a whole file holding that scene, which
+// bench --from reads (saying it is incomplete) and merge refuses, naming it.
+TEST(BenchIncremental, KilledAfterTheFirstScene_KeepsItAndMergeRefusesTheFile) {
+  const fs::path dir = empty_temp_dir("bench_test", "killed");
+  const fs::path out = dir / "out";
+  // Two scenes, each timed over many frames so that the second takes seconds: the kill lands in it.
+  std::vector<std::string> arguments{SHADOWCERT_CLI, "bench",  kDefaultScene, kDefaultScene, "--size",   "16x12",
+                                     "--frames",     "6000",   "--methods",   "cpu",         "--no-plots", "--out",
+                                     out.string()};
+  std::vector<char*> argv;
+  for (std::string& a : arguments) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  const std::string log_file = (dir / "log.txt").string();
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, log_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&actions, 1, 2);
+  pid_t pid = 0;
+  const int spawned = posix_spawn(&pid, SHADOWCERT_CLI, &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  ASSERT_EQ(spawned, 0);
+  bool ended = false;  // by itself, before the kill
+  nlohmann::json seen;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  while (std::chrono::steady_clock::now() < deadline) {
+    int status = 0;
+    if (waitpid(pid, &status, WNOHANG) == pid) {
+      ended = true;
+      break;
+    }
+    if (fs::exists(out / "bench.json")) {
+      seen = read_json(out / "bench.json");  // never half a file: it is replaced by a rename
+      if (seen["scenes"].size() >= 1) break;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  if (!ended) {
+    ::kill(pid, SIGKILL);
+    int status = 0;
+    waitpid(pid, &status, 0);
+  }
+  const RunResult log{ended ? 2 : 0, read_text(dir / "log.txt")};
+  SHADOWCERT_SKIP_WITHOUT_GL(log);
+  ASSERT_FALSE(ended) << "the bench ended before the test could kill it: " << log.output;
+  ASSERT_EQ(seen["scenes"].size(), 1u) << log.output;
+
+  const nlohmann::json j = read_json(out / "bench.json");
+  EXPECT_EQ(j["complete"], false);
+  ASSERT_EQ(j["scenes"].size(), 1u) << "the second scene finished before the kill: give it more frames";
+  EXPECT_EQ(j["scenes"][0]["runs"][0]["error"]["hard_errors"], 0);
+  EXPECT_EQ(j["totals"]["scenes"], 1);
+  EXPECT_FALSE(fs::exists(out / "bench.csv"));  // the tables come at the end (or from --from)
+
+  const RunResult merge = run_cli("merge " + (out / "bench.json").string() + " --json " + (dir / "m.json").string());
+  EXPECT_EQ(merge.exit_code, 2) << merge.output;
+  EXPECT_NE(merge.output.find((out / "bench.json").string() + ": 'complete' is false"), std::string::npos)
+      << merge.output;
+  const RunResult from =
+      run_cli("bench --from " + (out / "bench.json").string() + " --no-plots --out " + (dir / "from").string());
+  EXPECT_EQ(from.exit_code, 0) << from.output;
+  EXPECT_NE(from.output.find("incomplete"), std::string::npos) << from.output;
+  const std::string md = read_text(dir / "from/bench.md");
+  EXPECT_NE(md.find("complete: NO"), std::string::npos) << md;
+  EXPECT_NE(md.find("### scenes/default"), std::string::npos) << md;
+  fs::remove_all(dir);
+}
+
+TEST_F(BenchOutputs, FinishedRun_CompleteAndNoTemporaryFileLeft) {
+  const nlohmann::json j = read_json(*dir_ / "bench.json");
+  EXPECT_EQ(j["complete"], true);
+  EXPECT_FALSE(fs::exists(*dir_ / "bench.json.partial"));
+  EXPECT_EQ(j["totals"]["failed_scenes"], 0);
+  EXPECT_TRUE(j["scenes"][0]["failure"].is_null());
+}
+
+// bench --from and merge check every key they read (cli/bench_file.h): a missing key, a value of
+// the wrong type, figures that disagree or text that is not JSON is exit 2 naming the file and
+// the key, never a crash or a bug's exit 3.
+TEST_F(BenchOutputs, FromAndMerge_MalformedFile_ExitTwoNamingTheFileAndTheKey) {
+  const nlohmann::json good = read_json(*dir_ / "bench.json");
+  const fs::path dir = empty_temp_dir("bench_test", "malformed");
+  struct Case {
+    std::string name;
+    std::function<void(nlohmann::json&)> change;
+    std::string named;  // in the message, after the file's name
+  };
+  const std::vector<Case> cases{
+      {"no_frame_ms", [](nlohmann::json& j) { j["scenes"][0]["runs"][1]["time"].erase("frame_ms"); },
+       "scenes[0].runs[1].time: no key 'frame_ms'"},
+      {"failed_text", [](nlohmann::json& j) { j["scenes"][0]["runs"][0]["failed"] = "no"; },
+       "scenes[0].runs[0].failed: expected true or false"},
+      {"no_totals", [](nlohmann::json& j) { j.erase("totals"); }, "no key 'totals'"},
+      {"totals_wrong", [](nlohmann::json& j) { j["totals"]["runs"] = 99; }, "totals.runs: 99, but the scenes add up to 7"},
+      {"stage_sync_number", [](nlohmann::json& j) { j["environment"]["stage_sync"] = 3; },
+       "environment.stage_sync: expected a string"},
+      {"size_short", [](nlohmann::json& j) { j["size"] = {32}; }, "size: expected [width, height]"},
+      {"index_text", [](nlohmann::json& j) { j["scenes"][0]["index"] = "0"; }, "scenes[0].index: expected an unsigned"},
+      {"image_number", [](nlohmann::json& j) { j["scenes"][0]["images"]["exact_mask"] = 5; },
+       "scenes[0].images.exact_mask: expected a string"},
+      {"hard_errors_negative", [](nlohmann::json& j) { j["scenes"][0]["runs"][0]["error"]["hard_errors"] = -1; },
+       "scenes[0].runs[0].error.hard_errors: expected an unsigned integer"},
+      {"unknown_run", [](nlohmann::json& j) { j["scenes"][0]["runs"][0]["id"] = "bogus"; },
+       "scenes[0].runs[0].id: run \"bogus\" is not one of"},
+      {"scene_not_object", [](nlohmann::json& j) { j["scenes"][0]["runs"][2] = 7; },
+       "scenes[0].runs[2]: expected an object"},
+      {"no_failure_kind", [](nlohmann::json& j) { j["scenes"][0]["failure"] = {{"run", nullptr}, {"message", "x"}}; },
+       "scenes[0].failure: no key 'kind'"},
+      {"complete_text", [](nlohmann::json& j) { j["complete"] = "yes"; }, "complete: expected true or false"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.name);
+    nlohmann::json changed = good;
+    c.change(changed);
+    const fs::path file = dir / (c.name + ".json");
+    std::ofstream(file) << changed.dump(2);
+    const RunResult from = run_cli("bench --from " + file.string() + " --no-plots --out " + (dir / "out").string());
+    EXPECT_EQ(from.exit_code, 2) << from.output;
+    EXPECT_NE(from.output.find(file.string() + ": " + c.named), std::string::npos) << from.output;
+    const RunResult merge = run_cli("merge " + file.string() + " --json " + (dir / "merged.json").string());
+    EXPECT_EQ(merge.exit_code, 2) << merge.output;
+    EXPECT_NE(merge.output.find(file.string() + ": " + c.named), std::string::npos) << merge.output;
+  }
+  const fs::path text = dir / "text.json";
+  std::ofstream(text) << "{\"schema\": \"shadowcert-bench/1\", \"scenes\": [";
+  const RunResult from = run_cli("bench --from " + text.string() + " --no-plots --out " + (dir / "out").string());
+  EXPECT_EQ(from.exit_code, 2) << from.output;
+  EXPECT_NE(from.output.find(text.string() + ": not JSON"), std::string::npos) << from.output;
+  const RunResult merge = run_cli("merge " + text.string() + " --json " + (dir / "merged.json").string());
+  EXPECT_EQ(merge.exit_code, 2) << merge.output;
+  EXPECT_NE(merge.output.find(text.string()), std::string::npos) << merge.output;
+  // The file as the run wrote it is accepted by both.
+  EXPECT_EQ(run_cli("merge " + (*dir_ / "bench.json").string() + " --json " + (dir / "merged.json").string()).exit_code, 0);
   fs::remove_all(dir);
 }

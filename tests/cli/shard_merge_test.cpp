@@ -110,7 +110,7 @@ TEST(FuzzShards, GlShardsMerged_EqualTheWholeRunFailureIncluded) {
       "--gl --sign float --seed 2 --cases 20 --triangles 30 --methods exact --gl-methods cs,pertri --gl-size 32x24 "
       "--max-reproducers 1",
       2, dir);
-  if (render_unavailable({s.whole_exit, s.output})) GTEST_SKIP() << s.output;
+  SHADOWCERT_SKIP_WITHOUT_GL((RunResult{s.whole_exit, s.output}));
   ASSERT_EQ(s.whole_exit, 1) << s.output;
   ASSERT_EQ(s.merge_exit, 1) << s.output;
   EXPECT_EQ(s.merged["must_not_fail_failed"], true);
@@ -202,21 +202,74 @@ TEST_F(MergeRefusal, NoJsonOrNoFile_ExitsTwo) {
   expect_refused(file(1) + " " + (*dir_ / "absent.json").string(), "absent.json", "cannot open");
 }
 
-// bench.json shards (docs/bench.md, "Shards and their merge"), written here by the schema: the
-// scenes' union in index order, totals recomputed, seconds summed, the environments kept when
-// they differ.
-json bench_scene(int index, bool failed, bool skipped) {
+// bench.json shards (docs/bench.md, "Shards and their merge"), written here by the schema (every
+// key the merge checks, cli/bench_file.h): the scenes' union in index order, totals recomputed,
+// seconds summed, the environments kept when they differ.
+json bench_run(const std::string& id, bool failed) {
+  return {{"id", id},
+          {"method", id},
+          {"family", "stencil"},
+          {"parameter", json::object()},
+          {"robust", true},
+          {"failed", failed},
+          {"time",
+           {{"frame_ms", {{"median", 1.5}, {"min", 1.0}, {"max", 2.0}}},
+            {"gpu_ms", json::object()},
+            {"cpu_ms", json::object()},
+            {"build_ms", 0.5}}},
+          {"error",
+           {{"hard_errors", failed ? 3 : 0}, {"ambiguous", 1}, {"agree", 100}, {"coverage_errors", 0},
+            {"lit_errors", 0}, {"count_errors", 0}, {"closed", true}, {"volume_triangles", 12},
+            {"capacity_error", nullptr}, {"soft", nullptr}, {"analytic", nullptr}, {"contour", nullptr},
+            {"edges", nullptr}, {"images", json::object()}}}};
+}
+
+// Scene `index`: its cs run failed, or it was skipped, or it threw before its runs.
+json bench_scene(int index, bool failed, bool skipped, bool threw = false) {
   json runs = json::array();
-  if (!skipped) runs = json::array({{{"id", "cs"}, {"failed", failed}}, {{"id", "pertri"}, {"failed", false}}});
+  if (!skipped && !threw) runs = json::array({bench_run("cs", failed), bench_run("pertri", false)});
+  const bool ran = !skipped && !threw;
   return {{"index", index},
+          {"suite", "default"},
           {"name", "scene" + std::to_string(index)},
+          {"input", "data/scenes/scene" + std::to_string(index) + ".json"},
           {"skipped", skipped ? json("not here") : json(nullptr)},
+          {"failure", threw ? json({{"run", nullptr}, {"kind", "input"}, {"message", "x.obj: not a mesh"}}) : json(nullptr)},
+          {"triangles", ran ? json(12) : json(nullptr)},
+          {"lights", ran ? json(1) : json(nullptr)},
+          {"size", ran ? json({160, 120}) : json(nullptr)},
+          {"exact_seconds", ran ? json(0.1) : json(nullptr)},
+          {"soft_reference", nullptr},
+          {"analytic", nullptr},
+          {"edge_truth_seconds", nullptr},
+          {"seconds", 1.0},
+          {"images", json::object()},
           {"runs", runs}};
 }
 
+json bench_totals(const json& scenes) {
+  int skipped = 0, runs = 0, failed = 0, threw = 0;
+  for (const json& s : scenes) {
+    skipped += s["skipped"].is_null() ? 0 : 1;
+    threw += s["failure"].is_null() ? 0 : 1;
+    for (const json& r : s["runs"]) {
+      ++runs;
+      failed += r["failed"].get<bool>() ? 1 : 0;
+    }
+  }
+  return {{"scenes", scenes.size()}, {"skipped_scenes", skipped}, {"runs", runs}, {"failed_runs", failed},
+          {"failed_scenes", threw}};
+}
+
+// Shard K of N of a suite of `scene_count` scenes: scene 4's cs run fails, scene 1 is skipped,
+// scene 5 threw.
 json bench_shard(int k, int n, int scene_count, const std::string& renderer) {
   json scenes = json::array();
-  for (int i = k - 1; i < scene_count; i += n) scenes.push_back(bench_scene(i, i == 4, i == 1));
+  for (int i = k - 1; i < scene_count; i += n) scenes.push_back(bench_scene(i, i == 4, i == 1, i == 5));
+  json environment{{"renderer", renderer}, {"gl_version", "4.5"},     {"device", nullptr},
+                   {"software_renderer", true}, {"stage_sync", "finish"}, {"build_type", "Release"},
+                   {"git_commit", nullptr},     {"git_dirty", nullptr},   {"date", "2026-12-0" + std::to_string(k)},
+                   {"version", "shadowcert 0.1.0"}, {"host", {{"cpus", 2}}}};
   return {{"schema", "shadowcert-bench/1"},
           {"command", "shadowcert bench --shard " + std::to_string(k) + "/" + std::to_string(n)},
           {"suite", "default"},
@@ -226,9 +279,10 @@ json bench_shard(int k, int n, int scene_count, const std::string& renderer) {
           {"warm_up_frames", 2},
           {"frames", 10},
           {"methods", {"cs", "pertri"}},
-          {"environment", {{"renderer", renderer}, {"date", "2026-12-0" + std::to_string(k)}}},
+          {"environment", environment},
+          {"complete", true},
           {"seconds", 10.0 * k},
-          {"totals", {}},
+          {"totals", bench_totals(scenes)},
           {"scenes", scenes}};
 }
 
@@ -242,7 +296,10 @@ TEST(MergeBench, ShardsOfTheSchema_MergeIntoTheWholeRunsScenesAndTotals) {
   const json merged = read_json(dir / "merged.json");
   ASSERT_EQ(merged["scenes"].size(), 7u);
   for (int i = 0; i < 7; ++i) EXPECT_EQ(merged["scenes"][i]["index"], i);
-  EXPECT_EQ(merged["totals"], json({{"scenes", 7}, {"skipped_scenes", 1}, {"runs", 12}, {"failed_runs", 1}}));
+  EXPECT_EQ(merged["totals"],
+            json({{"scenes", 7}, {"skipped_scenes", 1}, {"runs", 10}, {"failed_runs", 1}, {"failed_scenes", 1}}));
+  EXPECT_EQ(merged["scenes"][5]["failure"]["kind"], "input");  // the failure record goes through
+  EXPECT_EQ(merged["complete"], true);
   EXPECT_EQ(merged["shard"], json({{"index", 1}, {"count", 1}}));
   EXPECT_DOUBLE_EQ(merged["seconds"].get<double>(), 60.0);
   EXPECT_EQ(merged["command"], "shadowcert bench --shard 1/3");  // the first shard's
@@ -274,6 +331,25 @@ TEST(MergeBench, ShardsOfTheSchema_MergeIntoTheWholeRunsScenesAndTotals) {
   refused = run_cli("merge" + files + " --json " + (dir / "merged.json").string());
   EXPECT_EQ(refused.exit_code, 2) << refused.output;
   EXPECT_NE(refused.output.find("b2.json: scene index 4"), std::string::npos) << refused.output;
+  // A shard that was interrupted ("complete": false, its first scenes only): refused, named.
+  json interrupted = bench_shard(2, 3, 7, "llvmpipe");
+  interrupted["scenes"].erase(1);
+  interrupted["totals"] = bench_totals(interrupted["scenes"]);
+  interrupted["complete"] = false;
+  write_json(dir / "b2.json", interrupted);
+  refused = run_cli("merge" + files + " --json " + (dir / "merged.json").string());
+  EXPECT_EQ(refused.exit_code, 2) << refused.output;
+  EXPECT_NE(refused.output.find("b2.json: 'complete' is false: shard 2/3 was interrupted after 1 of its 2 scenes"),
+            std::string::npos)
+      << refused.output;
+  // Totals that are not the scenes' sums: not a file bench wrote.
+  json tampered = bench_shard(2, 3, 7, "llvmpipe");
+  tampered["totals"]["failed_runs"] = 0;
+  write_json(dir / "b2.json", tampered);
+  refused = run_cli("merge" + files + " --json " + (dir / "merged.json").string());
+  EXPECT_EQ(refused.exit_code, 2) << refused.output;
+  EXPECT_NE(refused.output.find("b2.json: totals.failed_runs: 0, but the scenes add up to 1"), std::string::npos)
+      << refused.output;
 }
 
 }  // namespace
