@@ -600,7 +600,7 @@ void add_bench_command(CLI::App& app, int& exit_code) {
       "bench",
       "Time against error of every GL method and parameter on a suite of scenes (docs/bench.md): bench.json, "
       "bench.csv, bench.md, plots and report.html in --out. Exit 1 when a robust run has a hard error or an open "
-      "volume");
+      "volume, or a scene failed (recorded in bench.json, the bench goes on)");
   cmd->add_option("scenes", options->scenes,
                   "Scenes (.json, as they are) or meshes (framed over a floor, as the real suite frames them) in "
                   "place of a suite's list");
