@@ -56,6 +56,7 @@ struct FuzzOptions {
   bool shrink_findings = false;
   std::string gl_methods = "cpu,cs,gs,ts,pertri";
   std::string gl_size = "64x48";
+  std::string gl_scenes = "soups";  // --gl-scenes soups|hard (campaign/gl_campaign.h GlSceneSource)
   std::string sign = "exact";  // --sign exact|float (gpu/sign_mode.h)
   std::optional<int> device;
 };
@@ -229,9 +230,22 @@ nlohmann::json tally_json(const CampaignRun& run, const CampaignRunTally& t) {
           {"failures_by_placement", by_placement}};
 }
 
+std::string part_counts(const std::vector<std::uint64_t>& counts) {
+  std::string s;
+  for (std::size_t i = 0; i < counts.size(); ++i)
+    s += fmt::format("{}{} {}", i ? ", " : "", hard_part_name(static_cast<HardPart>(i)), counts[i]);
+  return s;
+}
+
 void print_gl_summary(const GlCampaignOptions& gl, const GlCampaignResult& result, const gpu::EglContext& context) {
-  fmt::print("GL methods: {}x{} images of each case's campaign view (docs/campaign.md), z-fail, {} signs, on {}\n",
-             gl.width, gl.height, gpu::sign_mode_name(gl.sign), context.renderer());
+  if (gl.scenes == GlSceneSource::hard) {
+    fmt::print("GL methods: {}x{} images of hard-soup scenes (docs/campaign.md), z-fail, {} signs, on {}\n", gl.width,
+               gl.height, gpu::sign_mode_name(gl.sign), context.renderer());
+    fmt::print("  parts: {}\n", part_counts(result.cases_by_part));
+  } else {
+    fmt::print("GL methods: {}x{} images of each case's campaign view (docs/campaign.md), z-fail, {} signs, on {}\n",
+               gl.width, gl.height, gpu::sign_mode_name(gl.sign), context.renderer());
+  }
   fmt::print("  {:<16}{:>5}{:>10}{:>9}{:>12}{:>12}{:>12}{:>12}{:>10}\n", "run", "must", "failures", "closure",
              "hard-error", "hard px", "ambiguous", "agree", "capacity");
   for (std::size_t m = 0; m < gl.methods.size(); ++m) {
@@ -241,6 +255,10 @@ void print_gl_summary(const GlCampaignOptions& gl, const GlCampaignResult& resul
                t.hard_error_pixels, t.ambiguous_pixels, t.agree_pixels, t.capacity_errors);
   }
   const double rate = result.seconds > 0.0 ? static_cast<double>(result.cases) / result.seconds : 0.0;
+  if (gl.scenes == GlSceneSource::hard)
+    for (std::size_t m = 0; m < gl.methods.size(); ++m)
+      if (result.methods[m].failures > 0)
+        fmt::print("  {} failures by part: {}\n", gl_run_name(gl.methods[m]), part_counts(result.methods[m].failures_by_part));
   fmt::print(
       "  (closure, hard-error, capacity: cases; hard px, ambiguous, agree: pixels summed over the cases)\n"
       "{} cases in {:.2f} s on one GL thread: {:.1f} cases/s ({:.2f} s of it exact images)\n",
@@ -253,6 +271,9 @@ nlohmann::json gl_tally_json(gpu::ShadowMethod method, const GlCampaignTally& t)
     by_family[std::string(family_name(static_cast<SoupFamily>(i)))] = t.failures_by_family[i];
   for (std::size_t i = 0; i < t.failures_by_placement.size(); ++i)
     by_placement[std::string(placement_name(static_cast<LightPlacement>(i)))] = t.failures_by_placement[i];
+  nlohmann::json by_part = nlohmann::json::object();
+  for (std::size_t i = 0; i < t.failures_by_part.size(); ++i)
+    by_part[std::string(hard_part_name(static_cast<HardPart>(i)))] = t.failures_by_part[i];
   return {{"must_not_fail", robust(method)},
           {"failures", t.failures},
           {"closure_failures", t.closure_failures},
@@ -263,7 +284,8 @@ nlohmann::json gl_tally_json(gpu::ShadowMethod method, const GlCampaignTally& t)
           {"agree_pixels", t.agree_pixels},
           {"volume_triangles", t.volume_triangles},
           {"failures_by_family", by_family},
-          {"failures_by_placement", by_placement}};
+          {"failures_by_placement", by_placement},
+          {"failures_by_part", by_part}};
 }
 
 int run_fuzz(const FuzzOptions& options) {
@@ -298,6 +320,7 @@ int run_fuzz(const FuzzOptions& options) {
     apply_image_size(options.gl_size, size, "--gl-size");
     gl.width = size.width;
     gl.height = size.height;
+    gl.scenes = options.gl_scenes == "hard" ? GlSceneSource::hard : GlSceneSource::soups;  // CLI11 checked it
     gl.max_shrunk_per_method = options.max_reproducers;
     gl.sign = *gpu::parse_sign_mode(options.sign);  // CLI11 checked the name
     context.emplace(gpu::open_gl_context("fuzz --gl", options.device));
@@ -387,8 +410,13 @@ int run_fuzz(const FuzzOptions& options) {
         methods[gl_run_name(gl.methods[m])] = gl_tally_json(gl.methods[m], gl_result->methods[m]);
         names.push_back(gl_run_name(gl.methods[m]));
       }
+      nlohmann::json parts = nlohmann::json::object();
+      for (std::size_t i = 0; i < gl_result->cases_by_part.size(); ++i)
+        parts[std::string(hard_part_name(static_cast<HardPart>(i)))] = gl_result->cases_by_part[i];
       gl_json = {{"renderer", context->renderer()},
                  {"device", context->device()},
+                 {"scenes", gl_scene_source_name(gl.scenes)},
+                 {"parts", parts},
                  {"size", {gl.width, gl.height}},
                  {"sign", gpu::sign_mode_name(gl.sign)},
                  {"methods", names},
@@ -461,6 +489,12 @@ void add_fuzz_command(CLI::App& app, int& exit_code) {
       ->capture_default_str()
       ->needs(gl_flag);
   cmd->add_option("--gl-size", options->gl_size, "With --gl: image size WxH")->capture_default_str()->needs(gl_flag);
+  cmd->add_option("--gl-scenes", options->gl_scenes,
+                  "With --gl: what each case renders: its random soup in the campaign view (soups) or a hard-soup "
+                  "scene, several hard soups over a floor with lights close to them (hard)")
+      ->check(CLI::IsMember({"soups", "hard"}))
+      ->capture_default_str()
+      ->needs(gl_flag);
   cmd->add_option("--sign", options->sign,
                   "With --gl: cs, gs, ts, pertri take exact signs of their float inputs (exact) or the float "
                   "formula's (float, Milet 2014 refedge)")

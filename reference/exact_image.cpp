@@ -504,6 +504,14 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
   const auto start = Clock::now();
   validate(soup, lights, options);
   const RayGrid grid{camera_frame(camera, "exact_image"), camera.width, camera.height};
+  // The imaged pixels: options.window, or all of them.
+  const PixelWindow window = options.window.value_or(PixelWindow{0, 0, grid.width, grid.height});
+  if (window.width == 0 || window.height == 0 || window.x > grid.width - window.width ||
+      window.y > grid.height - window.height)
+    throw std::invalid_argument("exact_image: the window is empty or not inside the image");
+  const auto in_window = [&window](std::uint32_t i, std::uint32_t row) {
+    return i - window.x < window.width && row - window.y < window.height;  // unsigned: below x wraps
+  };
 
   ImageGeometry g{soup, options.casts, {}, {}, {}, {}, detail::BoxTree(triangle_boxes(soup), detail::LeafTest::exact)};
   // Every triangle is seen (the box tree above); the volumes are the casting triangles' alone.
@@ -529,21 +537,24 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
   auto stage = Clock::now();
   std::vector<RayHit> hits(grid.size());
   {
-    Progress progress(options, "hits", footprints ? hits.size() : grid.centres());
-    // Centre rows, then (for the footprints) corner rows.
-    const std::uint32_t rows = grid.height + (footprints ? grid.height + 1 : 0);
+    // The window's centre rows, then (for the footprints) its corner rows, one row more.
+    const std::size_t centre_rays = std::size_t{window.width} * window.height;
+    const std::size_t corner_rays = footprints ? std::size_t{window.width + 1} * (window.height + 1) : 0;
+    Progress progress(options, "hits", centre_rays + corner_rays);
+    const std::uint32_t rows = window.height + (footprints ? window.height + 1 : 0);
     tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, rows, 1), [&](const tbb::blocked_range<std::uint32_t>& r) {
       std::vector<std::uint32_t> in_plane;
       for (std::uint32_t row = r.begin(); row != r.end(); ++row) {
-        const bool centre_row = row < grid.height;
-        const std::size_t first = centre_row ? std::size_t{row} * grid.width : grid.corner(0, row - grid.height);
-        const std::size_t count = centre_row ? grid.width : grid.width + 1;
+        const bool centre_row = row < window.height;
+        const std::size_t first = centre_row ? std::size_t{window.y + row} * grid.width + window.x
+                                             : grid.corner(window.x, window.y + row - window.height);
+        const std::size_t count = centre_row ? window.width : window.width + 1;
         for (std::size_t k = first; k < first + count; ++k) hits[k] = first_hit(g, grid.ray(k), in_plane);
         progress.advance(count);
       }
     });
+    image.stats.rays = centre_rays + corner_rays;
   }
-  image.stats.rays = footprints ? hits.size() : grid.centres();
   image.stats.hit_seconds = seconds_since(stage);
 
   // 2. and 3., light by light.
@@ -554,9 +565,11 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
   tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, grid.height), [&](const auto& r) {
     for (std::uint32_t row = r.begin(); row != r.end(); ++row)
       for (std::uint32_t i = 0; i < grid.width; ++i)
+        // Outside the window no ray was traced (no hit: nothing below looks further).
         geometric[std::size_t{row} * grid.width + i] =
-            footprints ? footprint_ambiguity(hits, grid.footprint(i, row))
-                       : static_cast<std::uint8_t>(hits[std::size_t{row} * grid.width + i].degenerate ? kZeroSign : 0);
+            !in_window(i, row) ? kOutsideWindow
+            : footprints       ? footprint_ambiguity(hits, grid.footprint(i, row))
+                               : static_cast<std::uint8_t>(hits[std::size_t{row} * grid.width + i].degenerate ? kZeroSign : 0);
   });
   image.stats.count_seconds = seconds_since(stage);
 

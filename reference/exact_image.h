@@ -33,6 +33,7 @@
 // change under vertex relabelling, face reversal or an exact translation of scene and camera.
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <span>
 #include <string_view>
 #include <vector>
@@ -58,6 +59,15 @@ enum AmbiguityReason : std::uint8_t {
   kZeroSign = 8,            // a footprint ray meets an edge, a vertex, a tie or a touched boundary
   kInputRounding = 16,      // the scene rounded to float answers otherwise (reference/input_rounding.h)
   kDepthBand = 32,          // a surface or a volume face within ExactImageOptions::depth_band of P
+  kOutsideWindow = 64,      // not imaged: outside ExactImageOptions::window
+};
+
+// A rectangle of pixels: columns [x, x + width), rows [y, y + height), row 0 at the top.
+struct PixelWindow {
+  std::uint32_t x = 0;
+  std::uint32_t y = 0;
+  std::uint32_t width = 0;
+  std::uint32_t height = 0;
 };
 
 // One light's images; pixels row-major, row 0 at the TOP (as gpu/image.h).
@@ -121,13 +131,22 @@ struct ExactImageOptions {
   // lit masks are the same, and the ambiguity keeps only kZeroSign (at the centre) and
   // kTerminator.
   bool footprints = true;
+
+  // Only the pixels of this window are imaged (their centre and corner rays traced, as in the
+  // whole image, so each of them gets exactly the answer the whole image gives it); every other
+  // pixel has no hit, count kNoHit, lit 0 and the ambiguity kOutsideWindow, so a comparison
+  // judges none of them. Shrinking a GL failure at a large size (campaign/gl_campaign.h) images
+  // the few pixels around the failing one. nullopt: every pixel. The window must lie inside the
+  // image and not be empty.
+  std::optional<PixelWindow> window;
 };
 
 // The exact image of `soup` (every triangle receives; those options.casts allows, all by
 // default, cast; world space) for `camera` and each of `lights`. Parallel over rows (TBB).
 // Throws std::invalid_argument("exact_image: ...") for a vertex index out of range, a
 // non-finite coordinate, a light with w not in {0, 1} or a zero direction, a degenerate
-// camera (core/pixel_ray.h), or casts neither empty nor one flag per triangle.
+// camera (core/pixel_ray.h), casts neither empty nor one flag per triangle, or a window that is
+// empty or not inside the image.
 [[nodiscard]] ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Camera& camera,
                                      const ExactImageOptions& options = {});
 

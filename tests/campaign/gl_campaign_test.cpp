@@ -1,7 +1,8 @@
 // The GL campaign (campaign/gl_campaign.h, `shadowcert fuzz --gl`) bounded for the test label:
 // the robust methods cpu, cs, gs, ts and pertri with their default exact signs show no failing
 // case (no open volume, no hard error) over a seeded run that holds every light placement of
-// campaign/random_soup.h, adversarial ones included (docs/campaign.md, "The GL methods").
+// campaign/random_soup.h, adversarial ones included (docs/campaign.md, "The GL methods"); and the
+// same over a few hard-soup scenes (campaign/hard_scene.h) at a small size, every part among them.
 #include "campaign/gl_campaign.h"
 
 #include <gtest/gtest.h>
@@ -46,6 +47,30 @@ TEST_F(GlCampaignTest, EveryPlacement_RobustMethodsHaveNoFailingCase) {
     EXPECT_EQ(t.hard_error_pixels, 0u);
     EXPECT_EQ(t.capacity_errors, 0u);
     EXPECT_GT(t.agree_pixels, 0u);  // the comparison compared something
+  }
+}
+
+TEST_F(GlCampaignTest, HardScenes_RobustMethodsHaveNoFailingScene) {
+  GlCampaignOptions options;
+  options.scenes = GlSceneSource::hard;
+  options.seed = kSeed;
+  options.cases = 4;
+  options.width = 128;
+  options.height = 96;
+  options.methods = {gpu::ShadowMethod::cpu, gpu::ShadowMethod::cs, gpu::ShadowMethod::gs, gpu::ShadowMethod::ts,
+                     gpu::ShadowMethod::pertri};
+  options.max_shrunk_per_method = 0;
+  const GlCampaignResult result = run_gl_campaign(options);
+  ASSERT_EQ(result.cases, options.cases);
+  std::uint64_t parts = 0;
+  for (std::uint64_t n : result.cases_by_part) parts += n;
+  EXPECT_GE(parts, 3 * options.cases);
+  for (std::size_t m = 0; m < options.methods.size(); ++m) {
+    const GlCampaignTally& t = result.methods[m];
+    SCOPED_TRACE(gl_run_name(options.methods[m]));
+    EXPECT_EQ(t.failures, 0u);
+    EXPECT_EQ(t.hard_error_pixels, 0u);
+    EXPECT_GT(t.agree_pixels, options.cases * options.width * options.height / 4);
   }
 }
 

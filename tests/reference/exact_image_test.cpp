@@ -572,6 +572,42 @@ TEST(ExactImage, WithoutFootprints_CentreAnswersUnchanged) {
   }
 }
 
+TEST(ExactImage, Window_ImagesItsPixelsAsTheWholeImageAndMarksTheRestOutside) {
+  const InvarianceScene s = invariance_scene();
+  ExactImageOptions banded;
+  banded.depth_band = [](double view_depth) { return 1e-4 * view_depth; };
+  const ExactImage full = exact_image(s.soup, s.lights, s.camera, banded);
+  // Windows at the image's corners and inside it, one pixel wide and wider.
+  for (const PixelWindow w : {PixelWindow{0, 0, 7, 5}, PixelWindow{20, 11, 1, 1}, PixelWindow{45, 30, 19, 18}}) {
+    SCOPED_TRACE(std::to_string(w.x) + "," + std::to_string(w.y) + " " + std::to_string(w.width) + "x" +
+                 std::to_string(w.height));
+    ExactImageOptions options = banded;
+    options.window = w;
+    const ExactImage part = exact_image(s.soup, s.lights, s.camera, options);
+    EXPECT_EQ(part.stats.rays, std::uint64_t{w.width} * w.height + std::uint64_t{w.width + 1} * (w.height + 1));
+    std::size_t inside = 0;
+    for (std::uint32_t r = 0; r < s.camera.height; ++r)
+      for (std::uint32_t i = 0; i < s.camera.width; ++i) {
+        const std::size_t p = pixel(full, i, r);
+        const bool in = i >= w.x && i < w.x + w.width && r >= w.y && r < w.y + w.height;
+        inside += in ? 1 : 0;
+        EXPECT_EQ(part.hit_triangles[p], in ? full.hit_triangles[p] : kNoHit) << i << "," << r;
+        EXPECT_EQ(part.view_ambiguity[p], in ? full.view_ambiguity[p] : std::uint8_t{kOutsideWindow});
+        for (std::size_t l = 0; l < s.lights.size(); ++l) {
+          EXPECT_EQ(part.lights[l].counts[p], in ? full.lights[l].counts[p] : kNoHit);
+          EXPECT_EQ(part.lights[l].lit[p], in ? full.lights[l].lit[p] : 0);
+          EXPECT_EQ(part.lights[l].ambiguity[p], in ? full.lights[l].ambiguity[p] : std::uint8_t{kOutsideWindow});
+        }
+      }
+    EXPECT_EQ(inside, std::size_t{w.width} * w.height);
+  }
+  ExactImageOptions outside;
+  outside.window = PixelWindow{60, 0, 5, 1};  // one column past the 64-wide image
+  EXPECT_THROW((void)exact_image(s.soup, s.lights, s.camera, outside), std::invalid_argument);
+  outside.window = PixelWindow{3, 3, 0, 1};  // empty
+  EXPECT_THROW((void)exact_image(s.soup, s.lights, s.camera, outside), std::invalid_argument);
+}
+
 TEST(ExactImage, ProgressReports_CoverEachStage) {
   const InvarianceScene s = invariance_scene();
   ExactImageOptions options;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "support/certificate_test_support.h"
+#include "scene/hard_soups.h"
 #include "scene/procedural_mesh.h"
 
 namespace shadowcert::test_support {
@@ -39,29 +40,10 @@ inline Soup cube_on_floor() {
   return s;
 }
 
-// k triangles on the edge (0,0,0)-(0,1,0), apexes on the half circle z > 0, alternately
-// flipped: with the light in the plane z = 0 away from the edge every apex lies on the same
-// side of the plane (edge, light), so |m| = k (docs/definitions.md#hard-cases: beyond 32, one patch).
-inline Soup half_fan(std::uint32_t k) {
-  Soup s;
-  s.vertices = {{0.0, 0.0, 0.0}, {0.0, 1.0, 0.0}};
-  for (std::uint32_t i = 0; i < k; ++i) {
-    const double angle = std::acos(-1.0) * (i + 0.5) / k;
-    s.vertices.push_back({std::cos(angle), 0.5, std::sin(angle)});
-    s.triangles.push_back(i % 2 == 0 ? Triangle{0, 1, i + 2} : Triangle{1, 0, i + 2});
-  }
-  return s;
-}
-
-// Grazing, sliver and zero-area triangles.
-inline Soup slivers() {
-  return soup_of({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0.5, 1e-12, 0}, {0.5, 0.3, 1e-9}, {0, 1, 0}, {1, 1, 1e-15}},
-                 {{0, 1, 2},   // zero area: collinear, distinct
-                  {0, 2, 3},   // sliver
-                  {0, 1, 4},   // grazing the light below
-                  {1, 5, 6},   // nearly vertical
-                  {2, 6, 5}});
-}
+// The hard cases' small soups, one copy (scene/hard_soups.h): half_fan(k) (|m| = k with the
+// light in the plane z = 0), slivers().
+using ::shadowcert::half_fan;
+using ::shadowcert::slivers;
 
 // A unit cube plus faces with repeated indices, and one naming a bitwise copy of a vertex.
 inline Soup repeated_indices() {
@@ -111,21 +93,10 @@ inline Soup cube_and_sphere_scaled(double scale) {
   return s;
 }
 
-// Left square split in two; the right square's edge has a vertex (1, 0.5) on the left's
-// diagonal-free edge x = 1: a T-junction. A crack: the third square stops short of the second.
-inline Soup t_junctions_and_cracks() {
-  return soup_of({{0, 0, 0}, {1, 0, 0}, {1, 0, 1}, {0, 0, 1}, {1, 0, 0.5}, {2, 0, 0}, {2, 0, 1}, {2.001, 0, 0},
-                  {3, 0, 0}, {3, 0, 1}, {2.001, 0, 1}},
-                 {{0, 2, 1}, {0, 3, 2}, {1, 4, 5}, {4, 2, 6}, {4, 6, 5}, {7, 10, 9}, {7, 9, 8}});
-}
-
-// Two tetrahedra sharing only a vertex, and two triangles sharing only a vertex.
-inline Soup bow_ties() {
-  return soup_of({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {-1, 0, 0}, {0, -1, 0}, {0, 0, -1}, {3, 0, 0},
-                  {4, 0, 0}, {3, 1, 0}, {2, 0, 0}, {3, -1, 0.5}},
-                 {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}, {0, 4, 5}, {0, 6, 4}, {4, 6, 5}, {0, 5, 6}, {7, 8, 9},
-                  {7, 10, 11}});
-}
+// scene/hard_soups.h: a T-junction and a 0.001 crack; two tetrahedra and two triangles sharing
+// only a vertex.
+using ::shadowcert::bow_ties;
+using ::shadowcert::t_junctions_and_cracks;
 
 // Soups snapped to the grid {-2, ..., 2}^3: 20 vertices, 40 triangles each (repeated indices
 // and collinear triples included), each with a point light at y = 3 and a directional light,
