@@ -14,6 +14,14 @@ std::uint64_t count(const std::vector<EdgeTruth>& truth, EdgeTruth value) {
   return static_cast<std::uint64_t>(std::count(truth.begin(), truth.end(), value));
 }
 
+// The thresholds the row's class read: {"profile": T}, {"inner": T}, or both for any.
+nlohmann::json thresholds_json(const EdgeScoreRow& row) {
+  nlohmann::json j = nlohmann::json::object();
+  if (row.edge_class != EdgeClass::inner) j["profile"] = row.thresholds.profile;
+  if (row.edge_class != EdgeClass::profile) j["inner"] = row.thresholds.inner;
+  return j;
+}
+
 nlohmann::json counts_json(const EdgeMatchCounts& m) {
   return {{"precision", m.precision()},      {"recall", m.recall()},   {"f1", m.f1()},
           {"detections", m.detections},      {"true_detections", m.true_detections},
@@ -29,12 +37,13 @@ void print_edge_maps(const EdgeMapComparison& c) {
              "reported, never a failure):\n",
              t.stats.seconds, count(t.profile, EdgeTruth::edge), count(t.inner, EdgeTruth::edge),
              count(t.profile, EdgeTruth::excluded) + count(t.inner, EdgeTruth::excluded));
-  std::string header = fmt::format("  {:<9} {:<8} {:>9}", "filter", "class", "threshold");
+  std::string header = fmt::format("  {:<9} {:<8} {:>18}", "filter", "class", "default thresholds");
   for (const EdgeTolerance& tolerance : c.tolerances) header += fmt::format(" {:>17}", tolerance.name() + " P/R/F1");
   fmt::print("{} {:>14}\n", header, "grazing false");
   for (const EdgeScoreRow& row : edge_score_rows(c)) {
-    std::string line = fmt::format("  {:<9} {:<8} {:>9g}", gpu::edge_filter_name(row.filter),
-                                   edge_class_name(row.edge_class), row.threshold);
+    std::string line = fmt::format("  {:<9} {:<8} {:>18}", gpu::edge_filter_name(row.filter),
+                                   edge_class_name(row.edge_class),
+                                   edge_class_thresholds_text(row.edge_class, row.thresholds));
     for (const EdgeMatchCounts& m : row.counts)
       line += fmt::format(" {:>17}", fmt::format("{:.2f}/{:.2f}/{:.2f}", m.precision(), m.recall(), m.f1()));
     const EdgeMatchCounts& first = row.counts.front();
@@ -48,7 +57,7 @@ nlohmann::json edge_maps_json(const EdgeMapComparison& c, double crease_degrees,
   for (const EdgeTolerance& tolerance : c.tolerances) tolerances.push_back(tolerance.name());
   nlohmann::json filters = nlohmann::json::object();
   for (const EdgeScoreRow& row : edge_score_rows(c)) {
-    nlohmann::json j{{"threshold", row.threshold}};
+    nlohmann::json j{{"thresholds", thresholds_json(row)}};
     for (std::size_t k = 0; k < row.counts.size(); ++k) j[c.tolerances[k].name()] = counts_json(row.counts[k]);
     filters[std::string(gpu::edge_filter_name(row.filter))][std::string(edge_class_name(row.edge_class))] = j;
   }
@@ -80,7 +89,7 @@ std::vector<std::pair<std::string, std::string>> edge_map_facts(const EdgeMapCom
                                  c.truth.stats.seconds, count(c.truth.profile, EdgeTruth::edge),
                                  count(c.truth.inner, EdgeTruth::edge)));
   for (const EdgeScoreRow& row : edge_score_rows(c)) {
-    std::string text = fmt::format("threshold {:g}", row.threshold);
+    std::string text = fmt::format("default thresholds {}", edge_class_thresholds_text(row.edge_class, row.thresholds));
     for (std::size_t k = 0; k < row.counts.size(); ++k)
       text += fmt::format("; {} P {:.3f} R {:.3f} F1 {:.3f}", c.tolerances[k].name(), row.counts[k].precision(),
                           row.counts[k].recall(), row.counts[k].f1());

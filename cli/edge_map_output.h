@@ -14,13 +14,15 @@
 
 namespace shadowcert::cli {
 
-// One line per filter and class at its measured threshold (measured_edge_threshold): P, R and
-// F1 at every tolerance, and the false edges on grazing pixels at the first.
+// One line per filter and class at the filter's default thresholds (edge_score_rows: those
+// `shadowcert edges` draws with, nothing fitted): P, R and F1 at every tolerance, and the false
+// edges on grazing pixels at the first.
 void print_edge_maps(const EdgeMapComparison& comparison);
 
 // {"crease_angle", "grazing_angle", "truth": {"profile_pixels", "inner_pixels",
 //  "excluded_pixels", "grazing_pixels", "seconds", ...}, "tolerances": [...], "filters":
-//  {FILTER: {CLASS: {"threshold", TOLERANCE: {"precision", "recall", "f1", "detections",
+//  {FILTER: {CLASS: {"thresholds": {"profile", "inner"} (the ones the class read: profile's,
+//  inner's, both for any), TOLERANCE: {"precision", "recall", "f1", "detections",
 //  "true_detections", "truth", "found", "grazing_false", "grazing_pixels"}}}}}
 [[nodiscard]] nlohmann::json edge_maps_json(const EdgeMapComparison& comparison, double crease_degrees,
                                             double grazing_degrees);

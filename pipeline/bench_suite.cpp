@@ -148,12 +148,12 @@ BenchRun edge_run(const BenchVariant& variant, const EdgeGroundTruth& truth,
   b.build_ms = ms_since(build_start);
   gpu::EdgeMapImage map = edges.render(target, drawn.camera, filter);
   BenchEdgeScores scores;
-  scores.profile_threshold = gpu::profile_threshold(filter, gpu::kDefaultEdgeDepthStep);
-  scores.inner_threshold = gpu::inner_threshold(filter, gpu::kDefaultEdgeCreaseAngleDegrees);
+  const EdgeChannelThresholds fixed = default_edge_channel_thresholds(filter);  // `shadowcert edges`'s
+  scores.profile_threshold = fixed.profile;
+  scores.inner_threshold = fixed.inner;
   const std::vector<EdgeTolerance> one_pixel{standard_edge_tolerances().front()};
-  const std::array profile_t{scores.profile_threshold}, inner_t{scores.inner_threshold};
-  scores.profile = score_edge_map(truth, map, filter, profile_t, one_pixel).curve(EdgeClass::profile, 0).front();
-  scores.inner = score_edge_map(truth, map, filter, inner_t, one_pixel).curve(EdgeClass::inner, 0).front();
+  scores.profile = score_at_thresholds(truth, map, EdgeClass::profile, fixed, one_pixel).front();
+  scores.inner = score_at_thresholds(truth, map, EdgeClass::inner, fixed, one_pixel).front();
   if (options.images) {
     const EdgeClassImages profile = edge_class_images(truth, map, EdgeClass::profile);
     const EdgeScoreInput input{truth.width, truth.height, profile.truth, truth.grazing, profile.intensity};

@@ -1,8 +1,9 @@
 #include "pipeline/edge_map_comparison.h"
 
+#include <fmt/core.h>
+
 #include <algorithm>
 #include <array>
-#include <cmath>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -109,6 +110,7 @@ EdgeMapComparison compare_edge_maps(const Scene& scene, const EdgeMapComparisonO
   EdgeMapComparison result;
   result.thresholds = options.thresholds;
   result.tolerances = options.tolerances;
+  result.crease_degrees = options.crease_degrees;
   result.truth = scene_edge_ground_truth(scene, options.crease_degrees, options.grazing_degrees);
   // GL draws the scene in the eye's frame (core/eye_frame.h), as render and diff do.
   const Scene drawn = eye_relative_scene(scene);
@@ -131,42 +133,20 @@ EdgeMapComparison compare_edge_maps(const Scene& scene, const EdgeMapComparisonO
   return result;
 }
 
-double measured_edge_threshold(gpu::EdgeFilter filter, EdgeClass c) {
-  // [filter][class]: bench/edge_score_bench --resolution=1024x768, "threshold (all scenes)" at 1 px.
-  constexpr std::array<std::array<double, 3>, 3> kMeasured{{{0.04, 0.05, 0.1}, {0.005, 0.03, 0.03}, {0.01, 0.25, 0.25}}};
-  std::size_t f = 0;
-  switch (filter) {
-    case gpu::EdgeFilter::diagonal:
-      f = 0;
-      break;
-    case gpu::EdgeFilter::c1:
-      f = 1;
-      break;
-    case gpu::EdgeFilter::sobel:
-      f = 2;
-      break;
-  }
-  return kMeasured[f][static_cast<std::size_t>(c)];
-}
-
-std::vector<EdgeScoreRow> edge_score_rows(const EdgeMapComparison& comparison) {
-  std::vector<EdgeScoreRow> rows;
-  if (comparison.thresholds.empty()) return rows;
-  for (const EdgeFilterRun& run : comparison.runs)
-    for (const EdgeClass c : kEdgeClasses) {
-      const double wanted = measured_edge_threshold(run.filter, c);
-      std::size_t nearest = 0;
-      for (std::size_t k = 1; k < comparison.thresholds.size(); ++k)
-        if (std::abs(comparison.thresholds[k] - wanted) < std::abs(comparison.thresholds[nearest] - wanted)) nearest = k;
-      EdgeScoreRow row{run.filter, c, comparison.thresholds[nearest], {}};
-      for (std::size_t k = 0; k < comparison.tolerances.size(); ++k) row.counts.push_back(run.curve(c, k)[nearest]);
-      rows.push_back(std::move(row));
-    }
-  return rows;
-}
-
 EdgeChannelThresholds default_edge_channel_thresholds(gpu::EdgeFilter filter, double crease_degrees) {
   return {gpu::profile_threshold(filter, gpu::kDefaultEdgeDepthStep), gpu::inner_threshold(filter, crease_degrees)};
+}
+
+EdgeClassAtThresholds edge_class_at_thresholds(const EdgeGroundTruth& truth, const gpu::EdgeMapImage& map,
+                                               EdgeClass c, const EdgeChannelThresholds& thresholds) {
+  EdgeClassAtThresholds out{edge_class_images(truth, map, c), c == EdgeClass::inner ? thresholds.inner : thresholds.profile};
+  if (c == EdgeClass::any) {
+    // Two thresholds: the detections themselves, 1 or 0, held to 1/2.
+    for (std::size_t p = 0; p < out.images.intensity.size(); ++p)
+      out.images.intensity[p] = map.profile[p] > thresholds.profile || map.inner[p] > thresholds.inner ? 1.0f : 0.0f;
+    out.threshold = 0.5;
+  }
+  return out;
 }
 
 std::vector<EdgeMatchCounts> score_at_thresholds(const EdgeGroundTruth& truth, const gpu::EdgeMapImage& map,
@@ -176,19 +156,34 @@ std::vector<EdgeMatchCounts> score_at_thresholds(const EdgeGroundTruth& truth, c
     throw std::invalid_argument("score_at_thresholds: the edge map is " + std::to_string(map.width) + "x" +
                                 std::to_string(map.height) + ", the ground truth " + std::to_string(truth.width) + "x" +
                                 std::to_string(truth.height));
-  EdgeClassImages images = edge_class_images(truth, map, c);
-  double threshold = c == EdgeClass::inner ? thresholds.inner : thresholds.profile;
-  if (c == EdgeClass::any) {
-    // Two thresholds: the detections themselves, 1 or 0, scored at 1/2.
-    for (std::size_t p = 0; p < images.intensity.size(); ++p)
-      images.intensity[p] = map.profile[p] > thresholds.profile || map.inner[p] > thresholds.inner ? 1.0f : 0.0f;
-    threshold = 0.5;
-  }
-  const EdgeScoreInput input{truth.width, truth.height, images.truth, truth.grazing, images.intensity};
-  const std::array<double, 1> at{threshold};
+  const EdgeClassAtThresholds at = edge_class_at_thresholds(truth, map, c, thresholds);
+  const EdgeScoreInput input{truth.width, truth.height, at.images.truth, truth.grazing, at.images.intensity};
+  const std::array<double, 1> threshold{at.threshold};
   std::vector<EdgeMatchCounts> out;
-  for (const EdgeTolerance& tolerance : tolerances) out.push_back(score_edges(input, tolerance, at).front());
+  for (const EdgeTolerance& tolerance : tolerances) out.push_back(score_edges(input, tolerance, threshold).front());
   return out;
+}
+
+std::string edge_class_thresholds_text(EdgeClass c, const EdgeChannelThresholds& thresholds) {
+  switch (c) {
+    case EdgeClass::profile:
+      return fmt::format("{:.4g}", thresholds.profile);
+    case EdgeClass::inner:
+      return fmt::format("{:.4g}", thresholds.inner);
+    case EdgeClass::any:
+      return fmt::format("{:.4g}, {:.4g}", thresholds.profile, thresholds.inner);
+  }
+  throw std::invalid_argument("edge_class_thresholds_text: unknown class");
+}
+
+std::vector<EdgeScoreRow> edge_score_rows(const EdgeMapComparison& comparison) {
+  std::vector<EdgeScoreRow> rows;
+  for (const EdgeFilterRun& run : comparison.runs) {
+    const EdgeChannelThresholds fixed = default_edge_channel_thresholds(run.filter, comparison.crease_degrees);
+    for (const EdgeClass c : kEdgeClasses)
+      rows.push_back({run.filter, c, fixed, score_at_thresholds(comparison.truth, run.map, c, fixed, comparison.tolerances)});
+  }
+  return rows;
 }
 
 }  // namespace shadowcert

@@ -6,6 +6,7 @@
 //   gpu::EglContext context = gpu::open_gl_context("diff", device);   // current on this thread
 //   EdgeMapComparison c = compare_edge_maps(scene, {});               // truth, then each filter
 //   c.runs[k].curves[class][tolerance][threshold]                      // EdgeMatchCounts
+//   edge_score_rows(c)                 // each filter and class at the default thresholds
 //
 // The ground truth (reference/edge_ground_truth.h) is the world scene's, every mesh seen; GL
 // draws the scene in its eye's frame (core/eye_frame.h), as every GL path does, through
@@ -85,6 +86,9 @@ struct EdgeMapComparison {
   std::vector<double> thresholds;
   std::vector<EdgeTolerance> tolerances;
   std::vector<EdgeFilterRun> runs;  // one per filter, in the options' order
+  // The ground truth's crease angle (the options'): the crease the default inner thresholds
+  // answer (default_edge_channel_thresholds).
+  double crease_degrees = gpu::kDefaultEdgeCreaseAngleDegrees;
 };
 
 // The ground truth of `scene` (merged_soup: every mesh seen) at its camera.
@@ -114,30 +118,40 @@ struct EdgeChannelThresholds {
 [[nodiscard]] EdgeChannelThresholds default_edge_channel_thresholds(
     gpu::EdgeFilter filter, double crease_degrees = gpu::kDefaultEdgeCreaseAngleDegrees);
 
+// One class's truth and what it is compared with at fixed thresholds per channel: profile and
+// inner, the channel's intensities against its own threshold; any, the detections themselves (1
+// where either channel is strictly above its own threshold, else 0: the outline `shadowcert
+// edges` draws from both) against 1/2. Throws std::invalid_argument("edge_class_images: ...")
+// when the sizes differ.
+struct EdgeClassAtThresholds {
+  EdgeClassImages images;
+  double threshold = 0.0;  // what images.intensity is held to
+};
+[[nodiscard]] EdgeClassAtThresholds edge_class_at_thresholds(const EdgeGroundTruth& truth, const gpu::EdgeMapImage& map,
+                                                             EdgeClass c, const EdgeChannelThresholds& thresholds);
+
 // One class of `map` against `truth` (same size, else std::invalid_argument
-// ("score_at_thresholds: ...")) at fixed thresholds per channel: profile intensities above
-// `thresholds.profile`, inner above `thresholds.inner`, and for any a pixel where either channel
-// is above its own (the outline `shadowcert edges` draws from both). The counts at each of
-// `tolerances`, in their order.
+// ("score_at_thresholds: ...")) at fixed thresholds per channel (edge_class_at_thresholds):
+// profile intensities above `thresholds.profile`, inner above `thresholds.inner`, and for any a
+// pixel where either channel is above its own. The counts at each of `tolerances`, in their
+// order.
 [[nodiscard]] std::vector<EdgeMatchCounts> score_at_thresholds(const EdgeGroundTruth& truth, const gpu::EdgeMapImage& map,
                                                                EdgeClass c, const EdgeChannelThresholds& thresholds,
                                                                std::span<const EdgeTolerance> tolerances);
 
-// The threshold a filter's class is scored at where one is wanted (diff's table, the pictures):
-// the one with the best F1 at 1 px over every scene of bench/edge_score_bench at 1024x768
-// (docs/edge-maps.md#scores): diagonal 0.04 / 0.05 / 0.1 (profile / inner / any), c1 0.005 /
-// 0.03 / 0.03, sobel 0.01 / 0.25 / 0.25. Each lies in default_edge_thresholds(). Fitted on those
-// scenes, so a score at it on one of them is in-sample but for what leaving that scene out
-// changes: the bench prints the threshold each leave-one-scene-out fold chose (docs/edge-maps.md
-// lists where a fold differs).
-[[nodiscard]] double measured_edge_threshold(gpu::EdgeFilter filter, EdgeClass c);
+// The thresholds a class reads, as text: profile's ("0.0394"), inner's ("0.06699"), or both for
+// any ("0.0394, 0.06699"), 4 significant digits.
+[[nodiscard]] std::string edge_class_thresholds_text(EdgeClass c, const EdgeChannelThresholds& thresholds);
 
-// One filter and class of a comparison at its measured threshold (the comparison's threshold
-// nearest to it): the counts at every tolerance, in the comparison's order.
+// One filter and class of a comparison at the filter's default thresholds
+// (default_edge_channel_thresholds at the comparison's crease angle: what `shadowcert edges`
+// draws with, fixed before any image is seen, so that no score is taken at a threshold fitted
+// on the image it scores): the counts at every tolerance, in the comparison's order. What
+// `diff --edges` prints, writes to its JSON and shows in its report.
 struct EdgeScoreRow {
   gpu::EdgeFilter filter = gpu::EdgeFilter::diagonal;
   EdgeClass edge_class = EdgeClass::profile;
-  double threshold = 0.0;
+  EdgeChannelThresholds thresholds;  // the filter's; the class reads profile's, inner's or both (any)
   std::vector<EdgeMatchCounts> counts;
 };
 // Per run, the classes in kEdgeClasses order.

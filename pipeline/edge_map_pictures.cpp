@@ -100,11 +100,13 @@ std::vector<NamedEdgePicture> edge_map_pictures(const EdgeMapComparison& compari
     const std::string f(gpu::edge_filter_name(run.filter));
     out.push_back({"edge_" + f + "_profile_map", edge_intensity_picture(run.map.profile, truth.width, truth.height)});
     out.push_back({"edge_" + f + "_inner_map", edge_intensity_picture(run.map.inner, truth.width, truth.height)});
+    // At the filter's default thresholds, as edge_score_rows scores it.
+    const EdgeChannelThresholds fixed = default_edge_channel_thresholds(run.filter, comparison.crease_degrees);
     for (const EdgeClass c : kEdgeClasses) {
-      const EdgeClassImages images = edge_class_images(truth, run.map, c);
-      const EdgeScoreInput input{truth.width, truth.height, images.truth, truth.grazing, images.intensity};
+      const EdgeClassAtThresholds at = edge_class_at_thresholds(truth, run.map, c, fixed);
+      const EdgeScoreInput input{truth.width, truth.height, at.images.truth, truth.grazing, at.images.intensity};
       out.push_back({"edge_" + f + "_" + std::string(edge_class_name(c)) + "_verdicts",
-                     edge_verdict_picture(truth, edge_verdicts(input, 1, measured_edge_threshold(run.filter, c)))});
+                     edge_verdict_picture(truth, edge_verdicts(input, 1, at.threshold))});
     }
   }
   return out;

@@ -34,8 +34,9 @@ namespace shadowcert {
 
 // What `diff` shows of a comparison (pipeline/edge_map_comparison.h), named for files and the
 // report: "edge_truth"; per filter F, "edge_F_profile_map" and "edge_F_inner_map" (the
-// intensities), and "edge_F_C_verdicts" for C = profile, inner, any (1 px, at
-// measured_edge_threshold).
+// intensities), and "edge_F_C_verdicts" for C = profile, inner, any (1 px, at the filter's
+// default thresholds, as edge_score_rows scores them: for any, a pixel where either channel
+// passes its own).
 struct NamedEdgePicture {
   std::string name;
   gpu::RgbaImage image;

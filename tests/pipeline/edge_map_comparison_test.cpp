@@ -2,7 +2,8 @@
 // itself fed in as an edge map scores exactly 1 for every class and tolerance; the class images
 // (the union class any); scores at fixed per-channel thresholds; every filter on a box over a
 // floor finds the box's outline and creases at the thresholds `shadowcert edges` uses by
-// default (never at a threshold fitted on the box); the pictures have the frame's size.
+// default (never at a threshold fitted on the box); diff's rows and pictures at those
+// thresholds too; the pictures have the frame's size.
 #include "pipeline/edge_map_comparison.h"
 
 #include <gtest/gtest.h>
@@ -111,6 +112,54 @@ TEST(EdgeMapComparison, FixedThresholds_EachChannelAtItsOwn) {
   EXPECT_THROW((void)score_at_thresholds(truth, map, EdgeClass::any, t, exact), std::invalid_argument);
 }
 
+// diff's rows and pictures take each filter's default thresholds at the comparison's crease
+// angle, never one fitted on the image (they were once the thresholds best over the 26 scenes of
+// bench/edge_score_bench, default.json among them): sobel's default profile threshold is 0.02,
+// the fitted one was 0.01, so a profile intensity of 0.015 off the truth is no detection here.
+TEST(EdgeMapComparison, ScoreRowsAndPictures_AtTheDefaultThresholds) {
+  EdgeMapComparison c;
+  c.truth.width = 4;
+  c.truth.height = 1;
+  c.truth.profile = {EdgeTruth::edge, EdgeTruth::none, EdgeTruth::none, EdgeTruth::none};
+  c.truth.inner = {EdgeTruth::none, EdgeTruth::none, EdgeTruth::none, EdgeTruth::edge};
+  c.truth.grazing.assign(4, 0);
+  c.truth.hit_triangles.assign(4, 0);
+  c.tolerances = {{EdgeMatching::window, 0, 0.0075}};
+  c.crease_degrees = 45.0;
+  const EdgeChannelThresholds fixed = default_edge_channel_thresholds(gpu::EdgeFilter::sobel, 45.0);
+  ASSERT_NEAR(fixed.profile, 0.02, 1e-12);
+  EdgeFilterRun& run = c.runs.emplace_back();
+  run.filter = gpu::EdgeFilter::sobel;
+  run.map.width = 4;
+  run.map.height = 1;
+  run.map.profile = {0.5f, 0.015f, 0.0f, 0.0f};
+  // Inner: pixel 3 just above the 45-degree crease's threshold, pixel 2 just under it.
+  run.map.inner = {0.0f, 0.0f, static_cast<float>(fixed.inner * 0.99), static_cast<float>(fixed.inner * 1.01)};
+  const std::vector<EdgeScoreRow> rows = edge_score_rows(c);
+  ASSERT_EQ(rows.size(), kEdgeClasses.size());
+  for (const EdgeScoreRow& row : rows) {
+    SCOPED_TRACE(std::string(edge_class_name(row.edge_class)));
+    EXPECT_EQ(row.thresholds.inner, fixed.inner);
+    ASSERT_EQ(row.counts.size(), 1u);
+    EXPECT_EQ(row.counts.front().detections, row.edge_class == EdgeClass::any ? 2u : 1u);
+    EXPECT_EQ(row.counts.front().f1(), 1.0);
+  }
+  EXPECT_EQ(edge_class_thresholds_text(EdgeClass::profile, fixed), "0.02");
+  EXPECT_EQ(edge_class_thresholds_text(EdgeClass::any, {0.0394, 0.066987}), "0.0394, 0.06699");
+  // The any class's detections: 1 where either channel passes its own, held to 1/2.
+  const EdgeClassAtThresholds any = edge_class_at_thresholds(c.truth, run.map, EdgeClass::any, fixed);
+  EXPECT_EQ(any.threshold, 0.5);
+  EXPECT_EQ(any.images.intensity, (std::vector<float>{1.0f, 0.0f, 0.0f, 1.0f}));
+  // The verdict pictures: pixel 0 a true detection (green, 0, 170, 0), pixel 1 nothing (the
+  // paper of pixel 2), not a false detection (red).
+  for (const NamedEdgePicture& p : edge_map_pictures(c))
+    if (p.name == "edge_sobel_profile_verdicts" || p.name == "edge_sobel_any_verdicts") {
+      SCOPED_TRACE(p.name);
+      EXPECT_EQ(p.image.pixels[0 * 4 + 1], 170u);
+      for (std::size_t k = 0; k < 4; ++k) EXPECT_EQ(p.image.pixels[1 * 4 + k], p.image.pixels[2 * 4 + k]);
+    }
+}
+
 class EdgeMapComparisonGl : public GlTest {};
 
 TEST_F(EdgeMapComparisonGl, EveryFilterFindsTheBox) {
@@ -151,11 +200,13 @@ TEST_F(EdgeMapComparisonGl, EveryFilterFindsTheBox) {
     EXPECT_EQ(picture.pixels.size(), 320u * 240u * 4u);
   }
   EXPECT_EQ(edge_truth_picture(c.truth).height, 240u);
-  // What diff shows: a row per filter and class at the measured thresholds, and the pictures.
+  // What diff shows: a row per filter and class at the default thresholds, and the pictures.
   const std::vector<EdgeScoreRow> rows = edge_score_rows(c);
   ASSERT_EQ(rows.size(), gpu::kEdgeFilters.size() * kEdgeClasses.size());
   for (const EdgeScoreRow& row : rows) {
-    EXPECT_EQ(row.threshold, measured_edge_threshold(row.filter, row.edge_class));
+    const EdgeChannelThresholds fixed = default_edge_channel_thresholds(row.filter);
+    EXPECT_EQ(row.thresholds.profile, fixed.profile);
+    EXPECT_EQ(row.thresholds.inner, fixed.inner);
     EXPECT_EQ(row.counts.size(), c.tolerances.size());
   }
   const std::vector<NamedEdgePicture> pictures = edge_map_pictures(c);
