@@ -24,6 +24,8 @@
 #include <vector>
 
 #include "cli_run.h"
+#include "scene/framed_scene.h"  // the analytic scenes' light and floor (header constants only)
+#include "support/chord_sag_bound.h"
 
 namespace {
 
@@ -291,6 +293,12 @@ TEST(BenchAnalytic, FirstShapeUnderThePointLight_SmoothContourBeatsDiscrete) {
   ASSERT_FALSE(smooth["contour"].is_null());
   EXPECT_LT(smooth["contour"]["max"].get<double>(), discrete["contour"]["max"].get<double>());
   EXPECT_GT(discrete["contour"]["max"].get<double>(), 0.1);  // 0.195 in docs/smooth-silhouettes.md
+  // Within the closed-form chord-sag bound of the 8x4 sphere under the point light (0.2787).
+  const double bound = shadowcert::test_support::chord_sag_bound(
+      shadowcert::kAnalyticPointLight, 1.0, shadowcert::test_support::inscribed_radius(1.0, 8, 4),
+      shadowcert::kAnalyticFloorHeight);
+  EXPECT_NEAR(bound, 0.2787, 1e-4);
+  EXPECT_LE(discrete["contour"]["max"].get<double>(), bound);
   EXPECT_FALSE(smooth["analytic"].is_null());
   EXPECT_NE(read_text(dir / "bench.md").find("## Contour error on the floor, point light"), std::string::npos);
   fs::remove_all(dir);

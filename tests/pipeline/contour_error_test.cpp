@@ -3,7 +3,7 @@
 // independently of the method:
 //   - discrete, to a closed form: a uv sphere's polygon lies between the sphere and the ball
 //     inscribed in its faces, so its shadow's boundary lies between the two balls' conics, and
-//     its error is at most their distance (chord_sag_bound below);
+//     its error is at most their distance (support/chord_sag_bound.h);
 //   - smooth-gpu, measured on the triangles its GPU build drew, to smooth's CPU figure within
 //     the float rounding the GPU's arithmetic adds, and both to that closed form;
 //   - the volume reading (volume_contour_error), to the loops' figure on the CPU's own volume.
@@ -14,13 +14,13 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
-#include <numbers>
 #include <stdexcept>
 
 #include "contour/smooth_volume.h"
 #include "pipeline/bench_suite.h"
 #include "scene/framed_scene.h"
 #include "scene/procedural_mesh.h"
+#include "support/chord_sag_bound.h"
 #include "support/gl_test_support.h"
 
 namespace shadowcert {
@@ -37,57 +37,20 @@ Scene shape(std::size_t index, const Light& light) {
   return analytic_shape_scene(analytic_shapes().at(index), light, 64, 48);
 }
 
-// A uv sphere of radius r, `slices` around and `stacks` from pole to pole, has its vertices on
-// the sphere and is convex, so it lies inside the ball of radius r. Each face is a symmetric
-// trapezoid (or a triangle at a pole) spanning 2 pi / slices in longitude and pi / stacks in
-// latitude; the plane through it lies at least r cos(pi / slices) cos(pi / (2 stacks)) from the
-// centre (for the chord across the equator of one slice: r cos(pi / slices), the chord sag
-// r (1 - cos(pi / slices)) of the slice's polygon), so the polyhedron contains the ball of that
-// radius.
-double inscribed_radius(double r, unsigned slices, unsigned stacks) {
-  return r * std::cos(std::numbers::pi / slices) * std::cos(std::numbers::pi / (2.0 * stacks));
-}
-
-// discrete's boundary on the floor is the polyhedron's shadow's (a convex polyhedron lit from
-// outside: its silhouette loop projects onto the boundary of its shadow), which lies between
-// the shadows of the inscribed ball (radius r_in) and of the sphere (r), both centred at the
-// origin. A point q between two nested convex sets K' in K lies within their Hausdorff
-// distance of the outer boundary (separate q from K' by a supporting line of normal n: moving
-// along n, q leaves K within h_K(n) - h_K'(n)). That distance, in closed form:
-//   sun towards l: the projection along l onto the floor stretches lengths by at most
-//     1 / cos(a), a the angle between l and the floor's normal, so the shadows' distance is at
-//     most (r - r_in) / cos(a) (times |A| for an ellipsoid x = A u);
-//   point light at distance d from the centre and height H over the floor: a point of the outer
-//     conic lies on the tangent cone (half angle t = asin(r / d)); turning its ray towards the
-//     cone's axis by t - t_in (t_in = asin(r_in / d)) reaches the inner conic, and a ray at
-//     distance s from the light turning by dt moves its floor point by at most s^2 dt / H; s is
-//     at most H / cos(g + t), g the angle between the axis and the floor's normal. So the
-//     distance is at most H (t - t_in) / cos^2(g + t).
-// The truth is the conic sampled at 4,096 points (a polygon inside it), whose distance to a
-// point inside is no larger than the conic's, and within its sag (about 1e-6) outside.
-double chord_sag_bound(const Light& light, double r, double r_in, double matrix_norm = 1.0) {
-  const double l[3] = {light.position[0], light.position[1], light.position[2]};
-  if (light.position[3] == 0.0) {
-    const double cos_a = std::abs(l[1]) / std::sqrt(l[0] * l[0] + l[1] * l[1] + l[2] * l[2]);
-    return matrix_norm * (r - r_in) / cos_a;
-  }
-  const double d = std::sqrt(l[0] * l[0] + l[1] * l[1] + l[2] * l[2]);  // the centre is the origin
-  const double height = l[1] - kAnalyticFloorHeight;
-  const double g = std::acos(l[1] / d);  // the axis light -> centre against the floor's downward normal
-  const double t = std::asin(r / d);
-  return height * (t - std::asin(r_in / d)) / std::pow(std::cos(g + t), 2);
-}
+// The closed-form bound of support/chord_sag_bound.h, on the analytic scenes' floor.
+using test_support::chord_sag_bound;
+using test_support::inscribed_radius;
 
 double sphere_bound(std::size_t index, const Light& light) {
   const auto [slices, stacks] = kSphereSizes.at(index);
-  return chord_sag_bound(light, 1.0, inscribed_radius(1.0, slices, stacks));
+  return chord_sag_bound(light, 1.0, inscribed_radius(1.0, slices, stacks), kAnalyticFloorHeight);
 }
 
 // The ellipsoid x = A u, A's columns (1.4, 0, 0.2), (0, 0.8, 0), (-0.3, 0, 1): its Frobenius
 // norm bounds |A|.
 double ellipsoid_bound(const Light& light) {
   const double frobenius = std::sqrt(1.4 * 1.4 + 0.2 * 0.2 + 0.8 * 0.8 + 0.3 * 0.3 + 1.0);
-  return chord_sag_bound(light, 1.0, inscribed_radius(1.0, 32, 16), frobenius);
+  return chord_sag_bound(light, 1.0, inscribed_radius(1.0, 32, 16), kAnalyticFloorHeight, frobenius);
 }
 
 // What the GPU's float arithmetic moves a contour by, seen on the floor: the GPU computes the
@@ -130,9 +93,9 @@ TEST(ContourError, Sphere8x4PointLight_SnapshotBesideTheBound) {
   const std::optional<ContourError> discrete = contour_error(scene, 0, gpu::ShadowMethod::discrete, 0.01, kFloor);
   const std::optional<ContourError> smooth = contour_error(scene, 0, gpu::ShadowMethod::smooth, 0.01, kFloor);
   ASSERT_TRUE(discrete && smooth);
-  // The independent bound (closed form, above): 0.278 on the 8x4 sphere under the point light.
+  // The independent bound (closed form, support/chord_sag_bound.h): 0.2787 on the 8x4 sphere under the point light.
   const double bound = sphere_bound(0, kAnalyticPointLight);
-  EXPECT_NEAR(bound, 0.2784, 5e-4);
+  EXPECT_NEAR(bound, 0.2787, 1e-4);
   EXPECT_LE(discrete->max, bound);
   EXPECT_LE(smooth->max, bound);
   // Snapshot of the code's output on 2026-12-04 (docs/smooth-silhouettes.md's table, from
