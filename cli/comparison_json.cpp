@@ -20,7 +20,9 @@ nlohmann::json soft_errors_json(const SoftShadowErrors& e) {
           {"lit_facing", e.lit_facing},
           {"acne", e.acne},
           {"turned_away", e.turned_away},
-          {"turned_away_mean_error", e.turned_away_mean_error}};
+          {"turned_away_mean_error", e.turned_away_mean_error},
+          {"reference_ci95", e.reference_ci95},
+          {"reference_noise", e.reference_noise}};
 }
 
 nlohmann::json analytic_counts_json(const AnalyticCounts& a) {

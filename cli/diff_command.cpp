@@ -60,6 +60,7 @@ struct DiffOptions {
   // The soft shadow-map methods' parameters (docs/smoothies.md), as render takes them.
   std::optional<long long> pcf;             // pcf: K
   std::optional<double> light_radius;       // pcss: R
+  std::optional<double> light_angle;        // pcss: a directional light's angular radius, degrees
   std::optional<double> smoothie_width;     // smoothie: D
   std::string smoothie_space = "world";     // smoothie: world | light
   // --soft: every light's exact soft reference, every method's light image against it
@@ -137,20 +138,30 @@ nlohmann::json soft_reference_json(const SoftReference& r) {
           {"contact", std::count(r.contact.begin(), r.contact.end(), std::uint8_t{1})}};
 }
 
-// One line of the soft table.
+// One line of the soft table; `ref noise` is the reference's own (SoftShadowErrors::reference_noise):
+// mean errors that differ by less are within the estimator's noise.
 std::string soft_line(const SoftShadowErrors& e) {
-  return fmt::format("{:9.4f} {:7.3f} {:8.4f} {:8.4f} {:8.4f} {:>11} {:>12} {:+9.4f}", e.mean_error, e.max_error,
-                     e.umbra_mean_error, e.penumbra_mean_error, e.outside_penumbra_mean_error,
+  return fmt::format("{:9.4f} {:7.3f} {:8.4f} {:8.4f} {:8.4f} {:>11} {:>12} {:+9.4f} {:>9}", e.mean_error,
+                     e.max_error, e.umbra_mean_error, e.penumbra_mean_error, e.outside_penumbra_mean_error,
                      fmt::format("{}/{}", e.leaks, e.contact), fmt::format("{}/{}", e.acne, e.lit_facing),
-                     e.mean_signed_error);
+                     e.mean_signed_error, fmt::format("±{:.4f}", e.reference_noise));
+}
+
+// The soft reference's light, for the report and the text: a disk of the radius around a point
+// light, of the angle about a directional one.
+std::string soft_light_text(const Light& light, double radius, double angle_degrees) {
+  return light.directional() ? fmt::format("sun of angular radius {:.4g} degrees", angle_degrees)
+                             : fmt::format("disk light of radius {:.4g}", radius);
 }
 
 // The report's line for a method against the soft reference.
 std::string soft_fact(const SoftShadowErrors& e) {
   return fmt::format("mean |error| {:.4f} (max {:.3f}, signed {:+.4f}); umbra {:.4f}, penumbra {:.4f}, outside the "
-                     "penumbra {:.4f}; leaks {} of {} contact pixels, acne {} of {} lit pixels",
+                     "penumbra {:.4f}; leaks {} of {} contact pixels, acne {} of {} lit pixels; the reference's "
+                     "noise ±{:.4f} (a pixel's 95% half-width {:.3f})",
                      e.mean_error, e.max_error, e.mean_signed_error, e.umbra_mean_error, e.penumbra_mean_error,
-                     e.outside_penumbra_mean_error, e.leaks, e.contact, e.acne, e.lit_facing);
+                     e.outside_penumbra_mean_error, e.leaks, e.contact, e.acne, e.lit_facing, e.reference_noise,
+                     e.reference_ci95);
 }
 
 // The analytic truth's own figures: its time, the meshes cast as ellipsoids, its band, and per
@@ -247,6 +258,7 @@ int run_diff(const DiffOptions& options) {
   if (options.light_radius && (!std::isfinite(*options.light_radius) || !(*options.light_radius > 0.0)))
     throw CLI::ValidationError("--light-radius",
                                fmt::format("must be finite and > 0 (world units), got {}", *options.light_radius));
+  if (options.light_angle) check_light_angle(*options.light_angle);
   if (options.samples < 1 || options.samples > 65536 ||
       [&] {
         const auto root = static_cast<long long>(std::llround(std::sqrt(static_cast<double>(options.samples))));
@@ -275,6 +287,7 @@ int run_diff(const DiffOptions& options) {
   comparison_options.silhouette = options.silhouette;
   comparison_options.method_options.pcf_kernel = static_cast<std::uint32_t>(options.pcf.value_or(gpu::kDefaultPcfKernel));
   comparison_options.method_options.light_radius = options.light_radius.value_or(0.0);  // 0: the default
+  comparison_options.method_options.light_angle_degrees = options.light_angle.value_or(0.0);  // likewise
   comparison_options.smoothie.width = options.smoothie_width.value_or(0.0);            // 0: the default
   comparison_options.smoothie.space = *parse_smoothie_space(options.smoothie_space);  // CLI11 checked it
   if (options.soft) {
@@ -375,7 +388,9 @@ int run_diff(const DiffOptions& options) {
     nlohmann::json per_light = nlohmann::json::array();
     for (const SoftReference& r : comparison.soft) per_light.push_back(soft_reference_json(r));
     summary["soft_reference"] = {{"radius", comparison.soft_radius},
+                                 {"angle_degrees", comparison.soft_angle_degrees},
                                  {"samples", options.samples},
+                                 {"ci95", reference_half_width(static_cast<std::uint32_t>(options.samples))},
                                  {"per_light", per_light}};
   }
   if (edge_maps)
@@ -405,9 +420,11 @@ int run_diff(const DiffOptions& options) {
       const SoftReference& r = comparison.soft[k];
       report.facts.emplace_back(
           "soft reference" + (light_count > 1 ? fmt::format(", light {}", k) : std::string()),
-          fmt::format("disk light of radius {:.4g}, {} samples, {:.2f} s; error images: method minus reference, "
-                      "blue too dark, red too bright, green where coverage differs",
-                      comparison.soft_radius, r.image.samples.size(), r.image.stats.seconds + r.contact_seconds));
+          fmt::format("{}, {} samples (a pixel's 95% half-width {:.3f}), {:.2f} s; error images: method minus "
+                      "reference, blue too dark, red too bright, green where coverage differs",
+                      soft_light_text(scene.lights[k], comparison.soft_radius, comparison.soft_angle_degrees),
+                      r.image.samples.size(), reference_half_width(static_cast<std::uint32_t>(r.image.samples.size())),
+                      r.image.stats.seconds + r.contact_seconds));
       for (const MethodRun& run : runs)
         if (run.lights[k].soft)
           report.facts.emplace_back("soft error, " + std::string(gpu::shadow_method_name(run.method)) +
@@ -490,12 +507,14 @@ int run_diff(const DiffOptions& options) {
   if (edge_maps) print_edge_maps(*edge_maps);
   for (std::size_t k = 0; k < comparison.soft.size(); ++k) {
     const SoftReference& r = comparison.soft[k];
-    fmt::print("  soft reference{}: disk light of radius {:.4g}, {} samples, {:.2f} s; light against it (never a "
-               "failure):\n",
-               light_count > 1 ? fmt::format(" of light {}", k) : std::string(), comparison.soft_radius,
-               r.image.samples.size(), r.image.stats.seconds + r.contact_seconds);
-    fmt::print("  {:<10} {:>9} {:>7} {:>8} {:>8} {:>8} {:>11} {:>12} {:>9}\n", "method", "mean err", "max",
-               "umbra", "penumbra", "outside", "leaks", "acne", "signed");
+    fmt::print("  soft reference{}: {}, {} samples (a pixel's 95% half-width {:.3f}), {:.2f} s; light against it "
+               "(never a failure; ref noise: mean errors closer than it are within the reference's sampling):\n",
+               light_count > 1 ? fmt::format(" of light {}", k) : std::string(),
+               soft_light_text(scene.lights[k], comparison.soft_radius, comparison.soft_angle_degrees),
+               r.image.samples.size(), reference_half_width(static_cast<std::uint32_t>(r.image.samples.size())),
+               r.image.stats.seconds + r.contact_seconds);
+    fmt::print("  {:<10} {:>9} {:>7} {:>8} {:>8} {:>8} {:>11} {:>12} {:>9} {:>9}\n", "method", "mean err", "max",
+               "umbra", "penumbra", "outside", "leaks", "acne", "signed", "ref noise");
     for (const MethodRun& run : runs)
       if (run.lights[k].soft)
         fmt::print("  {:<10} {}\n", gpu::shadow_method_name(run.method), soft_line(*run.lights[k].soft));
@@ -544,17 +563,21 @@ void add_diff_command(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   cmd->add_option("--pcf", options->pcf, "pcf: K x K taps, K odd in [1, 15] (default 3)");
   cmd->add_option("--light-radius", options->light_radius,
-                  "pcss: the light's radius R in world units (default 1% of the scene's bounding-box diagonal)");
+                  "pcss and --soft: a point light's radius R in world units (default 1% of the scene's bounding-box "
+                  "diagonal)");
+  cmd->add_option("--light-angle", options->light_angle, std::string("pcss and --soft: ") + kLightAngleHelp);
   cmd->add_option("--smoothie-width", options->smoothie_width,
                   "smoothie: the width D in world units (default 2% of the scene's bounding-box diagonal)");
   cmd->add_option("--smoothie-space", options->smoothie_space, "smoothie: world or light (render --help)")
       ->check(CLI::IsMember({"world", "light"}))
       ->capture_default_str();
   cmd->add_flag("--soft", options->soft,
-                "Also compute every light's exact soft reference (a disk light of --light-radius around it, "
-                "--samples stratified samples, exact verdicts; docs/smoothies.md) and compare every method's light "
-                "image with it: mean and max error, inside the umbra, the penumbra and outside, leaks at contact, "
-                "acne (reported, never a failure)");
+                "Also compute every light's exact soft reference (a disk light of --light-radius around a point "
+                "light, of --light-angle about a directional one; --samples stratified samples, each light's "
+                "light the mean of their exact verdicts, a pixel's 95% half-width 1.358 / sqrt(K); "
+                "docs/smoothies.md) and compare every method's light image with it: mean and max error, inside "
+                "the umbra, the penumbra and outside, leaks at contact, acne, and the reference's own noise "
+                "(reported, never a failure)");
   cmd->add_flag("--edges", options->edges,
                 "Also score every edge-map filter (diagonal, c1, sobel) against the exact edge ground truth: "
                 "precision, recall and F1 per class at 1 px, 2 px and bsds, false edges on grazing surfaces "

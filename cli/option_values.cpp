@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <optional>
 #include <stdexcept>
@@ -27,6 +28,14 @@ void apply_image_size(const std::string& size, Camera& camera, const std::string
     throw CLI::ValidationError(option, "each side must be in [1, " + std::to_string(kMaxImageSide) + "]");
   camera.width = static_cast<std::uint32_t>(w);
   camera.height = static_cast<std::uint32_t>(h);
+}
+
+void check_light_angle(double degrees, bool zero_allowed, const std::string& option) {
+  const bool low_ok = zero_allowed ? degrees >= 0.0 : degrees > 0.0;
+  if (!std::isfinite(degrees) || !low_ok || !(degrees < gpu::kMaxLightAngleDegrees))
+    throw CLI::ValidationError(option, std::string("must be in ") + (zero_allowed ? "[0" : "(0") +
+                                           ", 90) degrees (a directional light's angular radius), got " +
+                                           std::to_string(degrees));
 }
 
 gpu::ShadowMethod shadow_method_option(const std::string& name, const std::string& option) {

@@ -20,6 +20,16 @@ inline constexpr const char* kImageInputHelp =
     "Scene (.json), or a mesh file (.obj .off .ply .stl) framed over a floor with a light and a camera "
     "(docs/cli.md#inputs)";
 
+// `--light-angle DEG` (render, diff, soft, bench): a directional light's angular radius in
+// degrees, the size of a sun whatever the scene's scale (docs/smoothies.md#light-sizes); the
+// point lights' size is `--light-radius R` in world units.
+inline constexpr const char* kLightAngleHelp =
+    "A directional light's angular radius in degrees, in (0, 90) (default 0.573 = atan 0.01, whatever the scene's "
+    "scale; the sun's is 0.27); point lights take --light-radius";
+// Throws CLI::ValidationError naming `option` unless `degrees` is finite and in (0, 90), or
+// [0, 90) with `zero_allowed` (soft: 0 is the hard shadow).
+void check_light_angle(double degrees, bool zero_allowed = false, const std::string& option = "--light-angle");
+
 // Sets camera.width and camera.height from "WxH" (e.g. "1024x768"); an empty string leaves
 // the scene camera's size. Throws CLI::ValidationError naming `option` otherwise.
 void apply_image_size(const std::string& size, Camera& camera, const std::string& option = "--size");

@@ -64,6 +64,7 @@ struct RenderOptions {
   std::optional<long long> pcf;
   bool pcss = false;
   std::optional<double> light_radius;
+  std::optional<double> light_angle;  // pcss: a directional light's angular radius, degrees
   std::optional<double> smoothie_width;
   std::optional<std::string> smoothie_space;
   std::string light_image;  // --light-image FILE.png (and FILE.pfm, cli/light_image_output.h)
@@ -108,6 +109,11 @@ ValidatedRenderOptions validate(const RenderOptions& options) {
     if (!std::isfinite(*options.light_radius) || !(*options.light_radius > 0.0))
       throw CLI::ValidationError("--light-radius",
                                  fmt::format("must be finite and > 0 (world units), got {}", *options.light_radius));
+  }
+  if (options.light_angle) {
+    if (method != gpu::ShadowMethod::pcss)
+      throw CLI::ValidationError("--light-angle", "is pcss's light size: use it with --pcss or --method pcss");
+    check_light_angle(*options.light_angle);
   }
   if (options.smoothie_width) {
     if (method != gpu::ShadowMethod::smoothie)
@@ -210,6 +216,7 @@ int run_render(const RenderOptions& options) {
   method_options.shadow_map_slope = options.shadowmap_slope;
   method_options.pcf_kernel = static_cast<std::uint32_t>(options.pcf.value_or(gpu::kDefaultPcfKernel));
   method_options.light_radius = light_radius;
+  method_options.light_angle_degrees = options.light_angle.value_or(gpu::kDefaultLightAngleDegrees);
   // The first light's volume fill in the first frame (two occlusion queries; the timed frames
   // do without): what a method costs the rasteriser, whatever the machine.
   method_options.count_fragments = !shadowmap;
@@ -267,25 +274,26 @@ int run_render(const RenderOptions& options) {
       casters.triangles.size() == merged.triangles.size()
           ? fmt::format("{} triangles", merged.triangles.size())
           : fmt::format("{} triangles ({} cast)", merged.triangles.size(), casters.triangles.size());
-  // The shadow-map methods' lights whose frustum could not hold the scene (a point light inside
-  // or next to its bounds): the map's half angle is capped there and receivers outside are lit.
-  std::vector<std::size_t> capped_lights;
+  // The shadow-map methods' lights that one frustum cannot hold (a point light inside or next to
+  // the scene's bounds): drawn with a cube map (gpu/shadow_map_renderer.h's light_views).
+  std::vector<std::size_t> cube_lights;
   if (shadowmap)
     for (std::size_t k = 0; k < scene.lights.size(); ++k)
-      if (gpu::light_frustum(scene.lights[k], bounds).capped) capped_lights.push_back(k);
+      if (gpu::needs_cube_map(scene.lights[k], bounds)) cube_lights.push_back(k);
   if (shadowmap) {
     std::string filter;
     if (method == gpu::ShadowMethod::pcf) filter = fmt::format(", pcf {}x{}", method_options.pcf_kernel, method_options.pcf_kernel);
-    if (method == gpu::ShadowMethod::pcss) filter = fmt::format(", pcss light radius {:.6g}", light_radius);
+    if (method == gpu::ShadowMethod::pcss)
+      filter = fmt::format(", pcss light radius {:.6g} (point), angle {:.6g} degrees (directional)", light_radius,
+                           method_options.light_angle_degrees);
     if (method == gpu::ShadowMethod::smoothie)
       filter = fmt::format(", smoothies {:.6g} wide in {} space", inputs.smoothies.width,
                            smoothie_space_name(inputs.smoothies.space));
     fmt::print("{}: {}, {} lights, {}x{}, {} {}^2 (bias {}, slope {}){} on {}\n", options.input, triangles,
                scene.lights.size(), scene.camera.width, scene.camera.height, gpu::shadow_method_name(method),
                options.shadowmap_size, options.shadowmap_bias, options.shadowmap_slope, filter, context.renderer());
-    for (std::size_t k : capped_lights)
-      fmt::print("  light {}: inside or next to the scene's bounds: the map's field of view is capped at "
-                 "2 atan(8), receivers outside it are lit (a cube map would be needed)\n", k);
+    for (std::size_t k : cube_lights)
+      fmt::print("  light {}: inside or next to the scene's bounds: a cube map (six 90-degree faces)\n", k);
     if (method == gpu::ShadowMethod::smoothie && !inputs.smoothies.stats.empty()) {
       const SmoothieStats& st = inputs.smoothies.stats.front();
       fmt::print("  smoothies (first light): {} silhouette edges, {} quads, {} linked and {} shrunk corners, "
@@ -325,9 +333,12 @@ int run_render(const RenderOptions& options) {
       report["shadowmap"] = {
           {"size", options.shadowmap_size}, {"bias", options.shadowmap_bias}, {"slope", options.shadowmap_slope}};
       report["stage_seconds"] = {{"upload", upload_seconds}, {"first_frame", first_frame_seconds}};
-      report["capped_lights"] = capped_lights;
+      report["cube_lights"] = cube_lights;
       if (method == gpu::ShadowMethod::pcf) report["pcf_kernel"] = method_options.pcf_kernel;
-      if (method == gpu::ShadowMethod::pcss) report["light_radius"] = light_radius;
+      if (method == gpu::ShadowMethod::pcss) {
+        report["light_radius"] = light_radius;
+        report["light_angle_degrees"] = method_options.light_angle_degrees;
+      }
       if (method == gpu::ShadowMethod::smoothie) {
         nlohmann::json per_light = nlohmann::json::array();
         for (const SmoothieStats& st : inputs.smoothies.stats)
@@ -429,10 +440,12 @@ void add_render_command(CLI::App& app, int& exit_code) {
                   "[1, 15] (1: the hard map). Picks --method pcf (which alone uses K = 3)");
   cmd->add_flag("--pcss", options->pcss,
                 "Percentage-closer soft shadows (Fernando 2005: blocker search, then PCF over the predicted "
-                "penumbra) for a disk light of radius --light-radius around the point light. Same as --method pcss");
+                "penumbra) for a disk light of radius --light-radius around a point light, of angular radius --light-angle for "
+                "a directional one. Same as --method pcss");
   cmd->add_option("--light-radius", options->light_radius,
-                  "pcss: the light's radius R in world units (the soft reference's disk light; directional "
-                  "lights: the tangent of the angular radius); default 1% of the scene's bounding-box diagonal");
+                  "pcss: a point light's radius R in world units (the soft reference's disk light); default 1% of "
+                  "the scene's bounding-box diagonal; directional lights take --light-angle");
+  cmd->add_option("--light-angle", options->light_angle, std::string("pcss: ") + kLightAngleHelp);
   cmd->add_option("--smoothie-width", options->smoothie_width,
                   "smoothie: the smoothies' width D in world units (light space: at the distance from the light to "
                   "the scene's centre); default 2% of the scene's bounding-box diagonal");

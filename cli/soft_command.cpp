@@ -19,6 +19,7 @@
 #include "io/output_file.h"
 #include "io/scene_input.h"
 #include "pipeline/soft_reference.h"
+#include "pipeline/soft_shadow_comparison.h"
 #include "pipeline/soft_shadow_pictures.h"
 #include "scene/merged_soup.h"
 
@@ -28,6 +29,7 @@ namespace {
 struct SoftOptions {
   std::string input;
   std::optional<double> radius;  // empty: gpu::default_light_radius of the scene's bounds, as pcss
+  double angle = gpu::kDefaultLightAngleDegrees;  // a directional light's angular radius, degrees
   std::uint32_t samples = kReferenceDiskSamples;
   std::uint64_t seed = kDefaultDiskSeed;
   std::size_t light = 0;
@@ -48,6 +50,7 @@ nlohmann::json light_json(const Light& l) { return {l.position[0], l.position[1]
 int run_soft(const SoftOptions& options) {
   if (options.radius && !(std::isfinite(*options.radius) && *options.radius >= 0.0))
     throw CLI::ValidationError("--radius", fmt::format("must be finite and >= 0, got {}", *options.radius));
+  check_light_angle(options.angle, true);
   if (!perfect_square(options.samples))
     throw CLI::ValidationError("--samples", fmt::format("must be a perfect square n x n >= 1 (64 = 8 x 8 is the "
                                                         "reference), got {}", options.samples));
@@ -61,14 +64,16 @@ int run_soft(const SoftOptions& options) {
   const Soup merged = merged_soup(scene);
   if (merged.triangles.empty()) throw InputError(options.input, "no triangle to image");
   const Light& light = scene.lights[options.light];
-  if (!light.directional() && options.radius.value_or(1.0) > 0.0 && [&] {
-        const Vec3 c = scene_bounds_centre(merged);
-        return c[0] == light.position[0] && c[1] == light.position[1] && c[2] == light.position[2];
-      }())
-    throw InputError(options.input, "the light is at the centre of the scene's bounds: its disk faces nowhere");
+  // A point light at the centre of the bounds has no direction for its disk to face: its samples
+  // fill the ball whose every projection is that disk (reference/disk_light.h).
+  const bool ball = [&] {
+    const Vec3 c = scene_bounds_centre(merged);
+    return !light.directional() && c[0] == light.position[0] && c[1] == light.position[1] && c[2] == light.position[2];
+  }();
 
   SoftReferenceOptions reference_options;
   reference_options.sampling.radius = options.radius.value_or(gpu::default_light_radius(gpu::soup_bounds(merged)));
+  reference_options.sampling.angle_degrees = options.angle;
   reference_options.sampling.samples = options.samples;
   reference_options.sampling.seed = options.seed;
   reference_options.contact_pixels = options.contact_pixels;
@@ -76,6 +81,8 @@ int run_soft(const SoftOptions& options) {
   reference_options.progress = isatty(fileno(stderr)) != 0;
   const SoftReference reference = soft_reference(scene, options.light, reference_options);
   const SoftShadowImage& image = reference.image;
+  // A pixel's 95% half-width (pipeline/soft_shadow_comparison.h); 0 for a light without size.
+  const double ci95 = reference.hard ? 0.0 : reference_half_width(static_cast<std::uint32_t>(image.samples.size()));
 
   std::array<std::uint64_t, 5> regions{};  // by SoftRegion
   std::uint64_t contact = 0, facing = 0;
@@ -103,7 +110,10 @@ int run_soft(const SoftOptions& options) {
         {"light", options.light},
         {"light_position", light_json(light)},
         {"radius", reference_options.sampling.radius},
+        {"angle_degrees", reference_options.sampling.angle_degrees},
+        {"light_shape", light.directional() ? "sun" : ball ? "ball" : "disk"},
         {"samples", image.samples.size()},
+        {"ci95", ci95},
         {"seed", options.seed},
         {"sample_lights", samples},
         {"triangles", merged.triangles.size()},
@@ -126,11 +136,14 @@ int run_soft(const SoftOptions& options) {
     write_json_file(options.json_file, summary);
   }
 
-  fmt::print("{}: {} triangles, {}x{}, light {} ({}), disk radius {:.6g}{}, {} sample{} (seed {})\n", options.input,
-             merged.triangles.size(), image.width, image.height, options.light,
-             light.directional() ? "directional" : "point", reference_options.sampling.radius,
-             light.directional() ? " (tangent of the angular radius)" : "", image.samples.size(),
-             image.samples.size() == 1 ? "" : "s", options.seed);
+  const std::string shape =
+      light.directional() ? fmt::format("directional, a sun of angular radius {:.6g} degrees", options.angle)
+      : ball ? fmt::format("point, at the bounds' centre: a ball of radius {:.6g} (every view of it the disk)",
+                           reference_options.sampling.radius)
+             : fmt::format("point, a disk of radius {:.6g}", reference_options.sampling.radius);
+  fmt::print("{}: {} triangles, {}x{}, light {} ({}), {} sample{} (a pixel's 95% half-width {:.3f}; seed {})\n",
+             options.input, merged.triangles.size(), image.width, image.height, options.light, shape,
+             image.samples.size(), image.samples.size() == 1 ? "" : "s", ci95, options.seed);
   fmt::print("  exact soft reference: {:.2f} s (tree {:.2f}, hits {:.2f}, counts {:.2f}; {} exact image{}), contact "
              "{:.2f} s\n",
              image.stats.seconds, image.stats.tree_seconds, image.stats.hit_seconds, image.stats.count_seconds,
@@ -146,13 +159,17 @@ void add_soft_command(CLI::App& app, int& exit_code) {
   auto options = std::make_shared<SoftOptions>();
   CLI::App* cmd = app.add_subcommand(
       "soft",
-      "The exact soft reference (docs/smoothies.md#the-exact-soft-reference): a disk light of radius R around the "
-      "light, K stratified samples on it, each receiver pixel's light the mean of their exact verdicts");
+      "The exact soft reference (docs/smoothies.md#the-exact-soft-reference): a disk light of radius R around a "
+      "point light (of angular radius --light-angle about a directional one), K stratified samples on it, each "
+      "receiver pixel's light the mean of their exact verdicts: an estimate whose 95% half-width per pixel is "
+      "1.358 / sqrt(K) (0.170 at K = 64)");
   cmd->add_option("input", options->input, kImageInputHelp)->required();
   cmd->add_option("--radius,--light-radius", options->radius,
-                  "The disk's radius R in world units, facing the centre of the scene's bounds (directional lights: "
-                  "the tangent of the angular radius); 0: the exact hard shadow; default 1% of the scene's "
-                  "bounding-box diagonal, as render --method pcss");
+                  "A point light's disk radius R in world units, facing the centre of the scene's bounds (a light at "
+                  "that centre: a ball of radius R); 0: the exact hard shadow; default 1% of the scene's bounding-box "
+                  "diagonal, as render --method pcss");
+  cmd->add_option("--light-angle", options->angle, std::string(kLightAngleHelp) + "; 0: the exact hard shadow")
+      ->capture_default_str();
   cmd->add_option("--samples", options->samples, "K sample lights, a perfect square n x n (stratified)")
       ->capture_default_str();
   cmd->add_option("--seed", options->seed, "The samples' jitter stream")->capture_default_str();

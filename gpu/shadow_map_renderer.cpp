@@ -1,8 +1,10 @@
 #include "gpu/shadow_map_renderer.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <optional>
 #include <span>
 #include <stdexcept>
@@ -36,6 +38,7 @@ constexpr GLint kLightFrustumLocation = 9;
 constexpr GLint kOrthographicLocation = 10;
 constexpr GLint kLightRadiusLocation = 11;
 constexpr GLint kLightImagePassLocation = 12;  // shadow_map_scene.frag.glsl
+constexpr GLint kCubeFaceLocation = 13;        // shadow_map_scene.frag.glsl
 constexpr GLint kDepthLightToClipLocation = 0;  // shadow_map_depth.vert.glsl
 constexpr GLuint kShadowMapUnit = 0;             // layout(binding = 0) of the sampler
 constexpr GLuint kDepthValuesUnit = 1;           // binding 1: the map without comparison (pcss)
@@ -51,12 +54,19 @@ constexpr GLint kLitMark = 0;
 constexpr double kFitMargin = 1.02;
 // A point light's half field of view is capped at atan(8) (about 83 degrees): beyond, the
 // map's texels stretch so much that it means nothing, and a light inside the box (corners
-// behind it) cannot be covered by one frustum at all (that needs a cube map). Receivers
-// outside the capped frustum are lit (shadow_map_scene.frag.glsl), a documented limit.
+// behind it) cannot be covered by one frustum at all: such a light gets a cube map.
 constexpr double kMaxPointLightHalfAngleTangent = 8.0;
 // The near plane never comes closer than this fraction of the far one: depth precision of a
 // perspective map falls with far / near, and a corner at or behind the light gives no near.
 constexpr double kMinNearFraction = 1.0e-3;
+// A cube face's near plane when the nearest receiver is unknown (ShadowMapOptions::
+// nearest_receivers empty): this fraction of its far plane. The constant depth bias (1e-4 of
+// window depth) is then about 64e-4 of the far plane at the far end (peter-panning), and
+// casters nearer than the plane still cast (GL_DEPTH_CLAMP), at depth 0.
+constexpr double kCubeNearFraction = 1.0 / 64.0;
+// A cube face's near plane never lies past this fraction of its far one (a face no receiver
+// is near: the plane only has to stay in front of the far one).
+constexpr double kMaxCubeNearFraction = 0.5;
 
 glm::dvec3 to_glm(const Vec3& v) { return {v[0], v[1], v[2]}; }
 
@@ -93,12 +103,28 @@ double default_light_radius(const SceneBounds& bounds) {
   return kDefaultLightRadiusFraction * glm::length(diagonal);
 }
 
-glm::dmat4 light_to_clip(const Light& light, const SceneBounds& bounds) {
-  const LightFrustum f = light_frustum(light, bounds);
-  return f.projection * f.view;
+double light_angle_tangent(double degrees) {
+  if (!std::isfinite(degrees) || !(degrees > 0.0) || !(degrees < kMaxLightAngleDegrees))
+    throw std::invalid_argument("light_angle_tangent: a light's angular radius must be in (0, 90) degrees, got " +
+                                std::to_string(degrees));
+  return std::tan(degrees * (std::numbers::pi / 180.0));
 }
 
-LightFrustum light_frustum(const Light& light, const SceneBounds& bounds) {
+namespace {
+
+void require_finite(const Light& light) {
+  for (double x : light.position)
+    if (!std::isfinite(x)) throw std::invalid_argument("light_views: the light is not finite");
+}
+
+struct SingleFrustum {
+  LightFrustum frustum;
+  bool capped = false;  // a point light whose half angle reached kMaxPointLightHalfAngleTangent
+};
+
+// The one frustum or box of a light (the top of the header). A point light at the box's centre
+// is reported capped (no direction to aim at), its frustum left unset.
+SingleFrustum single_frustum(const Light& light, const SceneBounds& bounds) {
   const glm::dvec3 lo = to_glm(bounds.lo), hi = to_glm(bounds.hi);
   const glm::dvec3 centre = 0.5 * (lo + hi);
   // A flat box (a lone floor) still needs a non-zero extent for the fit below.
@@ -106,7 +132,7 @@ LightFrustum light_frustum(const Light& light, const SceneBounds& bounds) {
   const glm::dvec3 l(light.position[0], light.position[1], light.position[2]);
   LightFrustum frustum;
   if (light.directional()) {
-    if (glm::length(l) == 0.0) throw std::invalid_argument("light_to_clip: directional light with l = 0");
+    if (glm::length(l) == 0.0) throw std::invalid_argument("light_views: directional light with l = 0");
     const glm::dvec3 towards = glm::normalize(l);
     const glm::dmat4 view = glm::lookAt(centre + 2.0 * radius * towards, centre, up_for(towards));
     glm::dvec3 vmin(std::numeric_limits<double>::infinity()), vmax(-std::numeric_limits<double>::infinity());
@@ -124,9 +150,9 @@ LightFrustum light_frustum(const Light& light, const SceneBounds& bounds) {
     frustum.far = -(mid.z - half.z);
     frustum.half_extent = {half.x, half.y};
     frustum.orthographic = true;
-    return frustum;
+    return {frustum, false};
   }
-  if (glm::length(centre - l) == 0.0) throw std::invalid_argument("light_to_clip: point light at the bounds' centre");
+  if (glm::length(centre - l) == 0.0) return {frustum, true};
   const glm::dmat4 view = glm::lookAt(l, centre, up_for(centre - l));
   double tangent = 0.0, nearest = std::numeric_limits<double>::infinity(), farthest = 0.0;
   for (const glm::dvec3& c : corners(bounds)) {
@@ -141,7 +167,7 @@ LightFrustum light_frustum(const Light& light, const SceneBounds& bounds) {
     nearest = std::min(nearest, depth);
     tangent = std::max({tangent, std::abs(v.x) / depth, std::abs(v.y) / depth});
   }
-  frustum.capped = tangent * kFitMargin >= kMaxPointLightHalfAngleTangent;
+  const bool capped = tangent * kFitMargin >= kMaxPointLightHalfAngleTangent;
   tangent = std::min(tangent * kFitMargin, kMaxPointLightHalfAngleTangent);
   const double z_far = farthest * kFitMargin;
   const double z_near = std::max(nearest / kFitMargin, z_far * kMinNearFraction);
@@ -150,7 +176,90 @@ LightFrustum light_frustum(const Light& light, const SceneBounds& bounds) {
   frustum.near = z_near;
   frustum.far = z_far;
   frustum.tangent = tangent;
-  return frustum;
+  return {frustum, capped};
+}
+
+// The cube's faces in shaders/cube_face.glsl's order: the axis each looks along, and an up
+// vector across it (the face's rotation about its axis is irrelevant).
+constexpr std::array<std::array<double, 6>, 6> kCubeFaces{{{1, 0, 0, 0, 1, 0},
+                                                           {-1, 0, 0, 0, 1, 0},
+                                                           {0, 1, 0, 0, 0, 1},
+                                                           {0, -1, 0, 0, 0, 1},
+                                                           {0, 0, 1, 0, 1, 0},
+                                                           {0, 0, -1, 0, 1, 0}}};
+
+std::vector<LightFrustum> cube_faces(const Light& light, const SceneBounds& bounds, double nearest_receiver) {
+  const glm::dvec3 l(light.position[0], light.position[1], light.position[2]);
+  std::vector<LightFrustum> faces;
+  for (int face = 0; face < 6; ++face) {
+    const glm::dvec3 axis(kCubeFaces[face][0], kCubeFaces[face][1], kCubeFaces[face][2]);
+    const glm::dvec3 up(kCubeFaces[face][3], kCubeFaces[face][4], kCubeFaces[face][5]);
+    double deepest = 0.0;  // the box's farthest point along the axis, ahead of the light
+    for (const glm::dvec3& c : corners(bounds)) deepest = std::max(deepest, glm::dot(c - l, axis));
+    if (!(deepest > 0.0)) continue;  // the whole box lies behind the face's plane: nothing to draw
+    const double z_far = deepest * kFitMargin;
+    const double wanted = std::isfinite(nearest_receiver) && nearest_receiver > 0.0
+                              ? nearest_receiver / (std::sqrt(3.0) * kFitMargin)
+                              : z_far * kCubeNearFraction;
+    const double z_near = std::min(std::max(wanted, z_far * kMinNearFraction), z_far * kMaxCubeNearFraction);
+    LightFrustum f;
+    f.view = glm::lookAt(l, l + axis, up);
+    f.projection = glm::perspectiveRH_NO(2.0 * std::atan(kFitMargin), 1.0, z_near, z_far);
+    f.near = z_near;
+    f.far = z_far;
+    f.tangent = kFitMargin;
+    f.cube_face = face;
+    faces.push_back(f);
+  }
+  return faces;
+}
+
+// The distance from p to the segment [a, b] (a point when a == b).
+double segment_distance(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b) {
+  const glm::dvec3 ab = b - a;
+  const double length2 = glm::dot(ab, ab);
+  const double t = length2 > 0.0 ? std::clamp(glm::dot(p - a, ab) / length2, 0.0, 1.0) : 0.0;
+  return glm::length(p - (a + t * ab));
+}
+
+// The distance from p to the closed triangle abc (degenerate ones too): to its plane where p
+// projects inside it, else to the nearest edge.
+double triangle_distance(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
+  const glm::dvec3 n = glm::cross(b - a, c - a);
+  const double n2 = glm::dot(n, n);
+  if (n2 > 0.0 && glm::dot(glm::cross(b - a, p - a), n) >= 0.0 && glm::dot(glm::cross(c - b, p - b), n) >= 0.0 &&
+      glm::dot(glm::cross(a - c, p - c), n) >= 0.0)
+    return std::abs(glm::dot(p - a, n)) / std::sqrt(n2);
+  return std::min({segment_distance(p, a, b), segment_distance(p, b, c), segment_distance(p, c, a)});
+}
+
+}  // namespace
+
+bool needs_cube_map(const Light& light, const SceneBounds& bounds) {
+  return !light.directional() && single_frustum(light, bounds).capped;
+}
+
+std::vector<LightFrustum> light_views(const Light& light, const SceneBounds& bounds, double nearest_receiver) {
+  require_finite(light);
+  const SingleFrustum single = single_frustum(light, bounds);
+  if (light.directional() || !single.capped) return {single.frustum};
+  return cube_faces(light, bounds, nearest_receiver);
+}
+
+double nearest_receiver_distance(std::span<const ShadedSoupPart> parts, const Light& light) {
+  if (light.directional()) throw std::invalid_argument("nearest_receiver_distance: a directional light");
+  const glm::dvec3 l(light.position[0], light.position[1], light.position[2]);
+  const auto drawn = [](const Vec3& v) {  // as GL receives the vertex
+    return glm::dvec3(static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2]));
+  };
+  double nearest = std::numeric_limits<double>::infinity();
+  for (const ShadedSoupPart& part : parts) {
+    if (part.soup == nullptr) continue;
+    for (const Triangle& t : part.soup->triangles)
+      nearest = std::min(nearest, triangle_distance(l, drawn(part.soup->vertices[t[0]]),
+                                                    drawn(part.soup->vertices[t[1]]), drawn(part.soup->vertices[t[2]])));
+  }
+  return nearest;
 }
 
 ShadowMapRenderer::ShadowMapRenderer(std::uint32_t size, ShadowFilter filter) : size_(size), filter_(filter) {
@@ -225,6 +334,15 @@ void validate(ShadowFilter filter, std::span<const Light> lights, const ShadowMa
   if (filter == ShadowFilter::pcss && (!std::isfinite(options.light_radius) || !(options.light_radius > 0.0)))
     throw std::invalid_argument(where + "the pcss light radius must be finite and > 0, got " +
                                 std::to_string(options.light_radius));
+  if (filter == ShadowFilter::pcss &&
+      (!std::isfinite(options.light_angle_degrees) || !(options.light_angle_degrees > 0.0) ||
+       !(options.light_angle_degrees < kMaxLightAngleDegrees)))
+    throw std::invalid_argument(where + "the pcss light angle must be in (0, 90) degrees, got " +
+                                std::to_string(options.light_angle_degrees));
+  if (!options.nearest_receivers.empty() && options.nearest_receivers.size() != lights.size())
+    throw std::invalid_argument(where + "nearest_receivers needs one distance per light (" +
+                                std::to_string(options.nearest_receivers.size()) + " for " +
+                                std::to_string(lights.size()) + " lights)");
   if (filter == ShadowFilter::smoothie) {
     if (options.smoothies.size() != lights.size())
       throw std::invalid_argument(where + "smoothie needs one smoothie mesh per light (" +
@@ -248,8 +366,11 @@ StencilShadowFrame ShadowMapRenderer::render(const OffscreenTarget& target, cons
   glProgramUniform1f(scene, kDepthBiasLocation, options.depth_bias);
   glProgramUniform1i(scene, kFilterModeLocation, filter_mode(filter_));
   glProgramUniform1i(scene, kPcfKernelLocation, static_cast<GLint>(options.pcf_kernel));
-  glProgramUniform1f(scene, kLightRadiusLocation, static_cast<float>(options.light_radius));
   glProgramUniform1i(scene, kLightImagePassLocation, 0);
+  glProgramUniform1i(scene, kCubeFaceLocation, -1);
+  // pcss's light size as the filter reads it: world units for a point light, a tangent for a
+  // directional one (shadow_filter.glsl).
+  const double angle_tangent = filter_ == ShadowFilter::pcss ? light_angle_tangent(options.light_angle_degrees) : 0.0;
 
   target.bind();
   target.clear(options.background);
@@ -278,93 +399,115 @@ StencilShadowFrame ShadowMapRenderer::render(const OffscreenTarget& target, cons
 
   std::vector<float> first_light;
   for (std::size_t i = 0; i < lights.size(); ++i) {
-    const LightFrustum frustum = light_frustum(lights[i], bounds);
-    const glm::mat4 to_light_clip(frustum.projection * frustum.view);
-    const glm::mat4 light_view(frustum.view);
-
-    // 2. Depth pass from the light. Only the slope term of glPolygonOffset: the constant
-    //    bias is applied in the comparison (depth_bias), in depth units the user can read.
-    std::optional<ScopedStage> stage(std::in_place, options.timer, RenderStage::shadow_map);
-    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.name());
-    glViewport(0, 0, static_cast<GLsizei>(size_), static_cast<GLsizei>(size_));
-    glDisable(GL_STENCIL_TEST);
-    glDepthFunc(GL_LESS);
-    glDepthMask(GL_TRUE);
-    glClear(GL_DEPTH_BUFFER_BIT);
-    glUseProgram(depth);
-    glProgramUniformMatrix4fv(depth, kDepthLightToClipLocation, 1, GL_FALSE, glm::value_ptr(to_light_clip));
-    glEnable(GL_POLYGON_OFFSET_FILL);
-    glPolygonOffset(options.slope_scale, 0.0f);
-    // The casters only: a part that only receives (ShadedSoupPart::casts) shadows nothing.
-    const std::span<const GLint> firsts = receivers.caster_firsts();
-    if (!firsts.empty())
-      glMultiDrawArrays(GL_TRIANGLES, firsts.data(), receivers.caster_counts().data(),
-                        static_cast<GLsizei>(firsts.size()));
-    glDisable(GL_POLYGON_OFFSET_FILL);
-    stage.reset();
-
-    // 2b. smoothie: the light's smoothies into the smoothie map (nearest alpha and depth).
-    if (smoothie_map_) {
-      stage.emplace(options.timer, RenderStage::smoothie_map);
-      smoothie_map_->render(*options.smoothies[i], to_light_clip, light_view);
-      stage.reset();
-    }
-
-    // 3. Lit pass on the visible surface only; the first light clears the shadowed mark
-    //    where its comparison says lit (shadowed fragments are discarded in the shader).
-    stage.emplace(options.timer, RenderStage::lit);
-    target.bind();
-    glUseProgram(scene);
-    glBindTextureUnit(kShadowMapUnit, depth_.name());
-    if (filter_ == ShadowFilter::pcss) {
-      glBindTextureUnit(kDepthValuesUnit, depth_.name());
-      glBindSampler(kDepthValuesUnit, depth_values_.name());
-    }
-    if (smoothie_map_) glBindTextureUnit(kSmoothieMapUnit, smoothie_map_->texture());
-    glEnable(GL_STENCIL_TEST);
-    glStencilFunc(GL_ALWAYS, kLitMark, 0xFF);
-    glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
-    glStencilMask(i == 0 ? 0xFF : 0x00);
-    glDepthFunc(GL_EQUAL);
-    glDepthMask(GL_FALSE);
-    glEnable(GL_BLEND);
-    glBlendFunc(GL_ONE, GL_ONE);
-    const std::array<double, 4>& l = lights[i].position;
-    glProgramUniform4f(scene, kLightLocation, static_cast<float>(l[0]), static_cast<float>(l[1]),
-                       static_cast<float>(l[2]), static_cast<float>(l[3]));
-    glProgramUniformMatrix4fv(scene, kLightToClipLocation, 1, GL_FALSE, glm::value_ptr(to_light_clip));
-    glProgramUniformMatrix4fv(scene, kLightViewLocation, 1, GL_FALSE, glm::value_ptr(light_view));
-    glProgramUniform4f(scene, kLightFrustumLocation, static_cast<float>(frustum.near), static_cast<float>(frustum.far),
-                       static_cast<float>(frustum.orthographic ? frustum.half_extent[0] : frustum.tangent),
-                       static_cast<float>(frustum.orthographic ? frustum.half_extent[1] : frustum.tangent));
-    glProgramUniform1i(scene, kOrthographicLocation, frustum.orthographic ? 1 : 0);
-    glProgramUniform1f(scene, kLambertWeightLocation, 1.0f);
-    glProgramUniform4f(scene, kColourLocation, options.light_colour[0], options.light_colour[1],
-                       options.light_colour[2], 1.0f);
-    glBindVertexArray(receivers.vertex_array());  // the smoothie map bound its own
-    glDrawArrays(GL_TRIANGLES, 0, receivers.single_order_vertex_count());
-    glDisable(GL_BLEND);
-    stage.reset();
-
-    // 4. The first light's amount of light per pixel (readback frames only): the receivers once
-    //    more into the light image, nearest surface per pixel, the filter's amount as colour.
-    if (i == 0 && options.read_back) {
-      if (!light_image_ || light_image_->width() != target.width() || light_image_->height() != target.height())
-        light_image_.emplace(target.width(), target.height());
+    const double nearest = options.nearest_receivers.empty() ? 0.0 : options.nearest_receivers[i];
+    const std::vector<LightFrustum> views = light_views(lights[i], bounds, nearest);
+    glProgramUniform1f(scene, kLightRadiusLocation,
+                       static_cast<float>(lights[i].directional() ? angle_tangent : options.light_radius));
+    // The first light's amount per pixel: its target cleared once, then every view's pass
+    // writes the fragments of its own face (the nearest surface wins by depth).
+    const bool light_image = i == 0 && options.read_back;
+    if (light_image &&
+        (!light_image_ || light_image_->width() != target.width() || light_image_->height() != target.height()))
+      light_image_.emplace(target.width(), target.height());
+    if (light_image) {
       light_image_->bind();
       light_image_->clear();
+    }
+    for (const LightFrustum& frustum : views) {
+      const glm::mat4 to_light_clip(frustum.projection * frustum.view);
+      const glm::mat4 light_view(frustum.view);
+      const bool cube = frustum.cube_face >= 0;
+
+      // 2. Depth pass from the light. Only the slope term of glPolygonOffset: the constant
+      //    bias is applied in the comparison (depth_bias), in depth units the user can read. A
+      //    cube face clamps depth instead of clipping at its near plane: a caster nearer than
+      //    it still hides what lies behind it.
+      std::optional<ScopedStage> stage(std::in_place, options.timer, RenderStage::shadow_map);
+      glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.name());
+      glViewport(0, 0, static_cast<GLsizei>(size_), static_cast<GLsizei>(size_));
       glDisable(GL_STENCIL_TEST);
       glDepthFunc(GL_LESS);
       glDepthMask(GL_TRUE);
-      glProgramUniform1i(scene, kLightImagePassLocation, 1);
+      glClear(GL_DEPTH_BUFFER_BIT);
+      glUseProgram(depth);
+      glProgramUniformMatrix4fv(depth, kDepthLightToClipLocation, 1, GL_FALSE, glm::value_ptr(to_light_clip));
+      glEnable(GL_POLYGON_OFFSET_FILL);
+      glPolygonOffset(options.slope_scale, 0.0f);
+      if (cube) glEnable(GL_DEPTH_CLAMP);
+      // The casters only: a part that only receives (ShadedSoupPart::casts) shadows nothing.
+      const std::span<const GLint> firsts = receivers.caster_firsts();
+      if (!firsts.empty())
+        glMultiDrawArrays(GL_TRIANGLES, firsts.data(), receivers.caster_counts().data(),
+                          static_cast<GLsizei>(firsts.size()));
+      glDisable(GL_DEPTH_CLAMP);
+      glDisable(GL_POLYGON_OFFSET_FILL);
+      stage.reset();
+
+      // 2b. smoothie: the light's smoothies into the smoothie map (nearest alpha and depth).
+      if (smoothie_map_) {
+        stage.emplace(options.timer, RenderStage::smoothie_map);
+        smoothie_map_->render(*options.smoothies[i], to_light_clip, light_view);
+        stage.reset();
+      }
+
+      // 3. Lit pass on the visible surface only; the first light clears the shadowed mark
+      //    where its comparison says lit (shadowed fragments, and a cube face's fragments of
+      //    other faces, are discarded in the shader).
+      stage.emplace(options.timer, RenderStage::lit);
+      target.bind();
+      glUseProgram(scene);
+      glBindTextureUnit(kShadowMapUnit, depth_.name());
+      if (filter_ == ShadowFilter::pcss) {
+        glBindTextureUnit(kDepthValuesUnit, depth_.name());
+        glBindSampler(kDepthValuesUnit, depth_values_.name());
+      }
+      if (smoothie_map_) glBindTextureUnit(kSmoothieMapUnit, smoothie_map_->texture());
+      glEnable(GL_STENCIL_TEST);
+      glStencilFunc(GL_ALWAYS, kLitMark, 0xFF);
+      glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+      glStencilMask(i == 0 ? 0xFF : 0x00);
+      glDepthFunc(GL_EQUAL);
+      glDepthMask(GL_FALSE);
+      glEnable(GL_BLEND);
+      glBlendFunc(GL_ONE, GL_ONE);
+      const std::array<double, 4>& l = lights[i].position;
+      glProgramUniform4f(scene, kLightLocation, static_cast<float>(l[0]), static_cast<float>(l[1]),
+                         static_cast<float>(l[2]), static_cast<float>(l[3]));
+      glProgramUniformMatrix4fv(scene, kLightToClipLocation, 1, GL_FALSE, glm::value_ptr(to_light_clip));
+      glProgramUniformMatrix4fv(scene, kLightViewLocation, 1, GL_FALSE, glm::value_ptr(light_view));
+      glProgramUniform4f(scene, kLightFrustumLocation, static_cast<float>(frustum.near),
+                         static_cast<float>(frustum.far),
+                         static_cast<float>(frustum.orthographic ? frustum.half_extent[0] : frustum.tangent),
+                         static_cast<float>(frustum.orthographic ? frustum.half_extent[1] : frustum.tangent));
+      glProgramUniform1i(scene, kOrthographicLocation, frustum.orthographic ? 1 : 0);
+      glProgramUniform1i(scene, kCubeFaceLocation, frustum.cube_face);
+      glProgramUniform1f(scene, kLambertWeightLocation, 1.0f);
+      glProgramUniform4f(scene, kColourLocation, options.light_colour[0], options.light_colour[1],
+                         options.light_colour[2], 1.0f);
+      glBindVertexArray(receivers.vertex_array());  // the smoothie map bound its own
       glDrawArrays(GL_TRIANGLES, 0, receivers.single_order_vertex_count());
-      glProgramUniform1i(scene, kLightImagePassLocation, 0);
-      first_light = light_image_->read_light();
+      glDisable(GL_BLEND);
+      stage.reset();
+
+      // 4. The first light's amount of light per pixel (readback frames only): the receivers
+      //    once more into the light image, nearest surface per pixel, the filter's amount as
+      //    colour.
+      if (light_image) {
+        light_image_->bind();
+        glDisable(GL_STENCIL_TEST);
+        glDepthFunc(GL_LESS);
+        glDepthMask(GL_TRUE);
+        glProgramUniform1i(scene, kLightImagePassLocation, 1);
+        glDrawArrays(GL_TRIANGLES, 0, receivers.single_order_vertex_count());
+        glProgramUniform1i(scene, kLightImagePassLocation, 0);
+      }
+      glProgramUniform1i(scene, kCubeFaceLocation, -1);
+      glBindTextureUnit(kShadowMapUnit, 0);
+      glBindTextureUnit(kDepthValuesUnit, 0);
+      glBindSampler(kDepthValuesUnit, 0);
+      glBindTextureUnit(kSmoothieMapUnit, 0);
     }
-    glBindTextureUnit(kShadowMapUnit, 0);
-    glBindTextureUnit(kDepthValuesUnit, 0);
-    glBindSampler(kDepthValuesUnit, 0);
-    glBindTextureUnit(kSmoothieMapUnit, 0);
+    if (light_image) first_light = light_image_->read_light();
   }
 
   glBindVertexArray(0);

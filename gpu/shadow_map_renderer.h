@@ -7,6 +7,10 @@
 // and adds the light's Lambert term where the comparison says lit.
 //   point light: a perspective frustum from the light aimed at the centre of the scene's
 //     bounding box, its field of view the smallest symmetric one holding the box's corners;
+//     a point light inside the box (a lamp in a room, at its centre included) or so near it
+//     that this half angle would exceed atan(8) gets a cube map instead: six 90-degree faces,
+//     each a perspective frustum along one axis, drawn one after the other into the same
+//     depth texture, each lit pass keeping the fragments in its face (light_views);
 //   directional light: an orthographic box fitted to the scene's bounds seen along -l.
 // Its errors are the method's own: texel-sized staircases along shadow boundaries (fewer as
 // the map grows), and acne or peter-panning traded through the two bias options.
@@ -29,6 +33,7 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -80,11 +85,27 @@ struct SceneBounds {
 [[nodiscard]] SceneBounds soup_bounds(const Soup& soup);
 
 // pcss without a light radius (ShadowMethodOptions::light_radius = 0): this fraction of the
-// diagonal of the scene's bounds, about 0.17 on default.json (diagonal about 17).
+// diagonal of the scene's bounds, about 0.17 on default.json (diagonal about 17). A point
+// light's disk is in world units, so its default follows the scene's scale.
 inline constexpr double kDefaultLightRadiusFraction = 0.01;
 [[nodiscard]] double default_light_radius(const SceneBounds& bounds);
 
-// The light's view of the scene, fitted to `bounds` (see the top of this file).
+// A directional light's size is an angle, the angular radius of its disk (a sun), whatever the
+// scene's scale (a 1000-unit scene gets the same sun as a 1-unit one). Its default is the
+// angle the default point-light disk subtends from one scene diagonal away, atan(0.01) =
+// 0.573 degrees, so that both kinds of light cast penumbrae of one width by default (the
+// real sun's is 0.27 degrees). Must lie in (0, kMaxLightAngleDegrees).
+inline constexpr double kDefaultLightAngleDegrees = 0.57293869768349;  // atan(kDefaultLightRadiusFraction)
+// Exclusive: at 90 degrees the disk's tangent, which the filters and the soft reference
+// scale penumbrae by, is infinite.
+inline constexpr double kMaxLightAngleDegrees = 90.0;
+// tan(degrees): the half-width of the penumbra per unit of distance between caster and
+// receiver that pcss and the soft reference use for a directional light. Throws
+// std::invalid_argument("light_angle_tangent: ...") outside (0, kMaxLightAngleDegrees).
+[[nodiscard]] double light_angle_tangent(double degrees);
+
+// The light's view of the scene, fitted to `bounds` (see the top of this file): one of the
+// views light_views returns.
 struct LightFrustum {
   glm::dmat4 view{1.0};        // world to the light's view (looking down -z)
   glm::dmat4 projection{1.0};  // view to clip
@@ -94,18 +115,38 @@ struct LightFrustum {
   double tangent = 0.0;
   std::array<double, 2> half_extent{0.0, 0.0};
   bool orthographic = false;  // directional light
-  // A point light inside the bounds (a corner behind it) or so near them that the half angle
-  // was capped at kMaxPointLightHalfAngleTangent (in the .cpp, atan(8)): receivers outside the
-  // frustum are lit. render reports it (docs/gpu.md, "Shadow map baseline").
-  bool capped = false;
+  // 0..5: this view is the face of a point light's cube map looking along +x, -x, +y, -y, +z,
+  // -z (shaders/cube_face.glsl assigns each direction from the light to one of them); -1: the
+  // light's one map.
+  int cube_face = -1;
 };
-// Throws std::invalid_argument for a directional l = 0 or a point light at the bounds' centre.
-[[nodiscard]] LightFrustum light_frustum(const Light& light, const SceneBounds& bounds);
 
-// World to the light's clip space: light_frustum's projection * view. A point light too close
-// to or inside the box gets a capped field of view (receivers outside it are lit). Throws as
-// light_frustum.
-[[nodiscard]] glm::dmat4 light_to_clip(const Light& light, const SceneBounds& bounds);
+// Whether a point light is drawn with a cube map: it lies inside `bounds` or so near them
+// that one frustum holding the box would need a half angle over atan(8) (beyond, the map's
+// texels stretch until it means nothing, and a corner behind the light cannot be held at all).
+// False for a directional light.
+[[nodiscard]] bool needs_cube_map(const Light& light, const SceneBounds& bounds);
+
+// The views `light`'s depth map is drawn in: one (a directional light's box, a point light's
+// frustum), or for needs_cube_map the faces of its cube map that can hold part of the bounds
+// (a face along which no corner of the box lies ahead of the light is left out), in face
+// order. A cube face's half angle is atan(1.02), a little over 45 degrees, so that
+// neighbouring faces overlap by about 1 % of a face (20 texels at 2048: PCF's widest kernel
+// reads across a seam); its far plane holds the box, and its near plane is `nearest_receiver`
+// (the light's distance to the nearest receiver, nearest_receiver_distance) over sqrt(3) (the
+// nearest a point at that distance can be along a face's axis), so that no receiver is in
+// front of it, but at least 1/1000 of the far plane (depth precision); nearest_receiver <= 0 or
+// not finite (unknown): 1/64 of the far plane (constants in the .cpp). Throws
+// std::invalid_argument("light_views: ...") for a directional l = 0 or a light that is not
+// finite.
+[[nodiscard]] std::vector<LightFrustum> light_views(const Light& light, const SceneBounds& bounds,
+                                                    double nearest_receiver = 0.0);
+
+// The distance from a point light to the nearest triangle of `parts` (as drawn: the vertices
+// rounded to float), in double; infinity without a triangle. What light_views takes as
+// `nearest_receiver`. Throws std::invalid_argument("nearest_receiver_distance: ...") for a
+// directional light.
+[[nodiscard]] double nearest_receiver_distance(std::span<const ShadedSoupPart> parts, const Light& light);
 
 struct ShadowMapOptions {
   float depth_bias = kDefaultShadowMapBias;
@@ -120,10 +161,15 @@ struct ShadowMapOptions {
   GpuStageTimer* timer = nullptr;
   // pcf: K, odd, in [1, kMaxPcfKernel].
   std::uint32_t pcf_kernel = kDefaultPcfKernel;
-  // pcss: the light's radius R, finite and > 0: world units for a point light (a disk of radius
-  // R around it, as the soft reference's, docs/smoothies.md); for a directional light the
-  // tangent of its angular radius.
+  // pcss: a point light's radius R, finite and > 0, in world units (a disk of radius R around
+  // it, as the soft reference's, docs/smoothies.md), and a directional light's angular radius
+  // in degrees, in (0, kMaxLightAngleDegrees).
   double light_radius = 0.0;
+  double light_angle_degrees = kDefaultLightAngleDegrees;
+  // Per light, in the lights' order, the distance from a point light to the nearest receiver
+  // (nearest_receiver_distance; a directional light's entry is unread): the near plane of a
+  // cube map (light_views). Empty: unknown (a fixed fraction of the far plane).
+  std::span<const double> nearest_receivers;
   // smoothie: one mesh per light, in the lights' order (gpu/smoothie_map.h).
   std::span<const SmoothieQuads* const> smoothies;
 };
@@ -136,11 +182,12 @@ class ShadowMapRenderer {
   explicit ShadowMapRenderer(std::uint32_t size = kDefaultShadowMapSize, ShadowFilter filter = ShadowFilter::hard);
 
   // Renders into `target` (bound and cleared here), one depth pass (smoothie: and one smoothie
-  // map pass) and one lit pass per light; with read_back, the light-image pass of the first
-  // light too. Throws GlError on a GL error, std::invalid_argument from light_to_clip, and
-  // std::invalid_argument("ShadowMapRenderer::render: ...") for a pcf kernel that is even or out
-  // of range, a pcss light radius that is not finite and > 0, or smoothie meshes that are not
-  // one per light.
+  // map pass) and one lit pass per light and view (light_views: six for a cube map); with
+  // read_back, the light-image pass of the first light too. Throws GlError on a GL error,
+  // std::invalid_argument from light_views, and std::invalid_argument("ShadowMapRenderer::render:
+  // ...") for a pcf kernel that is even or out of range, a pcss light radius that is not finite
+  // and > 0 or light angle out of range, nearest_receivers neither empty nor one per light, or
+  // smoothie meshes that are not one per light.
   StencilShadowFrame render(const OffscreenTarget& target, const ShadedSoupMesh& receivers, const SceneBounds& bounds,
                             const Camera& camera, std::span<const Light> lights,
                             const ShadowMapOptions& options = {}) const;

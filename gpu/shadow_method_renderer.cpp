@@ -115,7 +115,17 @@ ShadowMethodRenderer::ShadowMethodRenderer(ShadowMethod method, const ShadowMeth
         throw std::invalid_argument("ShadowMethodRenderer: the pcss light radius must be finite and >= 0 (0: the "
                                     "default), got " + std::to_string(options.light_radius));
       if (options.light_radius == 0.0) options_.light_radius = default_light_radius(bounds_);
+      if (!std::isfinite(options.light_angle_degrees) || options.light_angle_degrees < 0.0 ||
+          !(options.light_angle_degrees < kMaxLightAngleDegrees))
+        throw std::invalid_argument("ShadowMethodRenderer: the pcss light angle must be in [0, 90) degrees (0: the "
+                                    "default), got " + std::to_string(options.light_angle_degrees));
+      if (options.light_angle_degrees == 0.0) options_.light_angle_degrees = kDefaultLightAngleDegrees;
     }
+    // A point light inside or next to the bounds gets a cube map, whose near plane is the
+    // nearest receiver's distance (light_views): measured once here, from the parts as drawn.
+    for (const Light& light : lights_)
+      nearest_receivers_.push_back(needs_cube_map(light, bounds_) ? nearest_receiver_distance(scene.receivers, light)
+                                                                  : 0.0);
     if (method == ShadowMethod::smoothie) {
       if (scene.smoothies.size() != lights_.size())
         throw std::invalid_argument("ShadowMethodRenderer: smoothie needs one smoothie mesh per light (" +
@@ -196,6 +206,8 @@ StencilShadowFrame ShadowMethodRenderer::draw(const OffscreenTarget& target, con
     o.timer = timer;
     o.pcf_kernel = options_.pcf_kernel;
     o.light_radius = options_.light_radius;
+    o.light_angle_degrees = options_.light_angle_degrees > 0.0 ? options_.light_angle_degrees : kDefaultLightAngleDegrees;
+    o.nearest_receivers = nearest_receivers_;
     o.smoothies = smoothie_views_;
     return shadow_map_renderer_->render(target, receivers_, bounds_, camera, lights_, o);
   }

@@ -93,10 +93,12 @@ struct ShadowMethodOptions {
   std::uint32_t shadow_map_size = kDefaultShadowMapSize;
   float shadow_map_bias = kDefaultShadowMapBias;
   float shadow_map_slope = kDefaultShadowMapSlope;
-  // pcf: K (odd, [1, kMaxPcfKernel]); pcss: the light's radius R (finite, > 0; ShadowMapOptions),
-  // 0: default_light_radius of the receivers' bounds.
+  // pcf: K (odd, [1, kMaxPcfKernel]); pcss: a point light's radius R in world units (finite,
+  // > 0; ShadowMapOptions), 0: default_light_radius of the receivers' bounds; a directional
+  // light's angular radius in degrees, in (0, kMaxLightAngleDegrees), 0: kDefaultLightAngleDegrees.
   std::uint32_t pcf_kernel = kDefaultPcfKernel;
   double light_radius = 0.0;
+  double light_angle_degrees = 0.0;
   // Volume methods: count the first light's volume fragments in render() (StencilShadowFrame).
   bool count_fragments = false;
 };
@@ -176,6 +178,7 @@ class ShadowMethodRenderer {
   std::optional<ShadowMapRenderer> shadow_map_renderer_;
   std::vector<std::unique_ptr<SmoothieQuads>> smoothies_;  // smoothie: per light
   std::vector<const SmoothieQuads*> smoothie_views_;       // the same, as ShadowMapOptions takes them
+  std::vector<double> nearest_receivers_;  // shadow map: per point light, for a cube map's near plane
 };
 
 }  // namespace shadowcert::gpu

@@ -73,7 +73,11 @@ SoftShadowErrors combined(const std::vector<SoftShadowErrors>& parts) {
   mean(&SoftShadowErrors::penumbra, &SoftShadowErrors::penumbra_mean_error);
   mean(&SoftShadowErrors::outside_penumbra, &SoftShadowErrors::outside_penumbra_mean_error);
   mean(&SoftShadowErrors::turned_away, &SoftShadowErrors::turned_away_mean_error);
+  // The reference's noise is a mean over the compared pixels too; a pixel's half-width is the
+  // widest light's (the one with the fewest samples).
+  mean(&SoftShadowErrors::compared, &SoftShadowErrors::reference_noise);
   for (const SoftShadowErrors& p : parts) {
+    out.reference_ci95 = std::max(out.reference_ci95, p.reference_ci95);
     out.reference_only += p.reference_only;
     out.method_only += p.method_only;
     out.max_error = std::max(out.max_error, p.max_error);
@@ -401,14 +405,18 @@ void bench_scene_into(BenchSceneResult& result, const Scene& scene, const BenchS
   // pcss's R, the soft reference's, the smoothies' unit.
   const double radius =
       options.light_radius > 0.0 ? options.light_radius : gpu::default_light_radius(gpu::soup_bounds(merged));
+  // A directional light's angular radius, the same whatever the scene's scale.
+  const double angle = options.light_angle_degrees > 0.0 ? options.light_angle_degrees : gpu::kDefaultLightAngleDegrees;
   std::vector<SoftReference> soft;
   if (any_of_family(BenchFamily::shadow_map)) {
     const Clock::time_point start = Clock::now();
     SoftReferenceOptions soft_options;
     soft_options.sampling.radius = radius;
+    soft_options.sampling.angle_degrees = angle;
     soft_options.sampling.samples = options.soft_samples;
     for (std::size_t k = 0; k < scene.lights.size(); ++k) soft.push_back(soft_reference(scene, k, soft_options));
     result.soft_radius = radius;
+    result.soft_angle_degrees = angle;
     result.soft_seconds = ms_since(start) / 1000.0;
   }
   std::optional<AnalyticShadowImage> analytic;
@@ -481,6 +489,7 @@ void bench_scene_into(BenchSceneResult& result, const Scene& scene, const BenchS
     method_options.shadow_map_size = variant.shadow_map_size;
     method_options.pcf_kernel = variant.pcf_kernel;
     method_options.light_radius = radius;
+    method_options.light_angle_degrees = angle;
     std::vector<SoftShadowErrors> soft_errors;
     std::optional<ContourError> contour;
     for (std::size_t k = 0; k < drawn.lights.size(); ++k) {

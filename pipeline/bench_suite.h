@@ -122,6 +122,9 @@ struct BenchOptions {
   // The area light's radius R (world units) of the soft reference, pcss and the smoothie widths;
   // 0: gpu::default_light_radius of the scene's bounds (1% of the diagonal, as diff --soft).
   double light_radius = 0.0;
+  // A directional light's angular radius in degrees, of the soft reference and pcss, in
+  // [0, 90); 0: gpu::kDefaultLightAngleDegrees (whatever the scene's scale, as diff --soft).
+  double light_angle_degrees = 0.0;
   bool images = true;               // keep each run's overlay (and soft error image)
   // Called with a line per run (for a progress display); may be empty.
   std::function<void(std::string_view)> progress;
@@ -167,6 +170,7 @@ struct BenchSceneResult {
   std::uint32_t width = 0, height = 0;
   double exact_seconds = 0.0;  // the exact image and its float-rounded twin
   std::optional<double> soft_radius;  // with a soft reference
+  double soft_angle_degrees = 0.0;    // its directional lights' angular radius
   double soft_seconds = 0.0;
   std::vector<std::string> analytic_casters;  // with an analytic image
   double analytic_seconds = 0.0;

@@ -149,7 +149,12 @@ SceneComparison compare_scene(const Scene& scene, const std::vector<gpu::ShadowM
       soft.sampling.radius = options.method_options.light_radius > 0.0
                                  ? options.method_options.light_radius
                                  : gpu::default_light_radius(gpu::soup_bounds(merged));
+    if (soft.sampling.angle_degrees == 0.0)
+      soft.sampling.angle_degrees = options.method_options.light_angle_degrees > 0.0
+                                        ? options.method_options.light_angle_degrees
+                                        : gpu::kDefaultLightAngleDegrees;
     result.soft_radius = soft.sampling.radius;
+    result.soft_angle_degrees = soft.sampling.angle_degrees;
     for (std::size_t k = 0; k < scene.lights.size(); ++k) result.soft.push_back(soft_reference(scene, k, soft));
   }
   // The analytic truth is the world scene's (its ellipsoids are in world space).

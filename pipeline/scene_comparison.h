@@ -86,10 +86,12 @@ struct SceneComparisonOptions {
   // When a smooth-silhouette method runs and a mesh casts as a known ellipsoid
   // (has_analytic_caster): the analytic shadow image too, and each such run against it.
   bool analytic = true;
-  // With a value: every point light's exact soft reference (pipeline/soft_reference.h: a disk
-  // light of sampling.radius around it, K samples) and every method's light image against it
-  // (LightRun::soft). sampling.radius 0 takes the pcss light radius (method_options.light_radius,
-  // or gpu::default_light_radius of the scene), so that both model the same area light.
+  // With a value: every light's exact soft reference (pipeline/soft_reference.h: a disk light
+  // of sampling.radius around a point light, of sampling.angle_degrees about a directional one,
+  // K samples) and every method's light image against it (LightRun::soft). sampling.radius 0
+  // takes the pcss light radius (method_options.light_radius, or gpu::default_light_radius of the
+  // scene) and sampling.angle_degrees 0 pcss's angle (method_options.light_angle_degrees, or
+  // gpu::kDefaultLightAngleDegrees), so that both model the same area light.
   std::optional<SoftReferenceOptions> soft;
 };
 
@@ -107,7 +109,8 @@ struct SceneComparison {
   std::optional<AnalyticShadowImage> analytic;
   // Per light, its exact soft reference (SceneComparisonOptions::soft); empty when not asked.
   std::vector<SoftReference> soft;
-  double soft_radius = 0.0;  // the area light's radius the references were made with
+  double soft_radius = 0.0;  // the area light's radius the references were made with (point lights)
+  double soft_angle_degrees = 0.0;  // and its angular radius (directional lights)
 
   [[nodiscard]] bool passed() const;  // no run failed
 };

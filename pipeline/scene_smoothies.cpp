@@ -77,8 +77,9 @@ SceneSmoothies scene_smoothies(const Soup& canonical, const EdgeTable& table, st
       const Vec3 to_centre{centre[0] - l.position[0], centre[1] - l.position[1], centre[2] - l.position[2]};
       smoothie.reference_distance =
           std::sqrt(to_centre[0] * to_centre[0] + to_centre[1] * to_centre[1] + to_centre[2] * to_centre[2]);
-      if (!(smoothie.reference_distance > 0.0))
-        throw std::invalid_argument("scene_smoothies: light space needs a point light away from the bounds' centre");
+      // A light at the centre (a lamp in a room, drawn with a cube map) aims at no point: the
+      // width is D at half the diagonal, the distance to the bounds' corners.
+      if (!(smoothie.reference_distance > 0.0)) smoothie.reference_distance = 0.5 * diagonal_length;
     }
     Smoothies s = build_smoothies(rounded.vertices, smoothie_edges(rounded, table, l), l, smoothie);
     out.per_light.push_back(std::move(s.mesh));

@@ -53,9 +53,10 @@ struct SceneSmoothies {
 
 // Every light's smoothies. `bounds`: the scene's (every receiver, gpu::soup_bounds), for the
 // default width and for light space, whose reference distance is each point light's distance to
-// the bounds' centre (where the light map is aimed). Throws std::invalid_argument
-// ("scene_smoothies: ...") for a width that is negative or not finite, or a point light at the
-// bounds' centre in light space, and what smoothie_edges and build_smoothies throw.
+// the bounds' centre (where the light map is aimed), or half the bounds' diagonal for a light at
+// that centre (it has a cube map, aimed nowhere). Throws std::invalid_argument
+// ("scene_smoothies: ...") for a width that is negative or not finite, and what smoothie_edges
+// and build_smoothies throw.
 [[nodiscard]] SceneSmoothies scene_smoothies(const Soup& canonical, const EdgeTable& table,
                                              std::span<const Light> lights, const gpu::SceneBounds& bounds,
                                              const SceneSmoothieOptions& options = {});

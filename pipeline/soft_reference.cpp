@@ -139,6 +139,7 @@ SoftReference soft_reference(const Scene& scene, std::size_t light, const SoftRe
   if (options.progress) soft.progress = print_progress;
   SoftReference reference;
   reference.image = disk_light_shadow_image(soup, scene.lights[light], options.sampling, scene.camera, soft);
+  reference.hard = (scene.lights[light].directional() ? options.sampling.angle_degrees : options.sampling.radius) == 0.0;
   const auto start = std::chrono::steady_clock::now();
   reference.contact = contact_pixels(soup, soft.casts, scene.camera, reference.image, options.contact_pixels);
   reference.contact_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -44,6 +44,9 @@ struct SoftReferenceOptions {
 
 struct SoftReference {
   SoftShadowImage image;
+  // The light has no size (a point light's radius or a directional light's angle 0): its one
+  // sample is the light itself, and every pixel's light is exact, with no sampling noise.
+  bool hard = false;
   std::vector<std::uint8_t> contact;  // per pixel: 1 at a contact pixel (above)
   double contact_seconds = 0.0;
 };

@@ -28,6 +28,14 @@ void require_light_values(std::span<const float> light, const char* function) {
 
 }  // namespace
 
+double reference_half_width(std::uint32_t samples, double confidence) {
+  if (samples == 0) throw std::invalid_argument("reference_half_width: no sample");
+  if (!(confidence > 0.0) || !(confidence < 1.0))
+    throw std::invalid_argument("reference_half_width: the confidence must be in (0, 1), got " +
+                                std::to_string(confidence));
+  return std::sqrt(std::log(2.0 / (1.0 - confidence)) / (2.0 * samples));
+}
+
 SoftShadowErrors compare_soft_shadow(const SoftReference& reference, std::span<const float> light) {
   const SoftShadowImage& image = reference.image;
   const std::size_t pixels = image.pixels();
@@ -38,8 +46,11 @@ SoftShadowErrors compare_soft_shadow(const SoftReference& reference, std::span<c
     throw std::invalid_argument("compare_soft_shadow: the contact mask is not one flag per pixel");
   require_light_values(light, "compare_soft_shadow");
 
+  if (image.defined_samples.size() != pixels)
+    throw std::invalid_argument("compare_soft_shadow: the reference has no defined-sample count per pixel");
   SoftShadowErrors e;
-  Mean all, umbra, penumbra, outside, away;
+  Mean all, umbra, penumbra, outside, away, noise;
+  std::uint32_t fewest_samples = 0;  // the fewest defined samples of a compared pixel
   double signed_sum = 0.0;
   for (std::size_t p = 0; p < pixels; ++p) {
     const float truth = image.light[p];
@@ -53,6 +64,9 @@ SoftShadowErrors compare_soft_shadow(const SoftReference& reference, std::span<c
     const double size = std::abs(error);
     all.add(size);
     signed_sum += error;
+    const std::uint32_t k = image.defined_samples[p];
+    fewest_samples = fewest_samples == 0 ? k : std::min(fewest_samples, k);
+    noise.add(std::sqrt(static_cast<double>(truth) * (1.0 - truth) / k));
     e.max_error = std::max(e.max_error, size);
     if (image.faces_light[p] == 0) away.add(size);
     switch (image.region(p)) {
@@ -90,6 +104,9 @@ SoftShadowErrors compare_soft_shadow(const SoftReference& reference, std::span<c
   e.outside_penumbra_mean_error = outside.value();
   e.turned_away = away.n;
   e.turned_away_mean_error = away.value();
+  // A light without size is its one sample: every pixel exact, no noise.
+  e.reference_ci95 = fewest_samples == 0 || reference.hard ? 0.0 : reference_half_width(fewest_samples);
+  e.reference_noise = reference.hard ? 0.0 : noise.value();
   return e;
 }
 

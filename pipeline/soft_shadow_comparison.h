@@ -20,6 +20,13 @@
 //   - acne: compared pixels fully lit in the reference whose surface faces every sample
 //     (SoftShadowImage::faces_light: a lit receiver, not a terminator) that the method darkens
 //     below 1 - kAcneTolerance;
+//   - the reference's own noise (docs/smoothies.md#the-estimators-noise): each pixel's light is
+//     the mean of K independent stratified verdicts, an unbiased estimate of the lit fraction p
+//     of the light with variance at most p (1 - p) / K; reference_ci95 is the 95 % half-width
+//     any one compared pixel has (reference_half_width at the fewest defined samples of a
+//     compared pixel), reference_noise the mean over the compared pixels of
+//     sqrt(light (1 - light) / K), the plug-in estimate of how far, in expectation, the
+//     reference's sampling can move mean_error (|mean |m - r| - mean |m - p|| <= mean |r - p|);
 //   - flicker, over a sequence of frames (a light orbit): per pixel compared in two
 //     consecutive frames, the method's change of light |m' - m| against the reference's own
 //     |r' - r|; reported are both means, their difference (the flicker the method adds) and the
@@ -65,7 +72,19 @@ struct SoftShadowErrors {
   // image is 0 wherever the surface turns away, so an open surface seen from behind differs.
   std::uint64_t turned_away = 0;
   double turned_away_mean_error = 0.0;
+  // The reference's sampling noise (above): a pixel's 95 % half-width, whatever its p, and the
+  // mean standard deviation bound over the compared pixels; 0 without a compared pixel, and for
+  // a reference of a light without size (SoftReference::hard: exact).
+  double reference_ci95 = 0.0;
+  double reference_noise = 0.0;
 };
+
+// The 95 % (or `confidence`) half-width of a pixel of the soft reference whose light is the mean
+// of K independent verdicts (one per stratum, so independent and in [0, 1]) whatever the lit
+// fraction p: Hoeffding's bound, P(|r - p| >= t) <= 2 exp(-2 K t^2), solved for t:
+// sqrt(ln(2 / (1 - confidence)) / (2 K)), 1.358 / sqrt(K) at 95 % (0.170 at K = 64). Throws
+// std::invalid_argument("reference_half_width: ...") for K = 0 or a confidence outside (0, 1).
+[[nodiscard]] double reference_half_width(std::uint32_t samples, double confidence = 0.95);
 
 struct SoftFlicker {
   std::uint64_t frame_pairs = 0;

@@ -1,5 +1,6 @@
 #include "reference/disk_light.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -60,25 +61,33 @@ std::vector<Light> disk_light_samples(const Light& light, const Vec3& facing, co
   const double radius = sampling.radius;
   if (!std::isfinite(radius) || radius < 0.0)
     throw std::invalid_argument("disk_light_samples: the radius must be finite and >= 0, got " + std::to_string(radius));
+  const double angle = sampling.angle_degrees;
+  if (!std::isfinite(angle) || angle < 0.0 || !(angle < 90.0))
+    throw std::invalid_argument("disk_light_samples: the angle must be in [0, 90) degrees, got " +
+                                std::to_string(angle));
   const std::uint32_t side = strata_side(sampling.samples);
   if (side == 0)
     throw std::invalid_argument("disk_light_samples: the sample count must be a perfect square n x n >= 1, got " +
                                 std::to_string(sampling.samples));
-  if (radius == 0.0) return {light};
+  // The disk's radius at distance 1 for a directional light, in world units for a point light.
+  const double size = light.directional() ? std::tan(angle * (kPi / 180.0)) : radius;
+  if ((light.directional() ? angle : radius) == 0.0) return {light};
 
   const Vec3 l{light.position[0], light.position[1], light.position[2]};
   Vec3 axis{};  // the disk's normal: from the light to `facing`, or along a directional light
+  bool ball = false;
   if (light.directional()) {
     axis = normalized(l);
   } else {
     for (double x : facing)
       if (!std::isfinite(x)) throw std::invalid_argument("disk_light_samples: the facing point must be finite");
     const Vec3 towards = difference(facing, l);
-    if (dot(towards, towards) == 0.0)
-      throw std::invalid_argument("disk_light_samples: the light is at the point its disk faces: no disk plane");
-    axis = normalized(towards);
+    ball = dot(towards, towards) == 0.0;
+    if (!ball) axis = normalized(towards);
   }
-  const auto [e1, e2] = plane_basis(axis);
+  std::array<Vec3, 2> basis{};
+  if (!ball) basis = plane_basis(axis);
+  const auto& [e1, e2] = basis;
   const Vec3 centre = light.directional() ? axis : l;
 
   std::vector<Light> samples;
@@ -88,12 +97,37 @@ std::vector<Light> disk_light_samples(const Light& light, const Vec3& facing, co
       SplitMixRandom random{sampling.seed, std::uint64_t{j} * side + i};
       const double u = (i + random.unit()) / side;
       const double v = (j + random.unit()) / side;
-      const auto [x, y] = concentric_disk_point(u, v);
       Light sample{{0.0, 0.0, 0.0, light.position[3]}};
-      for (int k = 0; k < 3; ++k) sample.position[k] = centre[k] + radius * (x * e1[k] + y * e2[k]);
+      if (ball) {
+        const Vec3 direction = sphere_point(u, v);
+        const double r = size * std::sin(ball_radial_angle(random.unit()));
+        for (int k = 0; k < 3; ++k) sample.position[k] = centre[k] + r * direction[k];
+      } else {
+        const auto [x, y] = concentric_disk_point(u, v);
+        for (int k = 0; k < 3; ++k) sample.position[k] = centre[k] + size * (x * e1[k] + y * e2[k]);
+      }
       samples.push_back(sample);
     }
   return samples;
+}
+
+Vec3 sphere_point(double u, double v) {
+  const double z = 1.0 - 2.0 * v;
+  const double ring = std::sqrt(std::max(0.0, 1.0 - z * z));
+  const double phi = 2.0 * kPi * u;
+  return {ring * std::cos(phi), ring * std::sin(phi), z};
+}
+
+double ball_radial_angle(double w) {
+  // F(t) = (2 t - sin 2t) / pi rises from 0 at t = 0 to 1 at t = pi / 2 (its derivative,
+  // 4 sin^2 t / pi, is >= 0): bisection to double precision.
+  const double target = std::clamp(w, 0.0, 1.0);
+  double lo = 0.0, hi = kPi / 2.0;
+  for (int step = 0; step < 64; ++step) {
+    const double mid = 0.5 * (lo + hi);
+    if ((2.0 * mid - std::sin(2.0 * mid)) / kPi < target) lo = mid; else hi = mid;
+  }
+  return 0.5 * (lo + hi);
 }
 
 }  // namespace shadowcert

@@ -1059,12 +1059,13 @@ TEST(CliSmoothie, DiffSoftMethods_ReportedAsBaselines) {
 }
 
 // A point light inside the scene's bounds: one map frustum cannot hold the scene; every
-// shadow-map method says so (text and JSON), as it draws what the capped frustum holds.
+// shadow-map method draws it with a cube map and says so (text and JSON); the directional light
+// keeps its one map (tests/cli/lamp_in_room_test.cpp: a light at the bounds' very centre).
 TEST(CliSmoothie, LightInsideTheBounds_Reported) {
-  const fs::path json = temp_dir("cli_test") / "capped.json";
+  const fs::path json = temp_dir("cli_test") / "cube.json";
   const RunResult r = run_cli("render " + kHardScenes + "light_inside_closed_caster.json --size 32x24 --method smoothie "
                               "--json " + json.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_NE(r.output.find("light 0: inside or next to the scene's bounds"), std::string::npos) << r.output;
-  EXPECT_EQ(read_json(json)["capped_lights"], nlohmann::json::array({0}));
+  EXPECT_NE(r.output.find("light 0: inside or next to the scene's bounds: a cube map"), std::string::npos) << r.output;
+  EXPECT_EQ(read_json(json)["cube_lights"], nlohmann::json::array({0}));
 }

@@ -216,10 +216,29 @@ TEST(SceneSmoothies, SceneSmoothies_DefaultWidthOneMeshPerLight_BadWidthsThrow) 
     options.width = width;
     EXPECT_THROW((void)scene_smoothies(box.soup, box.table, lights, bounds, options), std::invalid_argument);
   }
-  // Light space: a point light at the bounds' centre has no reference distance.
+}
+
+// Light space with a point light at the bounds' centre (a lamp in a room: drawn with a cube map,
+// aimed at no point; threw before): the reference distance is half the bounds' diagonal.
+TEST(SceneSmoothies, LightSpaceLightAtTheBoundsCentre_HalfTheDiagonalIsTheReference) {
+  const Caster box = caster_of(shadowcert::box({0.0, 0.0, 0.0}, {3.0, 4.0, 12.0}));
+  const gpu::SceneBounds around{{0.0, 0.0, 0.0}, {20.0, 40.0, 10.0}};  // centre (10, 20, 5), outside the box
+  const std::array centre{Light{{10.0, 20.0, 5.0, 1.0}}};
+  SceneSmoothieOptions options;
   options.width = 0.5;
-  const std::array centre{Light{{1.5, 2.0, 6.0, 1.0}}};
-  EXPECT_THROW((void)scene_smoothies(box.soup, box.table, centre, bounds, options), std::invalid_argument);
+  options.space = SmoothieSpace::light;
+  const SceneSmoothies at_centre = scene_smoothies(box.soup, box.table, centre, around, options);
+  SmoothieOptions by_hand;
+  by_hand.width = 0.5;
+  by_hand.space = SmoothieSpace::light;
+  by_hand.reference_distance = 0.5 * std::sqrt(20.0 * 20.0 + 40.0 * 40.0 + 10.0 * 10.0);
+  const Soup rounded = float_rounded(box.soup);
+  const Smoothies expected =
+      build_smoothies(rounded.vertices, smoothie_edges(rounded, box.table, centre[0]), centre[0], by_hand);
+  ASSERT_GT(expected.stats.smoothies, 0u);
+  ASSERT_EQ(at_centre.per_light.size(), 1u);
+  EXPECT_EQ(at_centre.per_light[0].vertices, expected.mesh.vertices);
+  EXPECT_EQ(at_centre.per_light[0].alpha, expected.mesh.alpha);
 }
 
 }  // namespace

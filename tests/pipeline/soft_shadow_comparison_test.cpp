@@ -162,11 +162,37 @@ TEST(CompareSoftShadow, HandMadeImages_GiveTheFiguresByHand) {
   EXPECT_EQ(e.acne, 1u);
   EXPECT_EQ(e.turned_away, 1u);  // pixel 4
   EXPECT_DOUBLE_EQ(e.turned_away_mean_error, 0.5);
+  // The reference's noise: K = 4 at every compared pixel, a pixel's 95% half-width
+  // sqrt(ln 40 / 8) whatever its light; only the penumbra pixel (1 of 4 lit) has a spread.
+  EXPECT_DOUBLE_EQ(e.reference_ci95, std::sqrt(std::log(40.0) / 8.0));
+  EXPECT_DOUBLE_EQ(e.reference_noise, std::sqrt(0.25 * 0.75 / 4.0) / 5.0);
+  // A light without size: its one sample is the light, every pixel exact.
+  SoftReference hard = r;
+  hard.hard = true;
+  EXPECT_EQ(compare_soft_shadow(hard, light).reference_ci95, 0.0);
+  EXPECT_EQ(compare_soft_shadow(hard, light).reference_noise, 0.0);
   // Within the tolerances: no leak, no acne.
   const std::vector<float> close{kLeakTolerance, 0.0f, 0.25f, 1.0f - kAcneTolerance, 1.0f, -1.0f, -1.0f, 1.0f};
   const SoftShadowErrors c = compare_soft_shadow(r, close);
   EXPECT_EQ(c.leaks, 0u);
   EXPECT_EQ(c.acne, 0u);
+}
+
+// Hoeffding's bound for K independent verdicts in [0, 1]: P(|r - p| >= t) <= 2 exp(-2 K t^2),
+// so t = sqrt(ln(2 / 0.05) / (2 K)) at 95%: 1.358 / sqrt(K), 0.170 at the reference's K = 64.
+TEST(ReferenceHalfWidth, HoeffdingsBoundSolvedForTheConfidence) {
+  EXPECT_NEAR(reference_half_width(64), 0.16977, 1e-5);
+  for (std::uint32_t k : {1u, 16u, 64u, 256u, 1024u}) {
+    EXPECT_DOUBLE_EQ(reference_half_width(k), std::sqrt(std::log(40.0) / (2.0 * k))) << k;
+    EXPECT_NEAR(reference_half_width(k) * std::sqrt(static_cast<double>(k)), 1.3581, 1e-4) << k;
+    // Both tails at that width are at most 5%: 2 exp(-2 K t^2) = 0.05.
+    const double t = reference_half_width(k);
+    EXPECT_NEAR(2.0 * std::exp(-2.0 * k * t * t), 0.05, 1e-12) << k;
+  }
+  EXPECT_DOUBLE_EQ(reference_half_width(64, 0.99), std::sqrt(std::log(200.0) / 128.0));
+  EXPECT_THROW((void)reference_half_width(0), std::invalid_argument);
+  EXPECT_THROW((void)reference_half_width(64, 1.0), std::invalid_argument);
+  EXPECT_THROW((void)reference_half_width(64, 0.0), std::invalid_argument);
 }
 
 TEST(CompareSoftShadow, Misuse_Throws) {

@@ -1,6 +1,7 @@
 // The disk light's samples (reference/disk_light.h): one point for R = 0, points on the disk
 // in its plane facing the given point, one per stratum, deterministic per seed; directional
-// lights within the angular radius; the concentric map; misuse.
+// lights within the angular radius (degrees); a point light at the facing point fills the ball
+// whose every projection is the uniform disk; the concentric and sphere maps; misuse.
 #include "reference/disk_light.h"
 
 #include <gtest/gtest.h>
@@ -107,8 +108,8 @@ TEST(DiskLightSamples, SameSeed_SameSamples_OtherSeed_OtherSamples) {
 TEST(DiskLightSamples, DirectionalLight_DirectionsWithinTheAngularRadius) {
   const Light sun{{0.3, 1.0, -0.2, 0.0}};
   const double angle = 0.1;  // radians
-  const double radius = std::tan(angle);
-  const std::vector<Light> samples = disk_light_samples(sun, {}, {radius, 64, 2});
+  // The angle in degrees; the point lights' radius is not read for a sun.
+  const std::vector<Light> samples = disk_light_samples(sun, {}, {12.0, 64, 2, angle * 180.0 / kPi});
   ASSERT_EQ(samples.size(), 64u);
   const Vec3 axis = normalized(xyz(sun));
   double widest = 0.0;
@@ -120,6 +121,56 @@ TEST(DiskLightSamples, DirectionalLight_DirectionsWithinTheAngularRadius) {
     widest = std::max(widest, sample_angle);
   }
   EXPECT_GT(widest, 0.75 * angle);  // the outer strata reach out to the rim
+}
+
+// A point light at the point its disk faces (a lamp at the centre of the scene's bounds; threw
+// before): the samples fill the ball of radius R, and seen along any axis they cover the disk
+// of radius R uniformly (half of them within R / sqrt(2), a quarter within R / 2).
+TEST(DiskLightSamples, PointLightAtTheFacingPoint_BallWhoseEveryProjectionIsTheUniformDisk) {
+  const Light lamp{{1.0, 2.0, 3.0, 1.0}};
+  const double radius = 0.5;
+  const std::vector<Light> samples = disk_light_samples(lamp, xyz(lamp), {radius, 64 * 64, 5});
+  ASSERT_EQ(samples.size(), 4096u);
+  for (int axis = 0; axis < 3; ++axis) {
+    std::size_t half = 0, quarter = 0;
+    for (const Light& s : samples) {
+      EXPECT_EQ(s.position[3], 1.0);
+      const Vec3 d = difference(xyz(s), xyz(lamp));
+      EXPECT_LE(std::sqrt(dot(d, d)), radius + kRounding);
+      const double across2 = dot(d, d) - d[axis] * d[axis];  // squared distance from the axis
+      half += across2 <= radius * radius / 2.0 ? 1 : 0;
+      quarter += across2 <= radius * radius / 4.0 ? 1 : 0;
+    }
+    // Binomial standard deviations at n = 4096: 0.0078 and 0.0068; 5 of them.
+    EXPECT_NEAR(static_cast<double>(half) / 4096.0, 0.5, 0.04) << "axis " << axis;
+    EXPECT_NEAR(static_cast<double>(quarter) / 4096.0, 0.25, 0.035) << "axis " << axis;
+  }
+  // Deterministic per seed.
+  EXPECT_EQ(disk_light_samples(lamp, xyz(lamp), {radius, 16, 5})[7].position,
+            disk_light_samples(lamp, xyz(lamp), {radius, 16, 5})[7].position);
+}
+
+TEST(BallRadialAngle, InvertsTheRadialDistribution) {
+  EXPECT_NEAR(ball_radial_angle(0.0), 0.0, 1e-12);
+  EXPECT_NEAR(ball_radial_angle(1.0), kPi / 2.0, 1e-12);
+  double previous = -1.0;
+  for (int i = 0; i <= 64; ++i) {
+    const double w = i / 64.0, t = ball_radial_angle(w);
+    EXPECT_NEAR((2.0 * t - std::sin(2.0 * t)) / kPi, w, 1e-12);
+    EXPECT_GE(t, previous);
+    previous = t;
+  }
+}
+
+TEST(SpherePoint, UnitVectorsWithEqualAreas) {
+  EXPECT_NEAR(sphere_point(0.3, 0.0)[2], 1.0, kRounding);
+  EXPECT_NEAR(sphere_point(0.3, 1.0)[2], -1.0, kRounding);
+  for (int i = 0; i <= 10; ++i)
+    for (int j = 0; j <= 10; ++j) {
+      const Vec3 p = sphere_point(i / 10.0, j / 10.0);
+      EXPECT_NEAR(dot(p, p), 1.0, kRounding);
+      EXPECT_NEAR(p[2], 1.0 - 2.0 * j / 10.0, kRounding);  // z linear in v: equal-area bands
+    }
 }
 
 TEST(ConcentricDiskPoint, MapsTheSquareOntoTheUnitDisk) {
@@ -149,7 +200,11 @@ TEST(DiskLightSamples, Misuse_ThrowsNamingTheFunction) {
   throws([&] { (void)disk_light_samples(light, {}, {0.5, 0, 1}); }, "no sample");
   throws([&] { (void)disk_light_samples(light, {}, {-0.5, 64, 1}); }, "negative radius");
   throws([&] { (void)disk_light_samples(light, {}, {std::nan(""), 64, 1}); }, "NaN radius");
-  throws([&] { (void)disk_light_samples(light, {0.0, 4.0, 0.0}, {0.5, 64, 1}); }, "light at the facing point");
+  throws([&] { (void)disk_light_samples(light, {0.0, INFINITY, 0.0}, {0.5, 64, 1}); }, "facing point not finite");
+  const Light sun{{0.0, 1.0, 0.0, 0.0}};
+  throws([&] { (void)disk_light_samples(sun, {}, {0.0, 64, 1, 90.0}); }, "a 90 degree sun");
+  throws([&] { (void)disk_light_samples(sun, {}, {0.0, 64, 1, -1.0}); }, "negative angle");
+  throws([&] { (void)disk_light_samples(sun, {}, {0.0, 64, 1, std::nan("")}); }, "NaN angle");
   throws([&] { (void)disk_light_samples(Light{{0.0, 1.0, 0.0, 0.0}}, {}, {INFINITY, 64, 1}); }, "infinite radius");
   throws([&] { (void)disk_light_samples(Light{{0.0, 0.0, 0.0, 0.0}}, {}, {0.1, 64, 1}); }, "zero direction");
 }
