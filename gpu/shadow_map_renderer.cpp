@@ -38,11 +38,18 @@ constexpr GLint kLightFrustumLocation = 9;
 constexpr GLint kOrthographicLocation = 10;
 constexpr GLint kLightRadiusLocation = 11;
 constexpr GLint kLightImagePassLocation = 12;  // shadow_map_scene.frag.glsl
-constexpr GLint kCubeFaceLocation = 13;        // shadow_map_scene.frag.glsl
+constexpr GLint kCubeMapLocation = 13;          // shadow_map_scene.frag.glsl
+constexpr GLint kCubeFacesLocation = 14;
+constexpr GLint kCubeLightToClipLocation = 16;  // 6 matrices
+constexpr GLint kCubeLightViewLocation = 22;    // 6 matrices
+constexpr GLint kCubeFrustumLocation = 28;      // 6 vec4
 constexpr GLint kDepthLightToClipLocation = 0;  // shadow_map_depth.vert.glsl
 constexpr GLuint kShadowMapUnit = 0;             // layout(binding = 0) of the sampler
 constexpr GLuint kDepthValuesUnit = 1;           // binding 1: the map without comparison (pcss)
 constexpr GLuint kSmoothieMapUnit = 2;           // binding 2: the smoothie map
+constexpr GLuint kCubeShadowMapUnit = 3;         // bindings 3 to 5: the same three of a cube map
+constexpr GLuint kCubeDepthValuesUnit = 4;
+constexpr GLuint kCubeSmoothieMapUnit = 5;
 
 // Stencil marks of the first light (the frame's "counts", see the header).
 constexpr GLint kShadowedMark = 1;
@@ -313,6 +320,44 @@ ShadowMapRenderer::ShadowMapRenderer(std::uint32_t size, ShadowFilter filter) : 
   scene_program_ = link_program({&vertex, &fragment}, "shadow_map_scene");
 }
 
+const ShadowMapRenderer::CubeMap& ShadowMapRenderer::cube_map() const {
+  if (cube_map_) return *cube_map_;
+  const auto side = static_cast<GLsizei>(size_);
+  CubeMap cube{Texture::create(GL_TEXTURE_2D_ARRAY), {}, {}};
+  const GLuint depth = cube.depth.name();
+  glTextureStorage3D(depth, 1, GL_DEPTH_COMPONENT32F, side, side, 6);
+  // As the one map's texture: nearest texel, clamped, the hardware comparison (1 lit).
+  glTextureParameteri(depth, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTextureParameteri(depth, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glTextureParameteri(depth, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTextureParameteri(depth, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  glTextureParameteri(depth, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+  glTextureParameteri(depth, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+  for (int face = 0; face < 6; ++face) {
+    Framebuffer& layer = cube.layers[static_cast<std::size_t>(face)];
+    layer = Framebuffer::create();
+    glNamedFramebufferTextureLayer(layer.name(), GL_DEPTH_ATTACHMENT, depth, 0, face);
+    glNamedFramebufferDrawBuffer(layer.name(), GL_NONE);
+    glNamedFramebufferReadBuffer(layer.name(), GL_NONE);
+    if (glCheckNamedFramebufferStatus(layer.name(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+      throw GlError("ShadowMapRenderer: the cube map's 6 x " + std::to_string(size_) + "^2 depth layers are incomplete");
+  }
+  if (smoothie_map_) {
+    cube.smoothie = Texture::create(GL_TEXTURE_2D_ARRAY);
+    const GLuint smoothie = cube.smoothie.name();
+    glTextureStorage3D(smoothie, 1, GL_RG32F, side, side, 6);
+    glTextureParameteri(smoothie, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(smoothie, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTextureParameteri(smoothie, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(smoothie, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  }
+  // GL_OUT_OF_MEMORY for a map the driver cannot hold six times (6 GiB of depth at 16384).
+  const std::string where = "ShadowMapRenderer: the cube map's 6 x " + std::to_string(size_) + "^2 layers";
+  check_gl_errors(where.c_str());
+  cube_map_.emplace(std::move(cube));
+  return *cube_map_;
+}
+
 namespace {
 
 int filter_mode(ShadowFilter filter) {
@@ -367,7 +412,7 @@ StencilShadowFrame ShadowMapRenderer::render(const OffscreenTarget& target, cons
   glProgramUniform1i(scene, kFilterModeLocation, filter_mode(filter_));
   glProgramUniform1i(scene, kPcfKernelLocation, static_cast<GLint>(options.pcf_kernel));
   glProgramUniform1i(scene, kLightImagePassLocation, 0);
-  glProgramUniform1i(scene, kCubeFaceLocation, -1);
+  glProgramUniform1i(scene, kCubeMapLocation, 0);
   // pcss's light size as the filter reads it: world units for a point light, a tangent for a
   // directional one (shadow_filter.glsl).
   const double angle_tangent = filter_ == ShadowFilter::pcss ? light_angle_tangent(options.light_angle_degrees) : 0.0;
@@ -401,29 +446,20 @@ StencilShadowFrame ShadowMapRenderer::render(const OffscreenTarget& target, cons
   for (std::size_t i = 0; i < lights.size(); ++i) {
     const double nearest = options.nearest_receivers.empty() ? 0.0 : options.nearest_receivers[i];
     const std::vector<LightFrustum> views = light_views(lights[i], bounds, nearest);
-    glProgramUniform1f(scene, kLightRadiusLocation,
-                       static_cast<float>(lights[i].directional() ? angle_tangent : options.light_radius));
-    // The first light's amount per pixel: its target cleared once, then every view's pass
-    // writes the fragments of its own face (the nearest surface wins by depth).
-    const bool light_image = i == 0 && options.read_back;
-    if (light_image &&
-        (!light_image_ || light_image_->width() != target.width() || light_image_->height() != target.height()))
-      light_image_.emplace(target.width(), target.height());
-    if (light_image) {
-      light_image_->bind();
-      light_image_->clear();
-    }
-    for (const LightFrustum& frustum : views) {
-      const glm::mat4 to_light_clip(frustum.projection * frustum.view);
-      const glm::mat4 light_view(frustum.view);
-      const bool cube = frustum.cube_face >= 0;
+    const bool cube = views.front().cube_face >= 0;
+    const CubeMap* cube_map = cube ? &this->cube_map() : nullptr;
 
-      // 2. Depth pass from the light. Only the slope term of glPolygonOffset: the constant
-      //    bias is applied in the comparison (depth_bias), in depth units the user can read. A
-      //    cube face clamps depth instead of clipping at its near plane: a caster nearer than
-      //    it still hides what lies behind it.
+    // 2. Depth pass from the light, per view (a cube map's faces into their layers). Only the
+    //    slope term of glPolygonOffset: the constant bias is applied in the comparison
+    //    (depth_bias), in depth units the user can read. A cube face clamps depth instead of
+    //    clipping at its near plane: a caster nearer than it still hides what lies behind it.
+    //    2b. smoothie: the light's smoothies into the smoothie map (nearest alpha and depth),
+    //    a cube face's then copied into its layer.
+    for (const LightFrustum& view : views) {
+      const glm::mat4 to_light_clip(view.projection * view.view);
       std::optional<ScopedStage> stage(std::in_place, options.timer, RenderStage::shadow_map);
-      glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.name());
+      glBindFramebuffer(GL_FRAMEBUFFER, cube ? cube_map->layers[static_cast<std::size_t>(view.cube_face)].name()
+                                             : framebuffer_.name());
       glViewport(0, 0, static_cast<GLsizei>(size_), static_cast<GLsizei>(size_));
       glDisable(GL_STENCIL_TEST);
       glDepthFunc(GL_LESS);
@@ -431,6 +467,7 @@ StencilShadowFrame ShadowMapRenderer::render(const OffscreenTarget& target, cons
       glClear(GL_DEPTH_BUFFER_BIT);
       glUseProgram(depth);
       glProgramUniformMatrix4fv(depth, kDepthLightToClipLocation, 1, GL_FALSE, glm::value_ptr(to_light_clip));
+      glBindVertexArray(receivers.vertex_array());  // the previous face's smoothie pass bound its own
       glEnable(GL_POLYGON_OFFSET_FILL);
       glPolygonOffset(options.slope_scale, 0.0f);
       if (cube) glEnable(GL_DEPTH_CLAMP);
@@ -442,37 +479,56 @@ StencilShadowFrame ShadowMapRenderer::render(const OffscreenTarget& target, cons
       glDisable(GL_DEPTH_CLAMP);
       glDisable(GL_POLYGON_OFFSET_FILL);
       stage.reset();
-
-      // 2b. smoothie: the light's smoothies into the smoothie map (nearest alpha and depth).
       if (smoothie_map_) {
         stage.emplace(options.timer, RenderStage::smoothie_map);
-        smoothie_map_->render(*options.smoothies[i], to_light_clip, light_view);
+        smoothie_map_->render(*options.smoothies[i], to_light_clip, glm::mat4(view.view));
+        if (cube) {
+          const auto side = static_cast<GLsizei>(size_);
+          glCopyImageSubData(smoothie_map_->texture(), GL_TEXTURE_2D, 0, 0, 0, 0, cube_map->smoothie.name(),
+                             GL_TEXTURE_2D_ARRAY, 0, 0, 0, view.cube_face, side, side, 1);
+        }
         stage.reset();
       }
+    }
 
-      // 3. Lit pass on the visible surface only; the first light clears the shadowed mark
-      //    where its comparison says lit (shadowed fragments, and a cube face's fragments of
-      //    other faces, are discarded in the shader).
-      stage.emplace(options.timer, RenderStage::lit);
-      target.bind();
-      glUseProgram(scene);
+    // 3. Lit pass on the visible surface only; the first light clears the shadowed mark where
+    //    its comparison says lit (shadowed fragments are discarded in the shader).
+    std::optional<ScopedStage> stage(std::in_place, options.timer, RenderStage::lit);
+    target.bind();
+    glUseProgram(scene);
+    if (cube) {
+      glBindTextureUnit(kCubeShadowMapUnit, cube_map->depth.name());
+      if (filter_ == ShadowFilter::pcss) {
+        glBindTextureUnit(kCubeDepthValuesUnit, cube_map->depth.name());
+        glBindSampler(kCubeDepthValuesUnit, depth_values_.name());
+      }
+      if (smoothie_map_) glBindTextureUnit(kCubeSmoothieMapUnit, cube_map->smoothie.name());
+      std::array<glm::mat4, 6> to_clip{}, light_view{};
+      std::array<glm::vec4, 6> frustum{};
+      GLint faces = 0;
+      for (const LightFrustum& view : views) {
+        const auto f = static_cast<std::size_t>(view.cube_face);
+        to_clip[f] = glm::mat4(view.projection * view.view);
+        light_view[f] = glm::mat4(view.view);
+        frustum[f] = glm::vec4(static_cast<float>(view.near), static_cast<float>(view.far),
+                               static_cast<float>(view.tangent), static_cast<float>(view.tangent));
+        faces |= 1 << view.cube_face;
+      }
+      glProgramUniformMatrix4fv(scene, kCubeLightToClipLocation, 6, GL_FALSE, glm::value_ptr(to_clip[0]));
+      glProgramUniformMatrix4fv(scene, kCubeLightViewLocation, 6, GL_FALSE, glm::value_ptr(light_view[0]));
+      glProgramUniform4fv(scene, kCubeFrustumLocation, 6, glm::value_ptr(frustum[0]));
+      glProgramUniform1i(scene, kCubeFacesLocation, faces);
+      glProgramUniform1i(scene, kOrthographicLocation, 0);
+    } else {
+      const LightFrustum& frustum = views.front();
+      const glm::mat4 to_light_clip(frustum.projection * frustum.view);
+      const glm::mat4 light_view(frustum.view);
       glBindTextureUnit(kShadowMapUnit, depth_.name());
       if (filter_ == ShadowFilter::pcss) {
         glBindTextureUnit(kDepthValuesUnit, depth_.name());
         glBindSampler(kDepthValuesUnit, depth_values_.name());
       }
       if (smoothie_map_) glBindTextureUnit(kSmoothieMapUnit, smoothie_map_->texture());
-      glEnable(GL_STENCIL_TEST);
-      glStencilFunc(GL_ALWAYS, kLitMark, 0xFF);
-      glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
-      glStencilMask(i == 0 ? 0xFF : 0x00);
-      glDepthFunc(GL_EQUAL);
-      glDepthMask(GL_FALSE);
-      glEnable(GL_BLEND);
-      glBlendFunc(GL_ONE, GL_ONE);
-      const std::array<double, 4>& l = lights[i].position;
-      glProgramUniform4f(scene, kLightLocation, static_cast<float>(l[0]), static_cast<float>(l[1]),
-                         static_cast<float>(l[2]), static_cast<float>(l[3]));
       glProgramUniformMatrix4fv(scene, kLightToClipLocation, 1, GL_FALSE, glm::value_ptr(to_light_clip));
       glProgramUniformMatrix4fv(scene, kLightViewLocation, 1, GL_FALSE, glm::value_ptr(light_view));
       glProgramUniform4f(scene, kLightFrustumLocation, static_cast<float>(frustum.near),
@@ -480,34 +536,50 @@ StencilShadowFrame ShadowMapRenderer::render(const OffscreenTarget& target, cons
                          static_cast<float>(frustum.orthographic ? frustum.half_extent[0] : frustum.tangent),
                          static_cast<float>(frustum.orthographic ? frustum.half_extent[1] : frustum.tangent));
       glProgramUniform1i(scene, kOrthographicLocation, frustum.orthographic ? 1 : 0);
-      glProgramUniform1i(scene, kCubeFaceLocation, frustum.cube_face);
-      glProgramUniform1f(scene, kLambertWeightLocation, 1.0f);
-      glProgramUniform4f(scene, kColourLocation, options.light_colour[0], options.light_colour[1],
-                         options.light_colour[2], 1.0f);
-      glBindVertexArray(receivers.vertex_array());  // the smoothie map bound its own
-      glDrawArrays(GL_TRIANGLES, 0, receivers.single_order_vertex_count());
-      glDisable(GL_BLEND);
-      stage.reset();
-
-      // 4. The first light's amount of light per pixel (readback frames only): the receivers
-      //    once more into the light image, nearest surface per pixel, the filter's amount as
-      //    colour.
-      if (light_image) {
-        light_image_->bind();
-        glDisable(GL_STENCIL_TEST);
-        glDepthFunc(GL_LESS);
-        glDepthMask(GL_TRUE);
-        glProgramUniform1i(scene, kLightImagePassLocation, 1);
-        glDrawArrays(GL_TRIANGLES, 0, receivers.single_order_vertex_count());
-        glProgramUniform1i(scene, kLightImagePassLocation, 0);
-      }
-      glProgramUniform1i(scene, kCubeFaceLocation, -1);
-      glBindTextureUnit(kShadowMapUnit, 0);
-      glBindTextureUnit(kDepthValuesUnit, 0);
-      glBindSampler(kDepthValuesUnit, 0);
-      glBindTextureUnit(kSmoothieMapUnit, 0);
     }
-    if (light_image) first_light = light_image_->read_light();
+    glProgramUniform1i(scene, kCubeMapLocation, cube ? 1 : 0);
+    glProgramUniform1f(scene, kLightRadiusLocation,
+                       static_cast<float>(lights[i].directional() ? angle_tangent : options.light_radius));
+    glEnable(GL_STENCIL_TEST);
+    glStencilFunc(GL_ALWAYS, kLitMark, 0xFF);
+    glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+    glStencilMask(i == 0 ? 0xFF : 0x00);
+    glDepthFunc(GL_EQUAL);
+    glDepthMask(GL_FALSE);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ONE);
+    const std::array<double, 4>& l = lights[i].position;
+    glProgramUniform4f(scene, kLightLocation, static_cast<float>(l[0]), static_cast<float>(l[1]),
+                       static_cast<float>(l[2]), static_cast<float>(l[3]));
+    glProgramUniform1f(scene, kLambertWeightLocation, 1.0f);
+    glProgramUniform4f(scene, kColourLocation, options.light_colour[0], options.light_colour[1],
+                       options.light_colour[2], 1.0f);
+    glBindVertexArray(receivers.vertex_array());  // the smoothie map bound its own
+    glDrawArrays(GL_TRIANGLES, 0, receivers.single_order_vertex_count());
+    glDisable(GL_BLEND);
+    stage.reset();
+
+    // 4. The first light's amount of light per pixel (readback frames only): the receivers once
+    //    more into the light image, nearest surface per pixel, the filter's amount as colour.
+    if (i == 0 && options.read_back) {
+      if (!light_image_ || light_image_->width() != target.width() || light_image_->height() != target.height())
+        light_image_.emplace(target.width(), target.height());
+      light_image_->bind();
+      light_image_->clear();
+      glDisable(GL_STENCIL_TEST);
+      glDepthFunc(GL_LESS);
+      glDepthMask(GL_TRUE);
+      glProgramUniform1i(scene, kLightImagePassLocation, 1);
+      glDrawArrays(GL_TRIANGLES, 0, receivers.single_order_vertex_count());
+      glProgramUniform1i(scene, kLightImagePassLocation, 0);
+      first_light = light_image_->read_light();
+    }
+    glProgramUniform1i(scene, kCubeMapLocation, 0);
+    for (GLuint unit : {kShadowMapUnit, kDepthValuesUnit, kSmoothieMapUnit, kCubeShadowMapUnit, kCubeDepthValuesUnit,
+                        kCubeSmoothieMapUnit}) {
+      glBindTextureUnit(unit, 0);
+      glBindSampler(unit, 0);
+    }
   }
 
   glBindVertexArray(0);

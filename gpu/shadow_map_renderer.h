@@ -9,8 +9,9 @@
 //     bounding box, its field of view the smallest symmetric one holding the box's corners;
 //     a point light inside the box (a lamp in a room, at its centre included) or so near it
 //     that this half angle would exceed atan(8) gets a cube map instead: six 90-degree faces,
-//     each a perspective frustum along one axis, drawn one after the other into the same
-//     depth texture, each lit pass keeping the fragments in its face (light_views);
+//     each a perspective frustum along one axis drawn into its layer of an array texture, and
+//     one lit pass in which each fragment reads the face its direction falls in (light_views,
+//     shaders/cube_face.glsl);
 //   directional light: an orthographic box fitted to the scene's bounds seen along -l.
 // Its errors are the method's own: texel-sized staircases along shadow boundaries (fewer as
 // the map grows), and acne or peter-panning traded through the two bias options.
@@ -177,13 +178,15 @@ struct ShadowMapOptions {
 class ShadowMapRenderer {
  public:
   // Allocates the size x size depth texture (and for `smoothie` the smoothie map of the same
-  // size). Throws std::invalid_argument for size 0 or over kMaxShadowMapSize, GlError when the
-  // driver cannot hold it.
+  // size); a light that needs a cube map gets six more layers of each in its first render().
+  // Throws std::invalid_argument for size 0 or over kMaxShadowMapSize, GlError when the driver
+  // cannot hold it.
   explicit ShadowMapRenderer(std::uint32_t size = kDefaultShadowMapSize, ShadowFilter filter = ShadowFilter::hard);
 
-  // Renders into `target` (bound and cleared here), one depth pass (smoothie: and one smoothie
-  // map pass) and one lit pass per light and view (light_views: six for a cube map); with
-  // read_back, the light-image pass of the first light too. Throws GlError on a GL error,
+  // Renders into `target` (bound and cleared here), per light one depth pass per view
+  // (light_views: six for a cube map; smoothie: and as many smoothie map passes) and one lit
+  // pass; with read_back, the light-image pass of the first light too. Throws GlError on a GL
+  // error (a cube map the driver cannot hold among them),
   // std::invalid_argument from light_views, and std::invalid_argument("ShadowMapRenderer::render:
   // ...") for a pcf kernel that is even or out of range, a pcss light radius that is not finite
   // and > 0 or light angle out of range, nearest_receivers neither empty nor one per light, or
@@ -207,6 +210,17 @@ class ShadowMapRenderer {
   // The first light's amount of light per pixel, reallocated when the target's size changes (a
   // cache of the const render(), hence mutable).
   mutable std::optional<LightImageTarget> light_image_;
+  // A point light's cube map (light_views): six layers of the map's size, depth (and for
+  // `smoothie` the smoothie map's RG32F, each face copied in after its smoothie pass), with a
+  // framebuffer per depth layer; allocated by the first render() that needs one (a cache of the
+  // const render(), hence mutable). 6 x 16 MiB of depth at 2048.
+  struct CubeMap {
+    Texture depth;
+    std::array<Framebuffer, 6> layers;
+    Texture smoothie;
+  };
+  mutable std::optional<CubeMap> cube_map_;
+  const CubeMap& cube_map() const;
 };
 
 }  // namespace shadowcert::gpu

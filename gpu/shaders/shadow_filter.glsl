@@ -1,6 +1,8 @@
 // How much of a light reaches a visible point, by the shadow map family's filters
 // (gpu/shadow_map_renderer.h, docs/smoothies.md): included by shadow_map_scene.frag.glsl after
-// its `shadow_map` (sampler2DShadow, GL_LEQUAL: 1 = lit) and `depth_bias` declarations.
+// its `shadow_map` (sampler2DShadow, GL_LEQUAL: 1 = lit) and `depth_bias` declarations. The
+// filters read the map through map_compare, map_depth and smoothie_texel, which a cube-mapped
+// light points at one layer of its cube map (map_layer, below).
 //   hard      one comparison at the point's texel (the `shadowmap` method, unchanged);
 //   pcf       K x K comparisons at whole-texel offsets around it, averaged;
 //   pcss      Fernando 2005: the blockers' mean depth in the region the light's disk (radius R)
@@ -24,6 +26,37 @@ layout(location = 10) uniform int orthographic;    // 1: directional light (orth
 layout(location = 11) uniform float light_radius;  // pcss: R (point: world units; directional: tangent)
 layout(binding = 1) uniform sampler2D depth_values;  // the same map read without comparison (pcss)
 layout(binding = 2) uniform sampler2D smoothie_map;  // (alpha, b) of the nearest smoothie; alpha < 0: none
+// A point light's cube map (cube_face.glsl): the same three, one layer per face.
+layout(binding = 3) uniform sampler2DArrayShadow cube_shadow_map;
+layout(binding = 4) uniform sampler2DArray cube_depth_values;
+layout(binding = 5) uniform sampler2DArray cube_smoothie_map;
+
+// The map the filters read for this fragment: the light's one map (map_layer < 0: shadow_map,
+// depth_values, smoothie_map) or layer map_layer of its cube map, with that view's matrix and
+// frustum (the main function sets them before filtered_light).
+int map_layer = -1;
+mat4 view_of_light;
+vec4 frustum_of_light;
+
+// One hardware comparison (1 lit, 0 shadowed) at texture coordinates uv against depth ref. A
+// single-level map: textureGrad with zero derivatives reads level 0 in any control flow.
+float map_compare(vec2 uv, float ref) {
+  if (map_layer < 0) return textureLod(shadow_map, vec3(uv, ref), 0.0);
+  return textureGrad(cube_shadow_map, vec4(uv, float(map_layer), ref), vec2(0.0), vec2(0.0));
+}
+// The stored depth at uv, without comparison (pcss's blocker search).
+float map_depth(vec2 uv) {
+  if (map_layer < 0) return textureLod(depth_values, uv, 0.0).r;
+  return textureLod(cube_depth_values, vec3(uv, float(map_layer)), 0.0).r;
+}
+ivec2 map_size() { return map_layer < 0 ? textureSize(shadow_map, 0) : textureSize(cube_shadow_map, 0).xy; }
+vec2 smoothie_texel(ivec2 texel) {
+  if (map_layer < 0) return texelFetch(smoothie_map, texel, 0).rg;
+  return texelFetch(cube_smoothie_map, ivec3(texel, map_layer), 0).rg;
+}
+ivec2 smoothie_size() {
+  return map_layer < 0 ? textureSize(smoothie_map, 0) : textureSize(cube_smoothie_map, 0).xy;
+}
 
 const int kFilterHard = 0;
 const int kFilterPcf = 1;
@@ -58,19 +91,19 @@ vec2 receiver_depth_gradient(vec3 dx, vec3 dy) {
 
 // The light's window depth d in [0, 1] as a linear depth along the light's axis.
 float linear_depth(float d) {
-  float near = light_frustum.x, far = light_frustum.y;
+  float near = frustum_of_light.x, far = frustum_of_light.y;
   if (orthographic == 1) return near + d * (far - near);
   return 2.0 * near * far / (far + near - (2.0 * d - 1.0) * (far - near));
 }
 
 // World units per unit of texture coordinate at linear depth z, per axis.
 vec2 world_per_uv(float z) {
-  if (orthographic == 1) return 2.0 * light_frustum.zw;
-  return vec2(2.0 * z * light_frustum.z);
+  if (orthographic == 1) return 2.0 * frustum_of_light.zw;
+  return vec2(2.0 * z * frustum_of_light.z);
 }
 
 float hard_light(vec3 window) {
-  return textureLod(shadow_map, vec3(window.xy, window.z - depth_bias), 0.0) < 0.5 ? 0.0 : 1.0;
+  return map_compare(window.xy, window.z - depth_bias) < 0.5 ? 0.0 : 1.0;
 }
 
 // taps x taps comparisons on a grid spanning [-radius, radius] around uv (one at uv when taps = 1),
@@ -80,26 +113,26 @@ float grid_light(vec2 uv, float reference, vec2 gradient, vec2 radius, int taps)
   for (int i = 0; i < taps; ++i) {
     for (int j = 0; j < taps; ++j) {
       vec2 offset = taps == 1 ? vec2(0.0) : (vec2(i, j) * (2.0 / float(taps - 1)) - 1.0) * radius;
-      lit += textureLod(shadow_map, vec3(uv + offset, reference + dot(gradient, offset)), 0.0);
+      lit += map_compare(uv + offset, reference + dot(gradient, offset));
     }
   }
   return lit / float(taps * taps);
 }
 
 float pcf_light(vec3 window, vec2 gradient) {
-  vec2 texel = 1.0 / vec2(textureSize(shadow_map, 0));
+  vec2 texel = 1.0 / vec2(map_size());
   int half_kernel = (pcf_kernel - 1) / 2;
   float lit = 0.0;
   for (int i = -half_kernel; i <= half_kernel; ++i)
     for (int j = -half_kernel; j <= half_kernel; ++j) {
       vec2 offset = vec2(i, j) * texel;
-      lit += textureLod(shadow_map, vec3(window.xy + offset, window.z - depth_bias + dot(gradient, offset)), 0.0);
+      lit += map_compare(window.xy + offset, window.z - depth_bias + dot(gradient, offset));
     }
   return lit / float(pcf_kernel * pcf_kernel);
 }
 
 float pcss_light(vec3 window, vec2 gradient, float receiver_depth) {
-  float near = light_frustum.x;
+  float near = frustum_of_light.x;
   float reference = window.z - depth_bias;
   // 1. Blocker search: the light's disk seen from the receiver, where the cone crosses the near
   //    plane (the widest place a blocker can be).
@@ -111,7 +144,7 @@ float pcss_light(vec3 window, vec2 gradient, float receiver_depth) {
   for (int i = 0; i < kPcssSearchTaps; ++i) {
     for (int j = 0; j < kPcssSearchTaps; ++j) {
       vec2 offset = (vec2(i, j) * (2.0 / float(kPcssSearchTaps - 1)) - 1.0) * search;
-      float d = textureLod(depth_values, window.xy + offset, 0.0).r;
+      float d = map_depth(window.xy + offset);
       // The point's own reference, not the receiver's plane: the search region is wide (the
       // light's disk at the near plane), and over it the plane reaches casters far from the
       // point, which then count as its blockers; a texel of the receiver itself that the plane
@@ -134,9 +167,9 @@ float pcss_light(vec3 window, vec2 gradient, float receiver_depth) {
 
 float smoothie_light(vec3 window, float receiver_depth) {
   if (hard_light(window) == 0.0) return 0.0;  // stage 1: the shadow map says shadowed
-  ivec2 size = textureSize(smoothie_map, 0);
+  ivec2 size = smoothie_size();
   ivec2 texel = clamp(ivec2(window.xy * vec2(size)), ivec2(0), size - 1);
-  vec2 smoothie = texelFetch(smoothie_map, texel, 0).rg;  // alpha, b
+  vec2 smoothie = smoothie_texel(texel);  // alpha, b
   // Stage 2: no smoothie, or none in front of the point: lit.
   if (smoothie.x < 0.0 || !(receiver_depth > smoothie.y * (1.0 + kSmoothieBehindTolerance))) return 1.0;
   return clamp(smoothie.x / (1.0 - smoothie.y / receiver_depth), 0.0, 1.0);
@@ -147,7 +180,7 @@ float smoothie_light(vec3 window, float receiver_depth) {
 float filtered_light(vec3 window, vec2 gradient, vec3 p) {
   if (filter_mode == kFilterHard) return hard_light(window);
   if (filter_mode == kFilterPcf) return pcf_light(window, gradient);
-  float receiver_depth = -(light_view * vec4(p, 1.0)).z;
+  float receiver_depth = -(view_of_light * vec4(p, 1.0)).z;
   if (filter_mode == kFilterPcss) return pcss_light(window, gradient, receiver_depth);
   return smoothie_light(window, receiver_depth);
 }
