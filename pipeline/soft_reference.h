@@ -1,6 +1,8 @@
 #pragma once
 // The exact soft reference of a scene (docs/smoothies.md#the-exact-soft-reference): the disk
-// light around one of its lights imaged exactly (reference/soft_shadow_image.h), plus the
+// light around one of its lights imaged by exact verdicts over K samples (reference/
+// soft_shadow_image.h: per pixel an unbiased estimate of the light, whose noise
+// pipeline/soft_shadow_comparison.h reports, docs/smoothies.md#the-estimators-noise), plus the
 // pixels where the shadow's caster meets its receiver (`contact`), which the leak figure of
 // pipeline/soft_shadow_comparison.h looks at. What `shadowcert soft` computes, and what `diff`
 // compares the shadow map family's light images with:

@@ -103,10 +103,12 @@ struct SoftShadowOptions {
 [[nodiscard]] SoftShadowImage soft_shadow_image(const Soup& soup, std::span<const Light> samples, const Camera& camera,
                                                 const SoftShadowOptions& options = {});
 
-// The reference (docs/smoothies.md#the-exact-soft-reference): the disk light around `light` (reference/disk_light.h) facing the
-// centre of the soup's bounds (scene_bounds_centre), sampled by `sampling`, imaged by
-// soft_shadow_image. sampling.radius == 0 gives the exact hard shadow (one sample). Throws what
-// disk_light_samples and soft_shadow_image throw.
+// The reference (docs/smoothies.md#the-exact-soft-reference): the disk light around `light`
+// (reference/disk_light.h) facing the centre of the soup's bounds (scene_bounds_centre; a point
+// light at that centre: the ball around it), or about a directional light, sampled by
+// `sampling`, imaged by soft_shadow_image. A light without size (a point light's
+// sampling.radius or a directional light's sampling.angle_degrees 0) gives the exact hard
+// shadow (one sample). Throws what disk_light_samples and soft_shadow_image throw.
 [[nodiscard]] SoftShadowImage disk_light_shadow_image(const Soup& soup, const Light& light,
                                                       const DiskLightSampling& sampling, const Camera& camera,
                                                       const SoftShadowOptions& options = {});
