@@ -10,7 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "cli/cli_run.h"
+#include "cli_run.h"
 
 namespace {
 
