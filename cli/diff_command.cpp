@@ -245,10 +245,17 @@ std::string analytic_fact(const AnalyticCounts& a) {
                      a.caster_disagree, a.caster_agree + a.caster_disagree, a.caster_band, a.caster_ambiguous);
 }
 
-int run_diff(const DiffOptions& options) {
+// ---- the command: one scene compared, step by step ----------------------------------------------
+
+// Step 1: what the options ask for, checked before any file is read.
+struct DiffRequest {
+  std::vector<gpu::ShadowMethod> methods;
+  StencilChoice stencil_choice = StencilChoice::zfail;
+};
+
+DiffRequest validate_diff(const DiffOptions& options) {
   const std::vector<gpu::ShadowMethod> methods = shadow_methods_option(options.methods, "--methods");
   const StencilChoice stencil_choice = stencil_option(options.stencil, options.zpass, options.zfail);
-  const std::string_view stencil = stencil_choice_name(stencil_choice);
   if (options.shadowmap_size < 1 || options.shadowmap_size > gpu::kMaxShadowMapSize)
     throw CLI::ValidationError("--shadowmap-size", fmt::format("must be in [1, {}], got {}", gpu::kMaxShadowMapSize,
                                                                options.shadowmap_size));
@@ -269,14 +276,27 @@ int run_diff(const DiffOptions& options) {
   if (options.smoothie_width && (!std::isfinite(*options.smoothie_width) || !(*options.smoothie_width > 0.0)))
     throw CLI::ValidationError("--smoothie-width",
                                fmt::format("must be finite and > 0 (world units), got {}", *options.smoothie_width));
+  return {methods, stencil_choice};
+}
+
+// Step 2: the scene, sized; its triangle count (every mesh's).
+struct DiffScene {
+  Scene scene;
+  std::size_t triangles = 0;
+};
+
+DiffScene load_diff_scene(const DiffOptions& options) {
   Scene scene = load_image_scene(options.input);
   if (scene.lights.empty()) throw InputError(options.input, "the scene has no light");
   apply_image_size(options.size, scene.camera);
-  const Soup merged = merged_soup(scene);
-  if (merged.triangles.empty()) throw InputError(options.input, "no triangle to render");
-  const std::size_t light_count = scene.lights.size();
+  const std::size_t triangles = merged_soup(scene).triangles.size();
+  if (triangles == 0) throw InputError(options.input, "no triangle to render");
+  return {std::move(scene), triangles};
+}
 
-  const gpu::EglContext context = gpu::open_gl_context("diff", options.device);
+// Step 3: the comparison's options (pipeline/scene_comparison.h) from the command's.
+SceneComparisonOptions comparison_options_of(const DiffRequest& request, const DiffOptions& options) {
+  const StencilChoice stencil_choice = request.stencil_choice;
   SceneComparisonOptions comparison_options;
   comparison_options.method_options.stencil =
       stencil_choice == StencilChoice::zpass ? gpu::StencilMethod::zpass : gpu::StencilMethod::zfail;
@@ -299,36 +319,62 @@ int run_diff(const DiffOptions& options) {
   }
   // A progress bar only on a terminal: logs and pipes get no carriage returns.
   comparison_options.progress = isatty(fileno(stderr)) != 0;
-  const SceneComparison comparison = compare_scene(scene, methods, comparison_options);
-  const ExactImage& exact = comparison.exact;
-  const double rounded_seconds = comparison.rounded_seconds;
-  const std::vector<MethodRun>& runs = comparison.runs;
-  const bool passed = comparison.passed();
-  // --edges: the edge maps' scores (reported, never a failure).
-  const EdgeMapComparisonOptions edge_options;
-  std::optional<EdgeMapComparison> edge_maps;
-  if (options.edges) edge_maps = compare_edge_maps(scene, edge_options);
+  return comparison_options;
+}
 
-  // Images: the exact masks and counts, and per method its mask and overlay.
-  const auto exact_images = [&](std::size_t k) {
-    const std::string s = light_suffix(k, light_count);
-    return std::vector<std::pair<std::string, gpu::GrayImage>>{
-        {"exact_mask" + s, exact_mask(exact, k)},
-        {"exact_counts" + s, exact_counts(exact, k)},
-        {"exact_ambiguous" + s, ambiguity_image(exact, k)}};
-  };
-  // The top of the counts' colour scale: the largest defined count of any light.
-  std::uint32_t counts_top = 1;
-  for (std::size_t k = 0; k < light_count; ++k) counts_top = std::max(counts_top, max_count(exact, k));
+// What steps 5 to 8 read: the comparison of step 4 and what it was made of.
+struct DiffResult {
+  const DiffOptions& options;
+  const DiffRequest& request;
+  const Scene& scene;
+  std::size_t triangles;
+  const gpu::EglContext& context;
+  const SceneComparison& comparison;
+  const EdgeMapComparisonOptions& edge_options;
+  const std::optional<EdgeMapComparison>& edge_maps;
+};
+
+// The exact image's own pictures of light k: its mask, its counts (n mod 256) and its ambiguity.
+std::vector<std::pair<std::string, gpu::GrayImage>> exact_images(const ExactImage& exact, std::size_t k) {
+  const std::string s = light_suffix(k, exact.lights.size());
+  return {{"exact_mask" + s, exact_mask(exact, k)},
+          {"exact_counts" + s, exact_counts(exact, k)},
+          {"exact_ambiguous" + s, ambiguity_image(exact, k)}};
+}
+
+// The top of the counts' colour scale: the largest defined count of any light.
+std::uint32_t counts_top(const ExactImage& exact) {
+  std::uint32_t top = 1;
+  for (std::size_t k = 0; k < exact.lights.size(); ++k) top = std::max(top, max_count(exact, k));
+  return top;
+}
+
+// Per light, the pixels the exact image calls ambiguous.
+nlohmann::json ambiguous_pixels(const ExactImage& exact) {
+  nlohmann::json ambiguous = nlohmann::json::array();
+  for (const ExactLightImage& l : exact.lights)
+    ambiguous.push_back(std::count_if(l.ambiguity.begin(), l.ambiguity.end(), [](std::uint8_t a) { return a != 0; }));
+  return ambiguous;
+}
+
+// Step 5: --out's images: the exact masks and counts, and per method its mask and overlay.
+void write_diff_images(const DiffResult& result) {
+  const Scene& scene = result.scene;
+  const DiffOptions& options = result.options;
+  const SceneComparison& comparison = result.comparison;
+  const ExactImage& exact = comparison.exact;
+  const std::vector<MethodRun>& runs = comparison.runs;
+  const std::size_t light_count = scene.lights.size();
+  const std::optional<EdgeMapComparison>& edge_maps = result.edge_maps;
   if (!options.out.empty()) {
     const std::filesystem::path dir(options.out);
     create_parent_directories(dir / "summary.json");
     if (edge_maps) write_edge_map_pictures(dir, *edge_maps);
     for (std::size_t k = 0; k < light_count; ++k) {
-      for (const auto& [name, image] : exact_images(k)) gpu::write_png((dir / (name + ".png")).string(), image);
+      for (const auto& [name, image] : exact_images(exact, k)) gpu::write_png((dir / (name + ".png")).string(), image);
       // The counts in a perceptual colour map: the gray file holds n mod 256, where 1 and 2 look black.
       gpu::write_png((dir / ("exact_counts_viridis" + light_suffix(k, light_count) + ".png")).string(),
-                     count_colour_image(exact, k, counts_top));
+                     count_colour_image(exact, k, counts_top(exact)));
       for (const MethodRun& run : runs) {
         const std::string name(gpu::shadow_method_name(run.method));
         const std::string s = light_suffix(k, light_count);
@@ -351,21 +397,29 @@ int run_diff(const DiffOptions& options) {
     }
   }
 
-  // The summary.
-  nlohmann::json ambiguous = nlohmann::json::array(), lit = nlohmann::json::array();
-  for (const ExactLightImage& l : exact.lights) {
-    ambiguous.push_back(std::count_if(l.ambiguity.begin(), l.ambiguity.end(), [](std::uint8_t a) { return a != 0; }));
+}
+
+// Step 6: the summary (--json, and summary.json in --out).
+nlohmann::json diff_summary(const DiffResult& result) {
+  const Scene& scene = result.scene;
+  const DiffOptions& options = result.options;
+  const SceneComparison& comparison = result.comparison;
+  const ExactImage& exact = comparison.exact;
+  const std::vector<MethodRun>& runs = comparison.runs;
+  const std::size_t light_count = scene.lights.size();
+  const std::optional<EdgeMapComparison>& edge_maps = result.edge_maps;
+  nlohmann::json lit = nlohmann::json::array();
+  for (const ExactLightImage& l : exact.lights)
     lit.push_back(std::count_if(l.lit.begin(), l.lit.end(), [](std::uint8_t a) { return a != 0; }));
-  }
   nlohmann::json summary{
       {"input", options.input},
       {"size", {scene.camera.width, scene.camera.height}},
-      {"stencil", stencil},
+      {"stencil", stencil_choice_name(result.request.stencil_choice)},
       {"stencil_per_light", stencil_json(comparison.stencil)},
-      {"renderer", context.renderer()},
-      {"device", context.device()},
+      {"renderer", result.context.renderer()},
+      {"device", result.context.device()},
       {"lights", light_count},
-      {"triangles", merged.triangles.size()},
+      {"triangles", result.triangles},
       {"exact_seconds", exact.stats.seconds},
       {"exact",
        {{"tree_seconds", exact.stats.tree_seconds},
@@ -374,12 +428,12 @@ int run_diff(const DiffOptions& options) {
         {"rays", exact.stats.rays},
         {"counts", exact.stats.counts},
         {"footprint_seconds", exact.stats.footprint_seconds},
-        {"float_rounded_seconds", rounded_seconds},
-        {"ambiguous_pixels", ambiguous},
+        {"float_rounded_seconds", comparison.rounded_seconds},
+        {"ambiguous_pixels", ambiguous_pixels(exact)},
         {"lit_pixels", lit},
         {"no_hit_pixels", std::count(exact.hit_triangles.begin(), exact.hit_triangles.end(), kNoHit)}}},
       {"methods", nlohmann::json::object()},
-      {"passed", passed}};
+      {"passed", comparison.passed()}};
   for (const MethodRun& run : runs) summary["methods"][std::string(gpu::shadow_method_name(run.method))] = method_json(run, options);
   for (const SilhouetteVolumes& s : comparison.silhouettes)
     summary["methods"][std::string(gpu::shadow_method_name(s.method))]["casters"] = silhouette_casters_json(s);
@@ -394,103 +448,120 @@ int run_diff(const DiffOptions& options) {
                                  {"per_light", per_light}};
   }
   if (edge_maps)
-    summary["edge_maps"] = edge_maps_json(*edge_maps, edge_options.crease_degrees, edge_options.grazing_degrees);
-  if (!options.out.empty()) write_json_file(std::filesystem::path(options.out) / "summary.json", summary);
-  if (!options.json_file.empty()) write_json_file(options.json_file, summary);
+    summary["edge_maps"] = edge_maps_json(*edge_maps, result.edge_options.crease_degrees, result.edge_options.grazing_degrees);
+  return summary;
+}
 
-  if (!options.report.empty()) {
-    DiffReport report;
-    report.title = "shadowcert diff: " + options.input;
-    report.passed = passed;
-    report.facts = {{"image", fmt::format("{}x{}, {} light(s), {} triangles", scene.camera.width, scene.camera.height,
-                                          light_count, merged.triangles.size())},
-                    {"stencil", stencil_facts(stencil_choice, comparison)},
-                    {"renderer", context.renderer()},
-                    {"exact image", fmt::format("{:.2f} s (tree {:.2f}, hits {:.2f}, footprints {:.2f}, counts {:.2f}; "
-                                                "{} rays, {} counts), and {:.2f} s for the float-rounded scene",
-                                                exact.stats.seconds, exact.stats.tree_seconds, exact.stats.hit_seconds,
-                                                exact.stats.footprint_seconds, exact.stats.count_seconds,
-                                                exact.stats.rays, exact.stats.counts,
-                                                rounded_seconds)}};
+// Step 7: --report's page.
+void write_html_report(const DiffResult& result) {
+  const Scene& scene = result.scene;
+  const DiffOptions& options = result.options;
+  const SceneComparison& comparison = result.comparison;
+  const ExactImage& exact = comparison.exact;
+  const std::vector<MethodRun>& runs = comparison.runs;
+  const std::size_t light_count = scene.lights.size();
+  const std::optional<EdgeMapComparison>& edge_maps = result.edge_maps;
+  DiffReport report;
+  report.title = "shadowcert diff: " + options.input;
+  report.passed = comparison.passed();
+  report.facts = {{"image", fmt::format("{}x{}, {} light(s), {} triangles", scene.camera.width, scene.camera.height,
+                                        light_count, result.triangles)},
+                  {"stencil", stencil_facts(result.request.stencil_choice, comparison)},
+                  {"renderer", result.context.renderer()},
+                  {"exact image", fmt::format("{:.2f} s (tree {:.2f}, hits {:.2f}, footprints {:.2f}, counts {:.2f}; "
+                                              "{} rays, {} counts), and {:.2f} s for the float-rounded scene",
+                                              exact.stats.seconds, exact.stats.tree_seconds, exact.stats.hit_seconds,
+                                              exact.stats.footprint_seconds, exact.stats.count_seconds,
+                                              exact.stats.rays, exact.stats.counts,
+                                              comparison.rounded_seconds)}};
+  for (const MethodRun& run : runs)
+    if (const std::optional<AnalyticCounts> analytic = run.analytic())
+      report.facts.emplace_back("analytic shadow, " + std::string(gpu::shadow_method_name(run.method)),
+                                analytic_fact(*analytic));
+  for (std::size_t k = 0; k < comparison.soft.size(); ++k) {
+    const SoftReference& r = comparison.soft[k];
+    report.facts.emplace_back(
+        "soft reference" + (light_count > 1 ? fmt::format(", light {}", k) : std::string()),
+        fmt::format("{}, {} samples (a pixel's 95% half-width {:.3f}), {:.2f} s; error images: method minus "
+                    "reference, blue too dark, red too bright, green where coverage differs",
+                    soft_light_text(scene.lights[k], comparison.soft_radius, comparison.soft_angle_degrees),
+                    r.image.samples.size(), reference_half_width(static_cast<std::uint32_t>(r.image.samples.size())),
+                    r.image.stats.seconds + r.contact_seconds));
     for (const MethodRun& run : runs)
-      if (const std::optional<AnalyticCounts> analytic = run.analytic())
-        report.facts.emplace_back("analytic shadow, " + std::string(gpu::shadow_method_name(run.method)),
-                                  analytic_fact(*analytic));
-    for (std::size_t k = 0; k < comparison.soft.size(); ++k) {
-      const SoftReference& r = comparison.soft[k];
-      report.facts.emplace_back(
-          "soft reference" + (light_count > 1 ? fmt::format(", light {}", k) : std::string()),
-          fmt::format("{}, {} samples (a pixel's 95% half-width {:.3f}), {:.2f} s; error images: method minus "
-                      "reference, blue too dark, red too bright, green where coverage differs",
-                      soft_light_text(scene.lights[k], comparison.soft_radius, comparison.soft_angle_degrees),
-                      r.image.samples.size(), reference_half_width(static_cast<std::uint32_t>(r.image.samples.size())),
-                      r.image.stats.seconds + r.contact_seconds));
-      for (const MethodRun& run : runs)
-        if (run.lights[k].soft)
-          report.facts.emplace_back("soft error, " + std::string(gpu::shadow_method_name(run.method)) +
-                                        (light_count > 1 ? fmt::format(", light {}", k) : std::string()),
-                                    soft_fact(*run.lights[k].soft));
-    }
-    for (const MethodRun& run : runs)
-      report.rows.push_back({std::string(gpu::shadow_method_name(run.method)), run.held_robust,
-                             run.sum(&PixelComparison::hard_errors), run.sum(&PixelComparison::ambiguous),
-                             run.sum(&PixelComparison::agree), run.closed(), run.gl_ms(),
-                             gpu::uses_shadow_map(run.method)
-                                 ? fmt::format("{0}x{0} depth map", options.shadowmap_size)
-                                 : std::string()});
-    for (std::size_t k = 0; k < light_count; ++k) {
-      const std::string s = light_count > 1 ? fmt::format(", light {}", k) : std::string();
-      for (const auto& [name, image] : exact_images(k)) {
-        // The counts in viridis with a legend (n mod 256 in gray is all but black).
-        if (name.rfind("exact_counts", 0) == 0) {
-          report.exact_images.push_back(
-              {name + " (viridis, legend below)" + s, gpu::encode_png(count_colour_image(exact, k, counts_top))});
-          continue;
-        }
-        report.exact_images.push_back({name + s, gpu::encode_png(image)});
-      }
-      if (!comparison.soft.empty()) {
-        const SoftReference& r = comparison.soft[k];
-        report.exact_images.push_back(
-            {"soft reference light" + s, gpu::encode_png(light_image_gray(r.image.width, r.image.height, r.image.light))});
-        report.exact_images.push_back({"soft reference regions (umbra black, penumbra gray, contact red)" + s,
-                                       gpu::encode_png(soft_region_image(r))});
-        report.exact_images.push_back({"error colours: -1 (too dark) to +1 (too bright)",
-                                       gpu::encode_png(diverging_colour_bar(256, 16))});
-      }
-      for (const MethodRun& run : runs) {
-        const std::string name(gpu::shadow_method_name(run.method));
-        report.method_images.push_back(
-            {name + s,
-             {{name + " overlay" + s, gpu::encode_png(overlay(run.lights[k].frame.colour, run.lights[k].comparison))},
-              {name + " lit mask" + s, gpu::encode_png(gl_mask(run.lights[k].frame))},
-              {"exact lit mask" + s, gpu::encode_png(exact_mask(exact, k))}}});
-        if (!comparison.soft.empty()) {
-          const gpu::StencilShadowFrame& f = run.lights[k].frame;
-          report.method_images.back().second.push_back(
-              {name + " light" + s, gpu::encode_png(light_image_gray(scene.camera.width, scene.camera.height,
-                                                                       f.first_light))});
-          report.method_images.back().second.push_back(
-              {name + " soft error" + s, gpu::encode_png(soft_error_image(comparison.soft[k].image, f.first_light))});
-        }
-      }
-    }
-    report.counts_legend = counts_legend(counts_top);
-    if (edge_maps) {
-      for (auto& fact : edge_map_facts(*edge_maps)) report.facts.push_back(std::move(fact));
-      report.method_images.push_back({"edge maps", edge_map_report_images(*edge_maps)});
-    }
-    write_diff_report(options.report, report);
+      if (run.lights[k].soft)
+        report.facts.emplace_back("soft error, " + std::string(gpu::shadow_method_name(run.method)) +
+                                      (light_count > 1 ? fmt::format(", light {}", k) : std::string()),
+                                  soft_fact(*run.lights[k].soft));
   }
+  for (const MethodRun& run : runs)
+    report.rows.push_back({std::string(gpu::shadow_method_name(run.method)), run.held_robust,
+                           run.sum(&PixelComparison::hard_errors), run.sum(&PixelComparison::ambiguous),
+                           run.sum(&PixelComparison::agree), run.closed(), run.gl_ms(),
+                           gpu::uses_shadow_map(run.method)
+                               ? fmt::format("{0}x{0} depth map", options.shadowmap_size)
+                               : std::string()});
+  for (std::size_t k = 0; k < light_count; ++k) {
+    const std::string s = light_count > 1 ? fmt::format(", light {}", k) : std::string();
+    for (const auto& [name, image] : exact_images(exact, k)) {
+      // The counts in viridis with a legend (n mod 256 in gray is all but black).
+      if (name.rfind("exact_counts", 0) == 0) {
+        report.exact_images.push_back(
+            {name + " (viridis, legend below)" + s, gpu::encode_png(count_colour_image(exact, k, counts_top(exact)))});
+        continue;
+      }
+      report.exact_images.push_back({name + s, gpu::encode_png(image)});
+    }
+    if (!comparison.soft.empty()) {
+      const SoftReference& r = comparison.soft[k];
+      report.exact_images.push_back(
+          {"soft reference light" + s, gpu::encode_png(light_image_gray(r.image.width, r.image.height, r.image.light))});
+      report.exact_images.push_back({"soft reference regions (umbra black, penumbra gray, contact red)" + s,
+                                     gpu::encode_png(soft_region_image(r))});
+      report.exact_images.push_back({"error colours: -1 (too dark) to +1 (too bright)",
+                                     gpu::encode_png(diverging_colour_bar(256, 16))});
+    }
+    for (const MethodRun& run : runs) {
+      const std::string name(gpu::shadow_method_name(run.method));
+      report.method_images.push_back(
+          {name + s,
+           {{name + " overlay" + s, gpu::encode_png(overlay(run.lights[k].frame.colour, run.lights[k].comparison))},
+            {name + " lit mask" + s, gpu::encode_png(gl_mask(run.lights[k].frame))},
+            {"exact lit mask" + s, gpu::encode_png(exact_mask(exact, k))}}});
+      if (!comparison.soft.empty()) {
+        const gpu::StencilShadowFrame& f = run.lights[k].frame;
+        report.method_images.back().second.push_back(
+            {name + " light" + s, gpu::encode_png(light_image_gray(scene.camera.width, scene.camera.height,
+                                                                     f.first_light))});
+        report.method_images.back().second.push_back(
+            {name + " soft error" + s, gpu::encode_png(soft_error_image(comparison.soft[k].image, f.first_light))});
+      }
+    }
+  }
+  report.counts_legend = counts_legend(counts_top(exact));
+  if (edge_maps) {
+    for (auto& fact : edge_map_facts(*edge_maps)) report.facts.push_back(std::move(fact));
+    report.method_images.push_back({"edge maps", edge_map_report_images(*edge_maps)});
+  }
+  write_diff_report(options.report, report);
+}
 
-  fmt::print("{}: {} triangles, {} light(s), {}x{}, {} on {}\n", options.input, merged.triangles.size(), light_count,
-             scene.camera.width, scene.camera.height, stencil, context.renderer());
+// Step 8: the tables on stdout.
+void print_diff(const DiffResult& result) {
+  const Scene& scene = result.scene;
+  const DiffOptions& options = result.options;
+  const SceneComparison& comparison = result.comparison;
+  const ExactImage& exact = comparison.exact;
+  const std::vector<MethodRun>& runs = comparison.runs;
+  const std::size_t light_count = scene.lights.size();
+  const std::optional<EdgeMapComparison>& edge_maps = result.edge_maps;
+  fmt::print("{}: {} triangles, {} light(s), {}x{}, {} on {}\n", options.input, result.triangles, light_count,
+             scene.camera.width, scene.camera.height, stencil_choice_name(result.request.stencil_choice), result.context.renderer());
   print_stencil(comparison.stencil);
   for (const SilhouetteVolumes& s : comparison.silhouettes) print_silhouette_casters(s);
   fmt::print("  exact image: {:.2f} s (tree {:.2f}, hits {:.2f}, footprints {:.2f}, counts {:.2f}), float-rounded "
              "scene {:.2f} s; ambiguous pixels {}\n",
              exact.stats.seconds, exact.stats.tree_seconds, exact.stats.hit_seconds, exact.stats.footprint_seconds,
-             exact.stats.count_seconds, rounded_seconds, ambiguous.dump());
+             exact.stats.count_seconds, comparison.rounded_seconds, ambiguous_pixels(exact).dump());
   fmt::print("  {:<10} {:>11} {:>10} {:>10} {:>7} {:>9}\n", "method", "hard errors", "ambiguous", "agree", "closed",
              "gl ms");
   for (const MethodRun& run : runs) {
@@ -519,9 +590,28 @@ int run_diff(const DiffOptions& options) {
       if (run.lights[k].soft)
         fmt::print("  {:<10} {}\n", gpu::shadow_method_name(run.method), soft_line(*run.lights[k].soft));
   }
-  fmt::print("  {}\n", passed ? "passed: no robust method has a hard error or an open volume"
+  fmt::print("  {}\n", comparison.passed() ? "passed: no robust method has a hard error or an open volume"
                               : "FAILED: a robust method has a hard error or an open volume");
-  return passed ? kExitOk : kExitCheckFailed;
+}
+
+int run_diff(const DiffOptions& options) {
+  const DiffRequest request = validate_diff(options);                       // 1. the options
+  const DiffScene d = load_diff_scene(options);                             // 2. the scene
+  const gpu::EglContext context = gpu::open_gl_context("diff", options.device);
+  const SceneComparison comparison =                                        // 3, 4. exact image and GL
+      compare_scene(d.scene, request.methods, comparison_options_of(request, options));
+  // --edges: the edge maps' scores (reported, never a failure).
+  const EdgeMapComparisonOptions edge_options;
+  std::optional<EdgeMapComparison> edge_maps;
+  if (options.edges) edge_maps = compare_edge_maps(d.scene, edge_options);
+  const DiffResult r{options, request, d.scene, d.triangles, context, comparison, edge_options, edge_maps};
+  if (!options.out.empty()) write_diff_images(r);                           // 5. images
+  const nlohmann::json summary = diff_summary(r);                           // 6. summary
+  if (!options.out.empty()) write_json_file(std::filesystem::path(options.out) / "summary.json", summary);
+  if (!options.json_file.empty()) write_json_file(options.json_file, summary);
+  if (!options.report.empty()) write_html_report(r);                        // 7. report
+  print_diff(r);                                                            // 8. tables
+  return comparison.passed() ? kExitOk : kExitCheckFailed;
 }
 
 }  // namespace

@@ -9,6 +9,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "pipeline/method_registry.h"
+
 namespace shadowcert::cli {
 
 void apply_image_size(const std::string& size, Camera& camera, const std::string& option) {
@@ -39,13 +41,8 @@ void check_light_angle(double degrees, bool zero_allowed, const std::string& opt
 }
 
 gpu::ShadowMethod shadow_method_option(const std::string& name, const std::string& option) {
-  const std::optional<gpu::ShadowMethod> method = gpu::parse_shadow_method(name);
-  if (method) return *method;
-  std::string names;
-  for (gpu::ShadowMethod m : gpu::kShadowMethods) names += (names.empty() ? "" : ", ") + std::string(gpu::shadow_method_name(m));
-  for (gpu::ShadowMethod m : gpu::kSilhouetteMethods) names += ", " + std::string(gpu::shadow_method_name(m));
-  for (gpu::ShadowMethod m : gpu::kSoftShadowMethods) names += ", " + std::string(gpu::shadow_method_name(m));
-  throw CLI::ValidationError(option, "unknown method '" + name + "': use " + names);
+  if (const MethodEntry* entry = find_method(name)) return entry->method;
+  throw CLI::ValidationError(option, "unknown method '" + name + "': use " + method_names());
 }
 
 StencilChoice stencil_option(const std::string& stencil, bool zpass, bool zfail) {
@@ -80,16 +77,11 @@ ShardOption shard_option(const std::string& text, const std::string& option) {
 }
 
 std::vector<gpu::ShadowMethod> shadow_methods_option(const std::string& list, const std::string& option) {
-  if (list.empty()) return {gpu::kShadowMethods.begin(), gpu::kShadowMethods.end()};
-  std::vector<gpu::ShadowMethod> methods;
-  std::size_t start = 0;
-  while (start <= list.size()) {
-    const std::size_t comma = std::min(list.find(',', start), list.size());
-    const gpu::ShadowMethod method = shadow_method_option(list.substr(start, comma - start), option);
-    if (std::find(methods.begin(), methods.end(), method) == methods.end()) methods.push_back(method);
-    start = comma + 1;
+  try {
+    return parse_method_list(list);
+  } catch (const std::invalid_argument& e) {
+    throw CLI::ValidationError(option, e.what());
   }
-  return methods;
 }
 
 }  // namespace shadowcert::cli

@@ -1,8 +1,8 @@
 #pragma once
 // Values of the options several subcommands share, read in one place with one message each:
 // `--size WxH` (the camera's image size, each side in [1, kMaxImageSide], core/camera.h:
-// GL_MAX_RENDERBUFFER_SIZE of every driver we target) and GL method names (render --method,
-// diff --methods, fuzz --gl-methods), read by gpu::parse_shadow_method, and the stencil choice
+// GL_MAX_RENDERBUFFER_SIZE of every driver we target) and method names (render --method,
+// diff --methods, fuzz --gl-methods), read from pipeline/method_registry.h, and the stencil choice
 // (--stencil and its aliases --zpass and --zfail).
 #include <cstdint>
 #include <string>
@@ -52,8 +52,9 @@ struct ShardOption {
 };
 [[nodiscard]] ShardOption shard_option(const std::string& text, const std::string& option = "--shard");
 
-// A comma-separated list of method names, duplicates dropped, in the list's order; empty:
-// every method (gpu::kShadowMethods). Throws as shadow_method_option.
+// A comma-separated list of method names, duplicates dropped, in the list's order; "all" (or an
+// empty list): the registry's in_all methods (pipeline/method_registry.h's parse_method_list).
+// Throws CLI::ValidationError naming `option`, the unknown name and the names.
 [[nodiscard]] std::vector<gpu::ShadowMethod> shadow_methods_option(const std::string& list, const std::string& option);
 
 }  // namespace shadowcert::cli

@@ -31,6 +31,7 @@
 #include "gpu/png_image.h"
 #include "gpu/shadow_method_renderer.h"
 #include "pipeline/method_inputs.h"
+#include "pipeline/method_registry.h"
 #include "pipeline/scene_smoothies.h"
 #include "pipeline/stencil_choice.h"
 #include "scene/merged_soup.h"
@@ -79,6 +80,8 @@ struct ValidatedRenderOptions {
   StencilChoice stencil;
 };
 
+// ---- step 1: the options, checked before any file is read -------------------------------------
+
 // --pcf and --pcss name their method: alone they choose it, with --method they must agree.
 gpu::ShadowMethod method_of(const RenderOptions& options) {
   gpu::ShadowMethod method = shadow_method_option(options.method, "--method");
@@ -103,39 +106,33 @@ ValidatedRenderOptions validate(const RenderOptions& options) {
     throw CLI::ValidationError("--pcf", fmt::format("K must be odd and in [1, {}] (K x K taps centred on the "
                                                     "point's texel), got {}",
                                                     gpu::kMaxPcfKernel, *options.pcf));
-  if (options.light_radius) {
-    if (method != gpu::ShadowMethod::pcss)
-      throw CLI::ValidationError("--light-radius", "is pcss's light size: use it with --pcss or --method pcss");
-    if (!std::isfinite(*options.light_radius) || !(*options.light_radius > 0.0))
-      throw CLI::ValidationError("--light-radius",
-                                 fmt::format("must be finite and > 0 (world units), got {}", *options.light_radius));
-  }
-  if (options.light_angle) {
-    if (method != gpu::ShadowMethod::pcss)
-      throw CLI::ValidationError("--light-angle", "is pcss's light size: use it with --pcss or --method pcss");
-    check_light_angle(*options.light_angle);
-  }
-  if (options.smoothie_width) {
-    if (method != gpu::ShadowMethod::smoothie)
-      throw CLI::ValidationError("--smoothie-width", "is the smoothie method's: use it with --method smoothie");
-    if (!std::isfinite(*options.smoothie_width) || !(*options.smoothie_width > 0.0))
-      throw CLI::ValidationError("--smoothie-width", fmt::format("must be finite and > 0 (world units), got {}",
-                                                                 *options.smoothie_width));
-  }
-  if (options.smoothie_space && method != gpu::ShadowMethod::smoothie)
-    throw CLI::ValidationError("--smoothie-space", "is the smoothie method's: use it with --method smoothie");
-  if (gpu::uses_shadow_map(method)) {
-    if (options.shadowmap_size < 1 || options.shadowmap_size > gpu::kMaxShadowMapSize)
-      throw CLI::ValidationError("--shadowmap-size", fmt::format("must be in [1, {}] (a {}^2 depth texture), got {}",
-                                                                 gpu::kMaxShadowMapSize, gpu::kMaxShadowMapSize,
-                                                                 options.shadowmap_size));
-    const std::string_view name = gpu::shadow_method_name(method);
-    if (stencil != StencilChoice::zfail)
-      throw CLI::ValidationError(options.zpass ? "--zpass" : "--stencil",
-                                 fmt::format("is a stencil option; {} counts no volume", name));
-    if (!options.capture.empty())
-      throw CLI::ValidationError("--capture", fmt::format("{} draws no volume to capture", name));
-  }
+  // What the method reads is its registry entry's (pipeline/method_registry.h): an option of
+  // another method is refused, naming the methods that read it.
+  const MethodEntry& entry = method_entry(method);
+  const auto refuse_unread = [&](MethodOption option, bool given, const std::string& flag) {
+    if (given && !entry.reads(option))
+      throw CLI::ValidationError(flag, fmt::format("is read by {} only; --method {} does not read it",
+                                                   methods_reading(option), entry.name()));
+  };
+  refuse_unread(MethodOption::light_radius, options.light_radius.has_value(), "--light-radius");
+  refuse_unread(MethodOption::light_radius, options.light_angle.has_value(), "--light-angle");
+  refuse_unread(MethodOption::smoothie, options.smoothie_width.has_value(), "--smoothie-width");
+  refuse_unread(MethodOption::smoothie, options.smoothie_space.has_value(), "--smoothie-space");
+  refuse_unread(MethodOption::capture, !options.capture.empty(), "--capture");
+  // z-fail is every volume's default: only another choice says a volume is to be counted.
+  refuse_unread(MethodOption::stencil, stencil != StencilChoice::zfail, options.zpass ? "--zpass" : "--stencil");
+  if (options.light_radius && (!std::isfinite(*options.light_radius) || !(*options.light_radius > 0.0)))
+    throw CLI::ValidationError("--light-radius",
+                               fmt::format("must be finite and > 0 (world units), got {}", *options.light_radius));
+  if (options.light_angle) check_light_angle(*options.light_angle);
+  if (options.smoothie_width && (!std::isfinite(*options.smoothie_width) || !(*options.smoothie_width > 0.0)))
+    throw CLI::ValidationError("--smoothie-width", fmt::format("must be finite and > 0 (world units), got {}",
+                                                               *options.smoothie_width));
+  if (entry.reads(MethodOption::shadow_map) &&
+      (options.shadowmap_size < 1 || options.shadowmap_size > gpu::kMaxShadowMapSize))
+    throw CLI::ValidationError("--shadowmap-size", fmt::format("must be in [1, {}] (a {}^2 depth texture), got {}",
+                                                               gpu::kMaxShadowMapSize, gpu::kMaxShadowMapSize,
+                                                               options.shadowmap_size));
   return {method, stencil};
 }
 
@@ -148,226 +145,313 @@ std::uint64_t count_pixels(const gpu::RgbaImage& colour, const gpu::GrayImage& s
   return n;
 }
 
-int run_render(const RenderOptions& options) {
-  const auto start = Clock::now();
-  const auto [method, stencil_choice] = validate(options);
-  const bool shadowmap = gpu::uses_shadow_map(method);  // shadowmap, pcf, pcss, smoothie
+// ---- step 2: the scene as GL draws it ----------------------------------------------------------
+
+struct DrawnScene {
+  Scene scene;   // in its eye's frame
+  Soup merged;   // every mesh: the receivers
+  Soup casters;  // the meshes that cast (SceneMesh::casts): the volumes'
+  gpu::SceneBounds bounds;
+};
+
+// GL is given the scene in its eye's frame (core/eye_frame.h; docs/diff.md): every position
+// minus the eye in double, rounded once to float on upload.
+DrawnScene load_drawn_scene(const RenderOptions& options) {
   Scene scene = load_image_scene(options.input);
   if (scene.lights.empty()) throw InputError(options.input, "the scene has no light");
   apply_image_size(options.size, scene.camera);
-  // GL is given the scene in its eye's frame (core/eye_frame.h; docs/diff.md): every position
-  // minus the eye in double, rounded once to float on upload.
-  scene = eye_relative_scene(scene);
-  const Soup merged = merged_soup(scene);
-  if (merged.triangles.empty()) throw InputError(options.input, "no triangle to render");
-  // Every mesh is drawn; only the casting ones (SceneMesh::casts) make the volumes.
-  const Soup casters = merged_casters(scene);
+  DrawnScene d{eye_relative_scene(scene), {}, {}, {}};
+  d.merged = merged_soup(d.scene);
+  if (d.merged.triangles.empty()) throw InputError(options.input, "no triangle to render");
+  d.casters = merged_casters(d.scene);
+  d.bounds = gpu::soup_bounds(d.merged);
+  return d;
+}
 
+// ---- step 3: the method's inputs ---------------------------------------------------------------
+
+struct PreparedMethod {
+  MethodInputs inputs;
+  std::optional<SilhouetteVolumes> silhouette;  // discrete, accurate, smooth, smooth-gpu
+  std::vector<LightStencil> stencils;           // the volume methods: each light's
+  double light_radius = 0.0;                    // pcss: the point lights' disk radius
+  double chain_seconds = 0.0, smoothie_seconds = 0.0, proof_seconds = 0.0;
+};
+
+PreparedMethod prepare_method(const DrawnScene& d, const ValidatedRenderOptions& v, const RenderOptions& options) {
+  PreparedMethod p;
   // The methods' inputs (pipeline/method_inputs.h): the canonical soup and edge table (the
   // GPU-built methods read them), and for cpu one exact chain per light
   // (docs/definitions.md#counts) of the float-rounded input, as homogeneous floats.
   auto stage = Clock::now();
-  const std::array methods{method};
-  MethodInputs inputs = prepare_method_inputs(casters, scene.lights, methods);
+  const std::array methods{v.method};
+  p.inputs = prepare_method_inputs(d.casters, d.scene.lights, methods);
   // discrete, accurate, smooth: each qualifying mesh's smooth-silhouette volume, the robust
   // chain of the others (pipeline/silhouette_volumes.h), drawn as cpu's volumes are; smooth-gpu:
   // the smooth casters for the GPU to build every frame, the others' volumes as given.
-  std::optional<SilhouetteVolumes> silhouette;
-  if (gpu::is_silhouette_method(method)) {
+  if (gpu::is_silhouette_method(v.method)) {
     SilhouetteOptions silhouette_options = options.silhouette;
-    silhouette_options.near_plane = scene.camera.near_plane;  // the scene is in the eye's frame
-    silhouette = silhouette_volumes(scene.meshes, scene.lights, method, silhouette_options);
-    inputs.cpu_volumes = silhouette->per_light;
-    inputs.smooth_casters = silhouette->gpu_casters;
+    silhouette_options.near_plane = d.scene.camera.near_plane;  // the scene is in the eye's frame
+    p.silhouette = silhouette_volumes(d.scene.meshes, d.scene.lights, v.method, silhouette_options);
+    p.inputs.cpu_volumes = p.silhouette->per_light;
+    p.inputs.smooth_casters = p.silhouette->gpu_casters;
   }
-  const double chain_seconds = seconds_since(stage);
+  p.chain_seconds = seconds_since(stage);
   // smoothie: every light's smoothies on the CPU (pipeline/scene_smoothies.h), once.
-  const gpu::SceneBounds bounds = gpu::soup_bounds(merged);
   stage = Clock::now();
-  if (method == gpu::ShadowMethod::smoothie) {
+  if (v.method == gpu::ShadowMethod::smoothie) {
     SceneSmoothieOptions smoothie;
     smoothie.width = options.smoothie_width.value_or(0.0);
     smoothie.space = *parse_smoothie_space(options.smoothie_space.value_or("world"));  // CLI11 checked it
-    add_smoothies(inputs, scene.lights, bounds, smoothie);
+    add_smoothies(p.inputs, d.scene.lights, d.bounds, smoothie);
   }
-  const double smoothie_seconds = seconds_since(stage);
-  const double light_radius =
-      method == gpu::ShadowMethod::pcss ? options.light_radius.value_or(gpu::default_light_radius(bounds)) : 0.0;
-
+  p.smoothie_seconds = seconds_since(stage);
+  if (v.method == gpu::ShadowMethod::pcss) p.light_radius = options.light_radius.value_or(gpu::default_light_radius(d.bounds));
   // Each light's stencil method (pipeline/stencil_choice.h); auto proves z-pass per light at
-  // the camera, exactly, on the float-rounded casters.
+  // the camera, exactly, on the float-rounded casters. The proof is about the exact chain: a
+  // smooth-silhouette volume is counted with z-fail.
   stage = Clock::now();
-  std::vector<LightStencil> stencils;
-  // The z-pass proof is about the exact chain: a smooth-silhouette volume is counted with z-fail.
-  if (!shadowmap) stencils = choose_stencil(silhouette ? StencilChoice::zfail : stencil_choice, inputs, scene.lights,
-                                            scene.camera);
-  const double proof_seconds = seconds_since(stage);
+  if (gpu::draws_volume(v.method))
+    p.stencils = choose_stencil(p.silhouette ? StencilChoice::zfail : v.stencil, p.inputs, d.scene.lights,
+                                d.scene.camera);
+  p.proof_seconds = seconds_since(stage);
+  return p;
+}
 
-  const gpu::EglContext context = gpu::open_gl_context("render", options.device);
+// ---- step 4: the renderer's options ------------------------------------------------------------
 
-  stage = Clock::now();
-  const std::vector<gpu::ShadedSoupPart> parts = shaded_parts(scene);
-  const gpu::ShadowMethodScene method_scene_ = method_scene(inputs, parts, scene.lights);
-  gpu::ShadowMethodOptions method_options;
-  method_options.light_stencil = stencil_methods(stencils);
-  if (shadowmap) method_options.shadow_map_size = static_cast<std::uint32_t>(options.shadowmap_size);
-  method_options.shadow_map_bias = options.shadowmap_bias;
-  method_options.sign = *gpu::parse_sign_mode(options.sign);  // CLI11 checked the name
-  method_options.shadow_map_slope = options.shadowmap_slope;
-  method_options.pcf_kernel = static_cast<std::uint32_t>(options.pcf.value_or(gpu::kDefaultPcfKernel));
-  method_options.light_radius = light_radius;
-  method_options.light_angle_degrees = options.light_angle.value_or(gpu::kDefaultLightAngleDegrees);
+gpu::ShadowMethodOptions renderer_options(const ValidatedRenderOptions& v, const PreparedMethod& p,
+                                          const RenderOptions& options) {
+  gpu::ShadowMethodOptions o;
+  o.light_stencil = stencil_methods(p.stencils);
+  if (gpu::uses_shadow_map(v.method)) o.shadow_map_size = static_cast<std::uint32_t>(options.shadowmap_size);
+  o.shadow_map_bias = options.shadowmap_bias;
+  o.shadow_map_slope = options.shadowmap_slope;
+  o.sign = *gpu::parse_sign_mode(options.sign);  // CLI11 checked the name
+  o.pcf_kernel = static_cast<std::uint32_t>(options.pcf.value_or(gpu::kDefaultPcfKernel));
+  o.light_radius = p.light_radius;
+  o.light_angle_degrees = options.light_angle.value_or(gpu::kDefaultLightAngleDegrees);
   // The first light's volume fill in the first frame (two occlusion queries; the timed frames
   // do without): what a method costs the rasteriser, whatever the machine.
-  method_options.count_fragments = !shadowmap;
-  gpu::ShadowMethodRenderer renderer(method, method_scene_, method_options);
-  const gpu::OffscreenTarget target(scene.camera.width, scene.camera.height);
-  const double upload_seconds = seconds_since(stage);
+  o.count_fragments = gpu::draws_volume(v.method);
+  return o;
+}
 
-  stage = Clock::now();
-  const gpu::StencilShadowFrame frame = renderer.render(target, scene.camera);
-  try {
-    // GPU-built volumes are sized for the worst case but clamped to what storage blocks
-    // address: say so rather than report the image of a partial (open) volume. As in diff,
-    // where the same overflow is recorded and fails the method, it is the method failing on
-    // this input (exit 1), not an error in the input (docs/cli.md, "Exit codes").
-    renderer.check_capacity();
-  } catch (const gpu::VolumeCapacityError& e) {
-    fmt::print(stderr, "shadowcert render: {}: {}; nothing written\n", options.input, e.what());
-    return kExitCheckFailed;
-  }
-  const std::uint64_t volume_triangles = renderer.volume_triangles();
-  const double first_frame_seconds = seconds_since(stage);
+// ---- step 5: the frames ------------------------------------------------------------------------
 
-  std::optional<gpu::FrameTiming> timing;
-  double frame_ms = 0.0;
+struct RenderedFrames {
+  gpu::StencilShadowFrame first;  // read back
+  std::uint64_t volume_triangles = 0;
+  double first_frame_seconds = 0.0;
+  std::optional<gpu::FrameTiming> timing;  // --timing
+  double frame_ms = 0.0;                   // mean wall ms of the timed frames
   std::size_t mean_frames = kPlainTimedFrames;
+};
+
+// The first frame, read back, then the timed ones. Throws gpu::VolumeCapacityError when a
+// GPU-built volume overflowed its buffers in the first frame.
+RenderedFrames render_frames(gpu::ShadowMethodRenderer& renderer, const gpu::OffscreenTarget& target,
+                             const Camera& camera, const gpu::EglContext& context, const RenderOptions& options) {
+  RenderedFrames f;
+  const auto stage = Clock::now();
+  f.first = renderer.render(target, camera);
+  // GPU-built volumes are sized for the worst case but clamped to what storage blocks address:
+  // the caller says so rather than report the image of a partial (open) volume.
+  renderer.check_capacity();
+  f.volume_triangles = renderer.volume_triangles();
+  f.first_frame_seconds = seconds_since(stage);
   if (options.timing) {
     // A software renderer's timer queries do not time its stages (gpu/gpu_stage_timer.h):
     // there each stage is bounded by glFinish and timed on the wall clock as well.
     const gpu::StageSync sync = context.software() ? gpu::StageSync::finish : gpu::StageSync::none;
-    timing = renderer.time_frames(target, scene.camera, kTimingWarmUpFrames, options.frames, sync);
-    frame_ms = timing->mean_cpu_ms;
-    mean_frames = timing->frames;
+    f.timing = renderer.time_frames(target, camera, kTimingWarmUpFrames, options.frames, sync);
+    f.frame_ms = f.timing->mean_cpu_ms;
+    f.mean_frames = f.timing->frames;
   } else {
-    const std::vector<double> wall_ms = renderer.render_frames(target, scene.camera, kPlainTimedFrames);
-    frame_ms = std::accumulate(wall_ms.begin(), wall_ms.end(), 0.0) / static_cast<double>(wall_ms.size());
+    const std::vector<double> wall_ms = renderer.render_frames(target, camera, kPlainTimedFrames);
+    f.frame_ms = std::accumulate(wall_ms.begin(), wall_ms.end(), 0.0) / static_cast<double>(wall_ms.size());
   }
+  return f;
+}
 
+// ---- step 6: the files -------------------------------------------------------------------------
+
+void write_outputs(const RenderOptions& options, const Camera& camera, const RenderedFrames& f,
+                   const gpu::ShadowMethodRenderer& renderer) {
+  const gpu::StencilShadowFrame& frame = f.first;
   for (const std::string& file : {options.out, options.counts, options.mask}) create_parent_directories(file);
-  if (!options.light_image.empty())
-    write_light_image(options.light_image, scene.camera.width, scene.camera.height, frame.first_light);
+  if (!options.light_image.empty()) write_light_image(options.light_image, camera.width, camera.height, frame.first_light);
   if (!options.out.empty()) gpu::write_png(options.out, frame.colour);
   if (!options.counts.empty()) gpu::write_png(options.counts, frame.first_stencil);
   if (!options.mask.empty()) gpu::write_png(options.mask, frame.first_lit_mask);
   if (!options.capture.empty()) {  // what was drawn, so that certify --volume checks the GPU's own output
     create_parent_directories(options.capture);
     write_volume_file(options.capture, renderer.first_volume(),
-                          options.input + ", method " + options.method + ", first light");
+                      options.input + ", method " + options.method + ", first light");
   }
-  const std::uint64_t lit = count_pixels(frame.colour, frame.first_stencil, true);
-  const std::uint64_t shadowed = count_pixels(frame.colour, frame.first_stencil, false);
-  const double seconds = seconds_since(start);
+}
 
-  const std::string_view stencil = stencil_choice_name(stencil_choice);
-  const std::string triangles =
-      casters.triangles.size() == merged.triangles.size()
-          ? fmt::format("{} triangles", merged.triangles.size())
-          : fmt::format("{} triangles ({} cast)", merged.triangles.size(), casters.triangles.size());
+// ---- step 7: the report ------------------------------------------------------------------------
+
+// Everything the report says, gathered once for the text and the JSON.
+struct RenderReport {
+  const RenderOptions& options;
+  const ValidatedRenderOptions& v;
+  const DrawnScene& d;
+  const PreparedMethod& p;
+  const gpu::ShadowMethodOptions& method_options;
+  const RenderedFrames& f;
+  const gpu::EglContext& context;
+  double upload_seconds = 0.0;
+  double seconds = 0.0;
+  std::uint64_t lit = 0, shadowed = 0;
   // The shadow-map methods' lights that one frustum cannot hold (a point light inside or next to
   // the scene's bounds): drawn with a cube map (gpu/shadow_map_renderer.h's light_views).
   std::vector<std::size_t> cube_lights;
-  if (shadowmap)
-    for (std::size_t k = 0; k < scene.lights.size(); ++k)
-      if (gpu::needs_cube_map(scene.lights[k], bounds)) cube_lights.push_back(k);
+};
+
+// The shadow-map family's parameters, as the registry says each method reads them.
+std::string shadow_map_parameters_text(const RenderReport& r) {
+  const MethodEntry& entry = method_entry(r.v.method);
+  std::string text = fmt::format("{}^2 (bias {}, slope {})", r.options.shadowmap_size, r.options.shadowmap_bias,
+                                 r.options.shadowmap_slope);
+  if (entry.reads(MethodOption::pcf_kernel))
+    text += fmt::format(", pcf {}x{}", r.method_options.pcf_kernel, r.method_options.pcf_kernel);
+  if (entry.reads(MethodOption::light_radius))
+    text += fmt::format(", light radius {:.6g} (point), angle {:.6g} degrees (directional)", r.p.light_radius,
+                        r.method_options.light_angle_degrees);
+  if (entry.reads(MethodOption::smoothie))
+    text += fmt::format(", smoothies {:.6g} wide in {} space", r.p.inputs.smoothies.width,
+                        smoothie_space_name(r.p.inputs.smoothies.space));
+  return text;
+}
+
+void print_report(const RenderReport& r) {
+  const Scene& scene = r.d.scene;
+  const bool shadowmap = gpu::uses_shadow_map(r.v.method);
+  const std::string triangles =
+      r.d.casters.triangles.size() == r.d.merged.triangles.size()
+          ? fmt::format("{} triangles", r.d.merged.triangles.size())
+          : fmt::format("{} triangles ({} cast)", r.d.merged.triangles.size(), r.d.casters.triangles.size());
   if (shadowmap) {
-    std::string filter;
-    if (method == gpu::ShadowMethod::pcf) filter = fmt::format(", pcf {}x{}", method_options.pcf_kernel, method_options.pcf_kernel);
-    if (method == gpu::ShadowMethod::pcss)
-      filter = fmt::format(", pcss light radius {:.6g} (point), angle {:.6g} degrees (directional)", light_radius,
-                           method_options.light_angle_degrees);
-    if (method == gpu::ShadowMethod::smoothie)
-      filter = fmt::format(", smoothies {:.6g} wide in {} space", inputs.smoothies.width,
-                           smoothie_space_name(inputs.smoothies.space));
-    fmt::print("{}: {}, {} lights, {}x{}, {} {}^2 (bias {}, slope {}){} on {}\n", options.input, triangles,
-               scene.lights.size(), scene.camera.width, scene.camera.height, gpu::shadow_method_name(method),
-               options.shadowmap_size, options.shadowmap_bias, options.shadowmap_slope, filter, context.renderer());
-    for (std::size_t k : cube_lights)
+    fmt::print("{}: {}, {} lights, {}x{}, {} {} on {}\n", r.options.input, triangles, scene.lights.size(),
+               scene.camera.width, scene.camera.height, gpu::shadow_method_name(r.v.method),
+               shadow_map_parameters_text(r), r.context.renderer());
+    for (std::size_t k : r.cube_lights)
       fmt::print("  light {}: inside or next to the scene's bounds: a cube map (six 90-degree faces)\n", k);
-    if (method == gpu::ShadowMethod::smoothie && !inputs.smoothies.stats.empty()) {
-      const SmoothieStats& st = inputs.smoothies.stats.front();
+    if (r.v.method == gpu::ShadowMethod::smoothie && !r.p.inputs.smoothies.stats.empty()) {
+      const SmoothieStats& st = r.p.inputs.smoothies.stats.front();
       fmt::print("  smoothies (first light): {} silhouette edges, {} quads, {} linked and {} shrunk corners, "
                  "{} zero-length and {} edge-on edges skipped, {} bisector fallbacks; {:.3f} s\n",
                  st.edges, st.smoothies, st.linked_corners, st.shrunk_corners, st.zero_length_edges,
-                 st.edge_on_edges, st.bisector_fallbacks, smoothie_seconds);
+                 st.edge_on_edges, st.bisector_fallbacks, r.p.smoothie_seconds);
     }
   } else {
-    fmt::print("{}: {}, {} lights, {}x{}, {}/{} on {}\n", options.input, triangles, scene.lights.size(),
-               scene.camera.width, scene.camera.height, options.method, stencil, context.renderer());
-    print_stencil(stencils);
-    if (silhouette) print_silhouette_casters(*silhouette);
-    fmt::print("  volume triangles (first light) {}; its fill: {} fragments, {} stencil updates\n", volume_triangles,
-               frame.first_volume_fragments, frame.first_stencil_updates);
+    fmt::print("{}: {}, {} lights, {}x{}, {}/{} on {}\n", r.options.input, triangles, scene.lights.size(),
+               scene.camera.width, scene.camera.height, r.options.method, stencil_choice_name(r.v.stencil),
+               r.context.renderer());
+    print_stencil(r.p.stencils);
+    if (r.p.silhouette) print_silhouette_casters(*r.p.silhouette);
+    fmt::print("  volume triangles (first light) {}; its fill: {} fragments, {} stencil updates\n",
+               r.f.volume_triangles, r.f.first.first_volume_fragments, r.f.first.first_stencil_updates);
   }
-  fmt::print("  first light: {} lit, {} shadowed receiver pixels\n", lit, shadowed);
+  fmt::print("  first light: {} lit, {} shadowed receiver pixels\n", r.lit, r.shadowed);
   fmt::print("  seconds: {}upload {:.3f}, first frame {:.3f}; {:.2f} ms per frame ({} frames)\n",
-             shadowmap ? "" : fmt::format("chains {:.3f}, ", chain_seconds), upload_seconds, first_frame_seconds,
-             frame_ms, mean_frames);
-  if (timing) print_frame_timing(*timing, kTimingWarmUpFrames);
+             shadowmap ? "" : fmt::format("chains {:.3f}, ", r.p.chain_seconds), r.upload_seconds,
+             r.f.first_frame_seconds, r.f.frame_ms, r.f.mean_frames);
+  if (r.f.timing) print_frame_timing(*r.f.timing, kTimingWarmUpFrames);
+}
 
-  if (!options.json_file.empty()) {
-    nlohmann::json report{{"input", options.input},
-                          {"method", gpu::shadow_method_name(method)},
-                          {"size", {scene.camera.width, scene.camera.height}},
-                          {"renderer", context.renderer()},
-                          {"device", context.device()},
-                          {"lights", scene.lights.size()},
-                          {"lit_pixels", lit},
-                          {"shadowed_pixels", shadowed},
-                          {"frame_ms", frame_ms},
-                          {"seconds", seconds}};
-    if (!options.light_image.empty())
-      report["light_image"] = {{"png", options.light_image},
-                               {"pfm", light_image_float_path(options.light_image).string()}};
-    if (shadowmap) {
-      report["shadowmap"] = {
-          {"size", options.shadowmap_size}, {"bias", options.shadowmap_bias}, {"slope", options.shadowmap_slope}};
-      report["stage_seconds"] = {{"upload", upload_seconds}, {"first_frame", first_frame_seconds}};
-      report["cube_lights"] = cube_lights;
-      if (method == gpu::ShadowMethod::pcf) report["pcf_kernel"] = method_options.pcf_kernel;
-      if (method == gpu::ShadowMethod::pcss) {
-        report["light_radius"] = light_radius;
-        report["light_angle_degrees"] = method_options.light_angle_degrees;
-      }
-      if (method == gpu::ShadowMethod::smoothie) {
-        nlohmann::json per_light = nlohmann::json::array();
-        for (const SmoothieStats& st : inputs.smoothies.stats)
-          per_light.push_back({{"silhouette_edges", st.edges},
-                               {"smoothies", st.smoothies},
-                               {"linked_corners", st.linked_corners},
-                               {"shrunk_corners", st.shrunk_corners},
-                               {"zero_length_edges", st.zero_length_edges},
-                               {"edge_on_edges", st.edge_on_edges},
-                               {"bisector_fallbacks", st.bisector_fallbacks}});
-        report["smoothie"] = {{"width", inputs.smoothies.width},
-                              {"space", smoothie_space_name(inputs.smoothies.space)},
-                              {"per_light", per_light}};
-        report["stage_seconds"]["smoothies"] = smoothie_seconds;
-      }
-    } else {
-      report["stencil"] = stencil;
-      report["stencil_per_light"] = stencil_json(stencils);
-      report["volume_triangles"] = volume_triangles;
-      report["volume_fragments"] = frame.first_volume_fragments;
-      report["stencil_updates"] = frame.first_stencil_updates;
-      report["stage_seconds"] = {
-          {"chains", chain_seconds}, {"upload", upload_seconds}, {"first_frame", first_frame_seconds}};
-      if (stencil_choice == StencilChoice::automatic) report["stage_seconds"]["zpass_proof"] = proof_seconds;
-      if (silhouette) report["casters"] = silhouette_casters_json(*silhouette);
+nlohmann::json report_json(const RenderReport& r) {
+  const Scene& scene = r.d.scene;
+  const MethodEntry& entry = method_entry(r.v.method);
+  nlohmann::json report{{"input", r.options.input},
+                        {"method", entry.name()},
+                        {"size", {scene.camera.width, scene.camera.height}},
+                        {"renderer", r.context.renderer()},
+                        {"device", r.context.device()},
+                        {"lights", scene.lights.size()},
+                        {"lit_pixels", r.lit},
+                        {"shadowed_pixels", r.shadowed},
+                        {"frame_ms", r.f.frame_ms},
+                        {"seconds", r.seconds}};
+  if (!r.options.light_image.empty())
+    report["light_image"] = {{"png", r.options.light_image},
+                             {"pfm", light_image_float_path(r.options.light_image).string()}};
+  if (gpu::uses_shadow_map(r.v.method)) {
+    report["shadowmap"] = {
+        {"size", r.options.shadowmap_size}, {"bias", r.options.shadowmap_bias}, {"slope", r.options.shadowmap_slope}};
+    report["stage_seconds"] = {{"upload", r.upload_seconds}, {"first_frame", r.f.first_frame_seconds}};
+    report["cube_lights"] = r.cube_lights;
+    if (entry.reads(MethodOption::pcf_kernel)) report["pcf_kernel"] = r.method_options.pcf_kernel;
+    if (entry.reads(MethodOption::light_radius)) {
+      report["light_radius"] = r.p.light_radius;
+      report["light_angle_degrees"] = r.method_options.light_angle_degrees;
     }
-    if (timing) report["timing"] = frame_timing_json(*timing, kTimingWarmUpFrames);
-    write_json_file(options.json_file, report);
+    if (entry.reads(MethodOption::smoothie)) {
+      nlohmann::json per_light = nlohmann::json::array();
+      for (const SmoothieStats& st : r.p.inputs.smoothies.stats)
+        per_light.push_back({{"silhouette_edges", st.edges},
+                             {"smoothies", st.smoothies},
+                             {"linked_corners", st.linked_corners},
+                             {"shrunk_corners", st.shrunk_corners},
+                             {"zero_length_edges", st.zero_length_edges},
+                             {"edge_on_edges", st.edge_on_edges},
+                             {"bisector_fallbacks", st.bisector_fallbacks}});
+      report["smoothie"] = {{"width", r.p.inputs.smoothies.width},
+                            {"space", smoothie_space_name(r.p.inputs.smoothies.space)},
+                            {"per_light", per_light}};
+      report["stage_seconds"]["smoothies"] = r.p.smoothie_seconds;
+    }
+  } else {
+    report["stencil"] = stencil_choice_name(r.v.stencil);
+    report["stencil_per_light"] = stencil_json(r.p.stencils);
+    report["volume_triangles"] = r.f.volume_triangles;
+    report["volume_fragments"] = r.f.first.first_volume_fragments;
+    report["stencil_updates"] = r.f.first.first_stencil_updates;
+    report["stage_seconds"] = {
+        {"chains", r.p.chain_seconds}, {"upload", r.upload_seconds}, {"first_frame", r.f.first_frame_seconds}};
+    if (r.v.stencil == StencilChoice::automatic) report["stage_seconds"]["zpass_proof"] = r.p.proof_seconds;
+    if (r.p.silhouette) report["casters"] = silhouette_casters_json(*r.p.silhouette);
   }
+  if (r.f.timing) report["timing"] = frame_timing_json(*r.f.timing, kTimingWarmUpFrames);
+  return report;
+}
+
+// ---- the command: the steps in order -----------------------------------------------------------
+
+int run_render(const RenderOptions& options) {
+  const auto start = Clock::now();
+  const ValidatedRenderOptions v = validate(options);                 // 1. the options
+  const DrawnScene d = load_drawn_scene(options);                     // 2. the scene
+  const PreparedMethod p = prepare_method(d, v, options);             // 3. the method's inputs
+  const gpu::EglContext context = gpu::open_gl_context("render", options.device);
+  auto stage = Clock::now();                                          // 4. the renderer
+  const std::vector<gpu::ShadedSoupPart> parts = shaded_parts(d.scene);
+  const gpu::ShadowMethodOptions method_options = renderer_options(v, p, options);
+  gpu::ShadowMethodRenderer renderer(v.method, method_scene(p.inputs, parts, d.scene.lights), method_options);
+  const gpu::OffscreenTarget target(d.scene.camera.width, d.scene.camera.height);
+  const double upload_seconds = seconds_since(stage);
+  RenderedFrames f;                                                   // 5. the frames
+  try {
+    f = render_frames(renderer, target, d.scene.camera, context, options);
+  } catch (const gpu::VolumeCapacityError& e) {
+    // As in diff, where the same overflow is recorded and fails the method, it is the method
+    // failing on this input (exit 1), not an error in the input (docs/cli.md, "Exit codes").
+    fmt::print(stderr, "shadowcert render: {}: {}; nothing written\n", options.input, e.what());
+    return kExitCheckFailed;
+  }
+  write_outputs(options, d.scene.camera, f, renderer);                // 6. the files
+  RenderReport r{options, v, d, p, method_options, f, context, 0.0, 0.0, 0, 0, {}};  // 7. the report
+  r.upload_seconds = upload_seconds;
+  r.lit = count_pixels(f.first.colour, f.first.first_stencil, true);
+  r.shadowed = count_pixels(f.first.colour, f.first.first_stencil, false);
+  if (gpu::uses_shadow_map(v.method))
+    for (std::size_t k = 0; k < d.scene.lights.size(); ++k)
+      if (gpu::needs_cube_map(d.scene.lights[k], d.bounds)) r.cube_lights.push_back(k);
+  r.seconds = seconds_since(start);
+  print_report(r);
+  if (!options.json_file.empty()) write_json_file(options.json_file, report_json(r));
   return kExitOk;
 }
 
@@ -380,21 +464,10 @@ void add_render_command(CLI::App& app, int& exit_code) {
       "Stencil shadow volumes with OpenGL 4.5 core (headless EGL; docs/definitions.md#counts, 5). Lights are drawn one after "
       "another; --counts, --mask and the pixel counts are for the FIRST light");
   cmd->add_option("input", options->input, kImageInputHelp)->required();
-  cmd->add_option("--method", options->method,
-                  "How the volume is built: cpu (the exact chain of the float-rounded input from exact/, drawn as "
-                  "is; exact/cpu_volume.h), cs (compute "
-                  "shader, float reference-edge multiplicities, rebuilt every frame; gpu/compute_volume.h), "
-                  "pertri (compute shader, every triangle's closed volume, no silhouette, rebuilt every frame; "
-                  "gpu/per_triangle_volume.h), gs (geometry shader over edge records, float reference-edge "
-                  "multiplicities, captured by transform feedback, rebuilt every frame; "
-                  "gpu/geometry_shader_volume.h) or ts (tessellation over edge-record patches, the same "
-                  "multiplicities and capture; gpu/tessellation_volume.h). shadowmap (no volume: a depth map "
-                  "from each light, --shadowmap-size/-bias/-slope; gpu/shadow_map_renderer.h); pcf, pcss (the map "
-                  "filtered: --pcf K, --pcss, --light-radius) and smoothie (the map, then smoothies along the "
-                  "silhouette edges: --smoothie-width, --smoothie-space; docs/smoothies.md). discrete, accurate, "
-                  "smooth: smooth-silhouette volumes of every mesh that is an oriented 2-manifold (the others by "
-                  "the robust chain, named in the output; docs/smooth-silhouettes.md); smooth-gpu: smooth's "
-                  "volume built on the GPU every frame (gpu/smooth_silhouette_volume.h)")
+  std::vector<std::string> method_names_list;
+  for (const MethodEntry& e : method_registry()) method_names_list.emplace_back(e.name());
+  cmd->add_option("--method", options->method, method_help())
+      ->check(CLI::IsMember(method_names_list))
       ->capture_default_str();
   add_silhouette_options(*cmd, options->silhouette);
   cmd->add_option("--stencil", options->stencil,

@@ -45,8 +45,9 @@ const std::array<MethodEntry, gpu::kShadowMethodTable.size()> kRegistry{{
     {ShadowMethod::pcf, false, kMap | MethodOption::pcf_kernel,
      "pcf (the map filtered by K x K percentage-closer taps, --pcf K)", "docs/smoothies.md", kKernels},
     {ShadowMethod::pcss, false, kMap | MethodOption::light_radius,
-     "pcss (percentage-closer soft shadows of a disk light, --light-radius)", "docs/smoothies.md", {}},
-    {ShadowMethod::smoothie, false, kMap | MethodOption::smoothie | MethodOption::light_radius,
+     "pcss (percentage-closer soft shadows of a disk light: --light-radius for a point light, --light-angle for a "
+     "directional one)", "docs/smoothies.md", {}},
+    {ShadowMethod::smoothie, false, kMap | MethodOption::smoothie,
      "smoothie (the map, then smoothies along the silhouette edges: --smoothie-width, --smoothie-space)",
      "docs/smoothies.md", kSmoothieWidths},
     {ShadowMethod::discrete, true, kSilhouette,
@@ -69,7 +70,7 @@ std::span<const std::string_view> method_option_flags(MethodOption option) {
   static constexpr std::array<std::string_view, 1> kSign{"--sign"};
   static constexpr std::array<std::string_view, 3> kMapFlags{"--shadowmap-size", "--shadowmap-bias", "--shadowmap-slope"};
   static constexpr std::array<std::string_view, 1> kPcf{"--pcf"};
-  static constexpr std::array<std::string_view, 1> kRadius{"--light-radius"};
+  static constexpr std::array<std::string_view, 2> kRadius{"--light-radius", "--light-angle"};
   static constexpr std::array<std::string_view, 2> kSmoothie{"--smoothie-width", "--smoothie-space"};
   static constexpr std::array<std::string_view, 2> kSilhouetteFlags{"--epsilon", "--crease-angle"};
   static constexpr std::array<std::string_view, 1> kCapture{"--capture"};
@@ -141,7 +142,18 @@ std::string method_help() {
   std::string help = "The shadow method: ";
   for (std::size_t i = 0; i < kRegistry.size(); ++i)
     help += std::string(i == 0 ? "" : i + 1 == kRegistry.size() ? " or " : ", ") + std::string(kRegistry[i].help);
-  return help + ". Each is defined in the docs/ page its entry names (docs/cli.md#shadowcert-render)";
+  // Where each is defined, grouped by page in the order the pages first appear.
+  std::vector<std::pair<std::string_view, std::string>> pages;
+  for (const MethodEntry& e : kRegistry) {
+    const std::string_view page = e.docs.substr(0, e.docs.find('#'));
+    auto at = std::find_if(pages.begin(), pages.end(), [&](const auto& p) { return p.first == page; });
+    if (at == pages.end()) at = pages.insert(pages.end(), {page, std::string()});
+    at->second += (at->second.empty() ? "" : ", ") + std::string(e.name());
+  }
+  help += ". Defined in ";
+  for (std::size_t i = 0; i < pages.size(); ++i)
+    help += std::string(i == 0 ? "" : "; ") + std::string(pages[i].first) + " (" + pages[i].second + ")";
+  return help;
 }
 
 std::string methods_reading(MethodOption option) {

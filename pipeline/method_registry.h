@@ -29,7 +29,7 @@ enum class MethodOption : std::uint32_t {
   sign = 1u << 1,          // --sign exact|float: how the GPU takes each triangle's light side
   shadow_map = 1u << 2,    // --shadowmap-size, --shadowmap-bias, --shadowmap-slope
   pcf_kernel = 1u << 3,    // --pcf K
-  light_radius = 1u << 4,  // --light-radius R (the area light's size)
+  light_radius = 1u << 4,  // --light-radius R, --light-angle DEG (the area light's size: point, directional)
   smoothie = 1u << 5,      // --smoothie-width D, --smoothie-space world|light
   silhouette = 1u << 6,    // --epsilon, --crease-angle
   capture = 1u << 7,       // --capture: the first light's volume as drawn

@@ -138,9 +138,7 @@ SceneComparison compare_scene(const Scene& scene, const std::vector<gpu::ShadowM
 
   SceneComparison result;
   result.exact = reference_image_of(merged, scene, options.progress, &result.rounded_seconds);
-  const bool silhouette_methods = std::any_of(methods.begin(), methods.end(), [](gpu::ShadowMethod m) {
-    return std::find(gpu::kSilhouetteMethods.begin(), gpu::kSilhouetteMethods.end(), m) != gpu::kSilhouetteMethods.end();
-  });
+  const bool silhouette_methods = std::any_of(methods.begin(), methods.end(), gpu::is_silhouette_method);
   // The exact soft references, in world space as the exact image, one per light; the area light
   // is pcss's unless the options name a radius.
   if (options.soft) {
@@ -176,8 +174,7 @@ SceneComparison compare_scene(const Scene& scene, const std::vector<gpu::ShadowM
   }
   for (gpu::ShadowMethod method : methods) {
     const SilhouetteVolumes* silhouette = nullptr;
-    if (std::find(gpu::kSilhouetteMethods.begin(), gpu::kSilhouetteMethods.end(), method) !=
-        gpu::kSilhouetteMethods.end()) {
+    if (gpu::is_silhouette_method(method)) {
       SilhouetteOptions silhouette_options = options.silhouette;
       silhouette_options.near_plane = drawn.camera.near_plane;  // the meshes are in the eye's frame
       result.silhouettes.push_back(silhouette_volumes(drawn.meshes, drawn.lights, method, silhouette_options));

@@ -563,6 +563,18 @@ TEST(CliDiff, MethodsOption_ComparesOnlyThose) {
   EXPECT_TRUE(j["methods"].contains("shadowmap"));
 }
 
+// `--methods all` is what docs/cli.md says it is (regression: diff rejected the `all` its docs
+// offered): the registry's six, and joined with other names each method once.
+TEST(CliDiff, MethodsAll_TheSixChainAndMapMethods) {
+  const fs::path json = temp_dir("cli_test") / "diff_methods_all.json";
+  const RunResult r = run_cli("diff " + kDefaultScene + " --size 32x24 --methods discrete,all,cpu --json " + json.string());
+  SHADOWCERT_SKIP_WITHOUT_GL(r);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const nlohmann::json j = read_json(json);
+  EXPECT_EQ(j["methods"].size(), 7u);
+  for (const char* m : {"discrete", "cpu", "cs", "gs", "ts", "pertri", "shadowmap"}) EXPECT_TRUE(j["methods"].contains(m)) << m;
+}
+
 // z-pass counts the faces between the eye and P: with the eye inside a shadow volume every
 // pixel behind it is off by the eye's own count. cpu is a robust method, so the run fails.
 TEST(CliDiff, RobustMethodWithHardErrors_ExitsOne) {
@@ -669,7 +681,27 @@ TEST(CliStencil, BadOrConflictingStencilOptions_ExitTwo) {
   }
   const RunResult shadowmap = run_cli("render " + kDefaultScene + " --method shadowmap --stencil auto");
   EXPECT_EQ(shadowmap.exit_code, 2);
-  EXPECT_NE(shadowmap.output.find("shadowmap counts no volume"), std::string::npos) << shadowmap.output;
+  EXPECT_NE(shadowmap.output.find("--method shadowmap does not read it"), std::string::npos) << shadowmap.output;
+}
+
+// An option of another method is refused, naming the methods that read it (the method registry,
+// pipeline/method_registry.h), before any file is read.
+TEST(CliRender, OptionOfAnotherMethod_ExitTwoNamingItsMethods) {
+  const RunResult angle = run_cli("render " + kDefaultScene + " --method cpu --light-angle 1");
+  EXPECT_EQ(angle.exit_code, 2);
+  EXPECT_NE(angle.output.find("--light-angle: is read by pcss only; --method cpu does not read it"), std::string::npos)
+      << angle.output;
+  const RunResult width = run_cli("render " + kDefaultScene + " --method pcss --smoothie-width 0.1");
+  EXPECT_EQ(width.exit_code, 2);
+  EXPECT_NE(width.output.find("is read by smoothie only"), std::string::npos) << width.output;
+  const RunResult capture = run_cli("render " + kDefaultScene + " --method pcf --capture /tmp/x.vol");
+  EXPECT_EQ(capture.exit_code, 2);
+  EXPECT_NE(capture.output.find("is read by cpu, cs, gs, ts, pertri, discrete, accurate, smooth, smooth-gpu only"),
+            std::string::npos)
+      << capture.output;
+  const RunResult unknown = run_cli("render " + kDefaultScene + " --method bogus");
+  EXPECT_EQ(unknown.exit_code, 2);
+  EXPECT_NE(unknown.output.find("bogus"), std::string::npos) << unknown.output;
 }
 
 // ---- smooth silhouettes: discrete, accurate, smooth (docs/smooth-silhouettes.md) ---------------
