@@ -624,7 +624,8 @@ void add_bench_command(CLI::App& app, int& exit_code) {
                   "The area light's radius R in world units: the soft reference, pcss and the smoothie widths R/4, "
                   "R/2, R (default 1% of each scene's bounding-box diagonal)");
   cmd->add_option("--shared-data", options->shared_data,
-                  "Folder of the real suite's meshes (default: ../shared/data beside the source tree)");
+                  "Folder of the real suite's developer meshes (default: ../shared/data beside the source tree); its bundled "
+                  "meshes are read from data/meshes/");
   cmd->add_option("--from", options->from,
                   "Rewrite bench.csv, bench.md, the plots and report.html in --out from this bench.json (a run's or "
                   "a merge's) without rendering");

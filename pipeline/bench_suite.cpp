@@ -20,6 +20,7 @@
 #include "pipeline/comparison_pictures.h"
 #include "pipeline/edge_map_pictures.h"
 #include "pipeline/mesh_palette.h"
+#include "pipeline/method_registry.h"
 #include "pipeline/method_inputs.h"
 #include "pipeline/silhouette_volumes.h"
 #include "pipeline/soft_reference.h"
@@ -38,21 +39,6 @@ double ms_since(Clock::time_point start) {
 
 // The size a framed or generated scene gets without --size.
 constexpr std::uint32_t kDefaultWidth = 256, kDefaultHeight = 192;
-
-// "0.01" for 0.01, "0.003" for 0.003: the shortest text that reads back the same.
-std::string short_number(double value) { return fmt::format("{}", value); }
-
-BenchVariant stencil_variant(gpu::ShadowMethod method, std::optional<gpu::SignMode> sign) {
-  BenchVariant v;
-  v.method = method;
-  v.family = BenchFamily::stencil;
-  v.id = std::string(gpu::shadow_method_name(method));
-  if (sign) {
-    v.sign = *sign;
-    v.id += "/" + std::string(*sign == gpu::SignMode::exact ? "exact" : "float");
-  }
-  return v;
-}
 
 // Every light's soft errors as one: counts summed, means weighted by the pixels they are over.
 SoftShadowErrors combined(const std::vector<SoftShadowErrors>& parts) {
@@ -202,48 +188,36 @@ bool BenchVariant::robust() const {
 }
 
 std::vector<BenchVariant> bench_variants() {
+  // Every method of the registry (pipeline/method_registry.h) in its order, one run per value
+  // of the parameter its entry sweeps ("cs/exact", "shadowmap/1024", "smooth/0.01"), or one run
+  // named by the method when it sweeps none: a new method's runs come with its entry.
   std::vector<BenchVariant> out;
-  out.push_back(stencil_variant(gpu::ShadowMethod::cpu, std::nullopt));
-  for (gpu::ShadowMethod m : {gpu::ShadowMethod::cs, gpu::ShadowMethod::gs, gpu::ShadowMethod::ts, gpu::ShadowMethod::pertri})
-    for (gpu::SignMode s : {gpu::SignMode::exact, gpu::SignMode::float32}) out.push_back(stencil_variant(m, s));
-  const auto map_variant = [](gpu::ShadowMethod method, std::string id) {
-    BenchVariant v;
-    v.method = method;
-    v.family = BenchFamily::shadow_map;
-    v.id = std::move(id);
-    return v;
-  };
-  for (std::uint32_t size : {512u, 1024u, 2048u, 4096u}) {
-    BenchVariant v = map_variant(gpu::ShadowMethod::shadowmap, "shadowmap/" + std::to_string(size));
-    v.shadow_map_size = size;
-    out.push_back(v);
-  }
-  for (std::uint32_t k : {3u, 5u, 9u}) {
-    BenchVariant v = map_variant(gpu::ShadowMethod::pcf, "pcf/" + std::to_string(k));
-    v.pcf_kernel = k;
-    out.push_back(v);
-  }
-  out.push_back(map_variant(gpu::ShadowMethod::pcss, "pcss"));
-  for (const auto& [fraction, name] : {std::pair{0.25, "R/4"}, {0.5, "R/2"}, {1.0, "R"}}) {
-    BenchVariant v = map_variant(gpu::ShadowMethod::smoothie, std::string("smoothie/") + name);
-    v.smoothie_width_in_r = fraction;
-    out.push_back(v);
-  }
-  const auto silhouette_variant = [](gpu::ShadowMethod method, std::optional<double> epsilon) {
-    BenchVariant v;
-    v.method = method;
-    v.family = BenchFamily::silhouette;
-    v.id = std::string(gpu::shadow_method_name(method));
-    if (epsilon) {
-      v.epsilon = *epsilon;
-      v.id += "/" + short_number(*epsilon);
+  for (const MethodEntry& entry : method_registry()) {
+    BenchVariant base;
+    base.method = entry.method;
+    base.family = gpu::uses_shadow_map(entry.method)       ? BenchFamily::shadow_map
+                  : gpu::is_silhouette_method(entry.method) ? BenchFamily::silhouette
+                                                            : BenchFamily::stencil;
+    base.id = std::string(entry.name());
+    if (entry.sweep.parameter == SweptParameter::none) {
+      out.push_back(base);
+      continue;
     }
-    return v;
-  };
-  out.push_back(silhouette_variant(gpu::ShadowMethod::discrete, std::nullopt));
-  out.push_back(silhouette_variant(gpu::ShadowMethod::accurate, std::nullopt));
-  for (double eps : {0.1, 0.03, 0.01, 0.003}) out.push_back(silhouette_variant(gpu::ShadowMethod::smooth, eps));
-  out.push_back(silhouette_variant(gpu::ShadowMethod::smooth_gpu, 0.01));
+    for (std::size_t i = 0; i < entry.sweep.count; ++i) {
+      BenchVariant v = base;
+      v.id += "/" + std::string(entry.sweep.labels[i]);
+      const double value = entry.sweep.values[i];
+      switch (entry.sweep.parameter) {
+        case SweptParameter::none: break;
+        case SweptParameter::sign: v.sign = value == 0.0 ? gpu::SignMode::exact : gpu::SignMode::float32; break;
+        case SweptParameter::shadow_map_size: v.shadow_map_size = static_cast<std::uint32_t>(value); break;
+        case SweptParameter::pcf_kernel: v.pcf_kernel = static_cast<std::uint32_t>(value); break;
+        case SweptParameter::smoothie_width_in_r: v.smoothie_width_in_r = value; break;
+        case SweptParameter::epsilon: v.epsilon = value; break;
+      }
+      out.push_back(v);
+    }
+  }
   // The edge-map filters (issue 14, gpu/edge_map.h), scored against the exact edges.
   for (gpu::EdgeFilter filter : gpu::kEdgeFilters) {
     BenchVariant v;
@@ -306,8 +280,11 @@ std::vector<BenchSceneSpec> bench_suite(std::string_view suite, const BenchPaths
       BenchSceneSpec s;
       s.suite = "real";
       s.name = std::filesystem::path(mesh).stem().string();
-      s.file = paths.shared_data / mesh;
-      s.input = "../shared/data/" + mesh;
+      // The bundled meshes (data/meshes/, in every clone) before the developer ones.
+      const std::filesystem::path bundled = paths.source_dir / "data" / "meshes" / mesh;
+      const bool in_repository = std::filesystem::exists(bundled);
+      s.file = in_repository ? bundled : paths.shared_data / mesh;
+      s.input = (in_repository ? "data/meshes/" : "../shared/data/") + mesh;
       s.framed = true;
       if (!std::filesystem::exists(s.file)) s.missing = s.file.generic_string() + " is not here";
       out.push_back(std::move(s));

@@ -75,8 +75,8 @@ struct BenchVariant {
 
 // Where a suite's files are: the source tree (data/scenes/) and the shared meshes (../shared/data).
 struct BenchPaths {
-  std::filesystem::path source_dir;   // holds data/scenes/
-  std::filesystem::path shared_data;  // holds closed_manifold/, soups/, ... (may be absent)
+  std::filesystem::path source_dir;   // holds data/scenes/ and data/meshes/ (the bundled real meshes)
+  std::filesystem::path shared_data;  // the developer meshes: closed_manifold/, soups/, ... (may be absent)
 };
 
 // One scene of a suite.

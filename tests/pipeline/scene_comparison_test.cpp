@@ -304,13 +304,27 @@ TEST_P(SharedMeshDiff, SilhouetteMethodsAt256x192_DiscreteHasNoHardErrorAndAllAr
 
 TEST_P(SharedMeshDiff, OverAFloorAt256x192_RobustMethodsHaveNoHardError) { expect_shared_mesh_exact(GetParam(), 256, 192); }
 
-// The same at 1024x768: minutes on llvmpipe for the large meshes, so run on demand
-// (--gtest_also_run_disabled_tests --gtest_filter='*SharedMeshDiff*'; docs/diff.md).
+// The same at 1024x768 for every mesh: minutes on llvmpipe for the large developer meshes, so
+// run on demand (--gtest_also_run_disabled_tests --gtest_filter='*SharedMeshDiff*'; docs/diff.md);
+// the bundled ones run in every build (BundledMeshDiff below).
 TEST_P(SharedMeshDiff, DISABLED_OverAFloorAt1024x768_RobustMethodsHaveNoHardError) {
   expect_shared_mesh_exact(GetParam(), 1024, 768);
 }
 
 INSTANTIATE_TEST_SUITE_P(SharedData, SharedMeshDiff, ::testing::ValuesIn(shared_meshes()), test_name);
+
+// The bundled meshes (data/meshes/) at 1024x768 in every run: 5 to 20 s each on llvmpipe, so the
+// one-pixel defects a small image cannot show (issue 27's kind) are looked for on real meshes
+// in CI too.
+class BundledMeshDiff : public GlTest, public ::testing::WithParamInterface<std::string> {};
+
+TEST_P(BundledMeshDiff, OverAFloorAt1024x768_RobustMethodsHaveNoHardError) { expect_shared_mesh_exact(GetParam(), 1024, 768); }
+
+std::vector<std::string> bundled_meshes() {
+  return {::shadowcert::test::kBundledMeshes.begin(), ::shadowcert::test::kBundledMeshes.end()};
+}
+
+INSTANTIATE_TEST_SUITE_P(BundledData, BundledMeshDiff, ::testing::ValuesIn(bundled_meshes()), test_name);
 
 // ---- planted faults ---------------------------------------------------------------------------
 
