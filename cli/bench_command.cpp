@@ -60,6 +60,7 @@ struct BenchCommandOptions {
   std::string shard;
   std::optional<int> device;
   std::optional<double> light_radius;
+  std::optional<double> light_angle;  // degrees: a directional light's angular radius
   std::string shared_data;
   std::string from;
   bool no_plots = false;
@@ -270,7 +271,10 @@ nlohmann::json scene_json(std::size_t index, const BenchSceneSpec& spec, const B
   j["size"] = {r->width, r->height};
   j["exact_seconds"] = r->exact_seconds;
   if (r->soft_radius)
-    j["soft_reference"] = {{"radius", *r->soft_radius}, {"samples", soft_samples}, {"seconds", r->soft_seconds}};
+    j["soft_reference"] = {{"radius", *r->soft_radius},
+                           {"angle_degrees", r->soft_angle_degrees},
+                           {"samples", soft_samples},
+                           {"seconds", r->soft_seconds}};
   if (!r->analytic_casters.empty()) {
     nlohmann::json plane = nullptr;
     if (spec.receiver_plane) {
@@ -465,6 +469,7 @@ int run_bench(const BenchCommandOptions& options) {
   if (options.light_radius && (!std::isfinite(*options.light_radius) || !(*options.light_radius > 0.0)))
     throw CLI::ValidationError("--light-radius",
                                fmt::format("must be finite and > 0 (world units), got {}", *options.light_radius));
+  if (options.light_angle) check_light_angle(*options.light_angle);
   Camera size_camera;
   apply_image_size(options.size, size_camera);
   const Shard shard = options.shard.empty() ? Shard{} : parse_shard(options.shard);
@@ -490,6 +495,7 @@ int run_bench(const BenchCommandOptions& options) {
   bench_options.frames = options.frames;
   bench_options.sync = software ? gpu::StageSync::finish : gpu::StageSync::none;
   bench_options.light_radius = options.light_radius.value_or(0.0);
+  bench_options.light_angle_degrees = options.light_angle.value_or(0.0);  // 0: gpu::kDefaultLightAngleDegrees
   const bool verbose = isatty(fileno(stderr)) != 0;
   if (verbose) bench_options.progress = [](std::string_view line) { fmt::print(stderr, "    {}\n", line); };
 
@@ -623,6 +629,9 @@ void add_bench_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--light-radius", options->light_radius,
                   "The area light's radius R in world units: the soft reference, pcss and the smoothie widths R/4, "
                   "R/2, R (default 1% of each scene's bounding-box diagonal)");
+  cmd->add_option("--light-angle", options->light_angle,
+                  "A directional light's angular radius in degrees, in (0, 90): its soft reference and pcss (default "
+                  "0.573, atan 0.01, whatever the scene's scale)");
   cmd->add_option("--shared-data", options->shared_data,
                   "Folder of the real suite's developer meshes (default: ../shared/data beside the source tree); its bundled "
                   "meshes are read from data/meshes/");

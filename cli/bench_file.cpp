@@ -175,7 +175,7 @@ void check_scene(const JsonField& scene, const std::set<std::string>& methods, B
   if (const std::optional<JsonField> size = bench_unless_null(bench_key(scene, "size"))) check_image_size(*size);
   check_number_or_null(bench_key(scene, "exact_seconds"));
   if (const std::optional<JsonField> soft = bench_unless_null(bench_key(scene, "soft_reference")))
-    for (const char* key : {"radius", "samples", "seconds"}) check_optional_number(*soft, key);
+    for (const char* key : {"radius", "angle_degrees", "samples", "seconds"}) check_optional_number(*soft, key);
   if (const std::optional<JsonField> analytic = bench_unless_null(bench_key(scene, "analytic"))) {
     bench_object(*analytic);
     check_optional_number(*analytic, "seconds");
