@@ -94,6 +94,7 @@ TEST(CliLightSize, LightAngleOutOfRange_ExitsTwoNamingTheOption) {
   for (const char* angle : {"0", "90", "-1", "nan", "inf"}) {
     expect_usage("render " + scene + " --pcss --light-angle " + angle);
     expect_usage("diff " + scene + " --methods pcss --light-angle " + angle);
+    expect_usage("bench " + scene + " --methods pcss --light-angle " + angle);
   }
   expect_usage("render " + scene + " --method cs --light-angle 1");  // pcss's option only
   for (const char* angle : {"90", "-1", "nan"}) expect_usage("soft " + scene + " --light-angle " + angle);
@@ -110,6 +111,10 @@ TEST(CliLightSize, LightAngleGiven_UsedByPcssAndTheReference) {
                               (dir / "diff_angle.json").string());
   ASSERT_EQ(d.exit_code, 0) << d.output;
   EXPECT_EQ(read_json(dir / "diff_angle.json")["soft_reference"]["angle_degrees"], 2.5);
+  const RunResult b = run_cli("bench " + scene + " --methods pcss --size 32x24 --frames 1 --no-plots --light-angle 2.5 "
+                              "--out " + (dir / "bench_angle").string());
+  ASSERT_EQ(b.exit_code, 0) << b.output;
+  EXPECT_EQ(read_json(dir / "bench_angle" / "bench.json")["scenes"][0]["soft_reference"]["angle_degrees"], 2.5);
   // 0 is the hard shadow: one sample, the sun itself, no noise.
   const RunResult h = run_cli("soft " + scene + " --light-angle 0 --json " + (dir / "hard.json").string());
   ASSERT_EQ(h.exit_code, 0) << h.output;
