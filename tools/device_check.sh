@@ -19,6 +19,18 @@
 # SHADOWCERT_DEVICE_RESOLUTION (default 1920x1080), SHADOWCERT_DEVICE_BUILD_DIR (build-device),
 # SHADOWCERT_JOBS (nproc). On llvmpipe the same script runs (use a small triangle list there:
 # a 4M-triangle frame takes minutes in software).
+#
+# SHADOWCERT_DEVICE_STEPS: the steps to run, comma-separated (default all: gl_tests,
+# render_bench, lamp_in_room, real_meshes, bench_default), to fit a short device lease.
+#
+# SHADOWCERT_DEVICE_PREBUILT=BUNDLE: no build; the programs and libraries tools/device_bundle.sh
+# put in BUNDLE (for a GPU machine that cannot install Debian's packages). The GL tests are then
+# the bundle's test programs, run one by one (gtest JSON in DIR/gtest/), and the source tree's
+# path they were built with is linked to this tree.
+#
+# Besides the tests and render_bench, the GPU paths of wave 3 each get a step: the cube-map
+# shadow maps (a lamp at the very centre of a room: every method of render against the exact
+# image) and the real meshes at 1920x1080 (the robust methods: 0 hard errors on the GPU too).
 set -uo pipefail
 cd "$(dirname "$0")/.."
 
@@ -29,6 +41,10 @@ JOBS=${SHADOWCERT_JOBS:-$(nproc)}
 TRIANGLES=${SHADOWCERT_DEVICE_TRIANGLES:-1000000,2000000,4000000}
 RESOLUTION=${SHADOWCERT_DEVICE_RESOLUTION:-1920x1080}
 export SHADOWCERT_REQUIRE_GL=1
+
+STEPS=${SHADOWCERT_DEVICE_STEPS:-gl_tests,render_bench,lamp_in_room,real_meshes,bench_default}
+# want STEP: whether STEP is among SHADOWCERT_DEVICE_STEPS.
+want() { case ",$STEPS," in *",$1,"*) return 0 ;; *) return 1 ;; esac; }
 
 failed=0
 : >"$OUT_DIR/summary.txt"
@@ -55,21 +71,64 @@ step() {
   command -v nvidia-smi >/dev/null && nvidia-smi --query-gpu=name,driver_version,memory.total --format=csv,noheader
 } >"$OUT_DIR/environment.txt" 2>&1
 
-step build 210 "$OUT_DIR/build.log" bash -c "
-  cmake -S . -B '$BUILD' -G Ninja -DCMAKE_BUILD_TYPE=Release -DSHADOWCERT_BUILD_BENCH=ON &&
-  cmake --build '$BUILD' -j '$JOBS' --target shadowcert render_bench &&
-  cmake --build '$BUILD' -j '$JOBS'" || { echo "build failed: $OUT_DIR/build.log" >&2; exit 1; }
+PREBUILT=${SHADOWCERT_DEVICE_PREBUILT:-}
+if [ -n "$PREBUILT" ]; then
+  PREBUILT=$(cd "$PREBUILT" && pwd)
+  export LD_LIBRARY_PATH="$PREBUILT/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
+  # GLVND finds the NVIDIA EGL vendor library where the driver's container layout puts it.
+  for vendor in /usr/share/glvnd/egl_vendor.d/10_nvidia.json /usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json; do
+    [ -f "$vendor" ] && { export __EGL_VENDOR_LIBRARY_FILENAMES=$vendor; break; }
+  done
+  built_in=$(awk '{print $NF}' "$PREBUILT/source.txt")
+  if [ "$built_in" != "$(pwd)" ]; then mkdir -p "$(dirname "$built_in")" && ln -sfn "$(pwd)" "$built_in"; fi
+  SHADOWCERT="$PREBUILT/bin/shadowcert"
+  RENDER_BENCH="$PREBUILT/bin/render_bench"
+  echo "prebuilt: $(cat "$PREBUILT/source.txt")" >>"$OUT_DIR/environment.txt"
+else
+  step build 210 "$OUT_DIR/build.log" bash -c "
+    cmake -S . -B '$BUILD' -G Ninja -DCMAKE_BUILD_TYPE=Release -DSHADOWCERT_BUILD_BENCH=ON &&
+    cmake --build '$BUILD' -j '$JOBS' --target shadowcert render_bench &&
+    cmake --build '$BUILD' -j '$JOBS'" || { echo "build failed: $OUT_DIR/build.log" >&2; exit 1; }
+  SHADOWCERT="$BUILD/cli/shadowcert"
+  RENDER_BENCH="$BUILD/bench/render_bench"
+fi
 
 # The renderer the GL tests and the benches see, as `shadowcert render` reports it.
-"$BUILD/cli/shadowcert" render data/scenes/default.json --size 64x48 --method cpu --json "$OUT_DIR/renderer.json" \
+"$SHADOWCERT" render data/scenes/default.json --size 64x48 --method cpu --json "$OUT_DIR/renderer.json" \
   >/dev/null 2>&1 && python3 -c "import json,sys; d=json.load(open(sys.argv[1])); print('renderer:', d.get('renderer')); print('device:', d.get('device'))" \
   "$OUT_DIR/renderer.json" >>"$OUT_DIR/environment.txt" 2>&1
 
-step gl_tests 90 "$OUT_DIR/gl_tests.log" ctest --test-dir "$BUILD" -L gl --output-on-failure -j "$JOBS"
-step render_bench 120 "$OUT_DIR/render_bench.txt" "$BUILD/bench/render_bench" --triangles="$TRIANGLES" \
+if ! want gl_tests; then
+  :
+elif [ -n "$PREBUILT" ]; then
+  mkdir -p "$OUT_DIR/gtest"
+  step gl_tests 150 "$OUT_DIR/gl_tests.log" bash -c '
+    failed=0
+    for t in "$1"/bin/*_test; do
+      name=$(basename "$t")
+      echo "== $name"
+      "$t" --gtest_brief=1 --gtest_output="json:$2/gtest/$name.json" || failed=1
+    done
+    exit $failed' _ "$PREBUILT" "$OUT_DIR"
+else
+  step gl_tests 90 "$OUT_DIR/gl_tests.log" ctest --test-dir "$BUILD" -L gl --output-on-failure -j "$JOBS"
+fi
+want render_bench && step render_bench 120 "$OUT_DIR/render_bench.txt" "$RENDER_BENCH" --triangles="$TRIANGLES" \
   --resolution="$RESOLUTION" --benchmark_counters_tabular=true \
   --benchmark_out="$OUT_DIR/render_bench.json" --benchmark_out_format=json
-step bench_default 60 "$OUT_DIR/bench.log" "$BUILD/cli/shadowcert" bench --suite default --out "$OUT_DIR/bench"
+# The cube-map shadow maps: a point light at the exact centre of a room's bounds, every method.
+want lamp_in_room && step lamp_in_room 60 "$OUT_DIR/lamp_in_room.log" "$SHADOWCERT" diff data/scenes/lamp_in_room.json --size "$RESOLUTION" \
+  --methods all,pcf,pcss,smoothie --json "$OUT_DIR/lamp_in_room.json"
+# The bundled real meshes at full size: the robust methods must show 0 hard errors on the GPU too.
+want real_meshes && step real_meshes 120 "$OUT_DIR/real_meshes.log" bash -c '
+  failed=0
+  for m in data/meshes/*/*.*; do
+    case "$m" in *.md|*.txt) continue ;; esac
+    echo "== $m"
+    "$1" diff "$m" --size "$2" --methods cpu,cs,gs,ts,pertri --json "$3/real_$(basename "$m").json" || failed=1
+  done
+  exit $failed' _ "$SHADOWCERT" "$RESOLUTION" "$OUT_DIR"
+want bench_default && step bench_default 60 "$OUT_DIR/bench.log" "$SHADOWCERT" bench --suite default --out "$OUT_DIR/bench"
 
 echo "== results under $OUT_DIR (summary.txt)"
 cat "$OUT_DIR/environment.txt"
