@@ -5,8 +5,8 @@
 # machine that cannot install Debian's packages (docs/gpu.md#nvidia-figures).
 #
 #   DIR/bin/   shadowcert, render_bench and the GL test programs (tests/*_test that render)
-#   DIR/lib/   libepoxy, libpng, libgmp, libmpfr, libtbb, libfmt, OpenMesh, and GLVND's libEGL
-#              and libGLdispatch (the GPU's driver brings its own EGL vendor library)
+#   DIR/lib/   libepoxy, libpng, libgmp, libmpfr, libtbb, libfmt, OpenMesh, and GLVND's libEGL,
+#              libOpenGL and libGLdispatch (the GPU's driver brings its own EGL vendor library)
 #
 # The test programs name the source tree by its absolute path here (their data files):
 # device_check.sh links that path to the tree it runs in.
@@ -32,5 +32,8 @@ for lib in $(ldd "$OUT"/bin/* | awk '/=> \//{print $3}' | sort -u); do
     *) cp -L "$lib" "$OUT/lib/" ;;
   esac
 done
+# Loaded at run time, so ldd does not list it: libepoxy opens GLVND's libOpenGL for the GL entry
+# points (it fails without "libGL.so.1 or libOpenGL.so.0").
+cp -L /usr/lib/x86_64-linux-gnu/libOpenGL.so.0 "$OUT/lib/"
 echo "$(git rev-parse HEAD)$(git diff --quiet || echo ' (dirty)') $(pwd)" >"$OUT/source.txt"
 du -sh "$OUT"

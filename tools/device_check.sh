@@ -102,7 +102,7 @@ if ! want gl_tests; then
   :
 elif [ -n "$PREBUILT" ]; then
   mkdir -p "$OUT_DIR/gtest"
-  step gl_tests 150 "$OUT_DIR/gl_tests.log" bash -c '
+  step gl_tests 300 "$OUT_DIR/gl_tests.log" bash -c '
     failed=0
     for t in "$1"/bin/*_test; do
       name=$(basename "$t")
