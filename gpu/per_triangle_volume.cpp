@@ -35,13 +35,32 @@ constexpr std::uint64_t kVerticesPerTriangle = 24;
 // beyond that the overflow is reported (VolumeCapacityError), never drawn open.
 constexpr std::uint64_t kSplitHeadroom = 8;
 constexpr std::uint64_t kSplitExtraVertices = 3 * 87;
-using compute_pass::Command;
 using compute_pass::kVertexBytes;
+
+// The shader's Command block: the forward part's DrawArraysIndirectCommand, the reversed
+// part's (IndirectVolumeDraw::reversed: its triangles count as their own reversals), then the
+// vertices each part asked for.
+struct DrawCommand {
+  GLuint count = 0;
+  GLuint instance_count = 1;
+  GLuint first = 0;
+  GLuint base_instance = 0;
+};
+struct Commands {
+  DrawCommand forward;
+  DrawCommand reversed;
+  GLuint requested = 0;
+  GLuint reversed_requested = 0;
+};
+static_assert(sizeof(DrawCommand) == 4 * sizeof(GLuint), "the reversed command's offset in draw_volume");
+static_assert(sizeof(Commands) == 10 * sizeof(GLuint), "std430 Command block of per_triangle_volume.comp.glsl");
 
 template <class T>
 std::vector<T> read_buffer(GLuint buffer, std::size_t offset_items, std::size_t count) {
   return compute_pass::read_buffer<T>(buffer, offset_items, count, "PerTriangleShadowVolume readback");
 }
+
+Commands read_commands(GLuint buffer) { return read_buffer<Commands>(buffer, 0, 1).front(); }
 
 }  // namespace
 
@@ -78,7 +97,7 @@ PerTriangleShadowVolume::PerTriangleShadowVolume(const ComputeVolumeSoup& soup, 
   glNamedBufferStorage(signs_.name(),
                        static_cast<GLsizeiptr>(std::max<std::uint64_t>(soup.triangle_count(), 1) * sizeof(GLint)),
                        nullptr, 0);
-  const Command initial{};
+  const Commands initial{};
   glNamedBufferStorage(command_.name(), sizeof initial, &initial, GL_DYNAMIC_STORAGE_BIT);
   glNamedBufferStorage(volume_.name(), static_cast<GLsizeiptr>(volume_bytes_), nullptr, 0);
   compute_pass::attach_volume(vertex_array_, volume_);
@@ -91,7 +110,7 @@ void PerTriangleShadowVolume::build(const Light& light) {
   glProgramUniform1ui(program, kCapacityLocation, static_cast<GLuint>(capacity_));
   glProgramUniform1ui(program, kWindowVerticesLocation, static_cast<GLuint>(window_vertices_));
 
-  const Command reset{};
+  const Commands reset{};
   glNamedBufferSubData(command_.name(), 0, sizeof reset, &reset);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kVerticesBinding, soup_->vertices_.name());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kTrianglesBinding, soup_->triangles_.name());
@@ -126,11 +145,18 @@ std::vector<std::int32_t> PerTriangleShadowVolume::read_triangle_signs() const {
 }
 
 std::uint64_t PerTriangleShadowVolume::read_requested_vertices() const {
-  return compute_pass::read_command(command_.name(), "PerTriangleShadowVolume readback").requested;
+  const Commands c = read_commands(command_.name());
+  return std::uint64_t{c.requested} + c.reversed_requested;
 }
 
 std::vector<VolumeTriangle> PerTriangleShadowVolume::read_triangles() const {
-  return compute_pass::read_drawn_triangles<VolumeTriangle>(command_.name(), volume_.name(), "PerTriangleShadowVolume readback");
+  const Commands c = read_commands(command_.name());
+  std::vector<VolumeTriangle> triangles = read_buffer<VolumeTriangle>(volume_.name(), 0, c.forward.count / 3);
+  const std::vector<VolumeTriangle> reversed =
+      read_buffer<VolumeTriangle>(volume_.name(), c.reversed.first / 3, c.reversed.count / 3);
+  // As counted: each reversed triangle with its last two vertices swapped.
+  for (const VolumeTriangle& t : reversed) triangles.push_back({t[0], t[2], t[1]});
+  return triangles;
 }
 
 }  // namespace shadowcert::gpu

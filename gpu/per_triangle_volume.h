@@ -37,13 +37,18 @@ class PerTriangleShadowVolume {
   // directional light (0, 0, 0, 0).
   void build(const Light& light);
 
-  [[nodiscard]] IndirectVolumeDraw draw() const { return {vertex_array_.name(), command_.name()}; }
+  // Two parts (IndirectVolumeDraw::reversed): each side quad shared by two triangles is written
+  // twice in one vertex order, once in each part, so the pair cancels at every pixel.
+  [[nodiscard]] IndirectVolumeDraw draw() const { return {vertex_array_.name(), command_.name(), true}; }
   [[nodiscard]] std::uint64_t capacity_vertices() const { return capacity_; }
 
   // Readbacks (they synchronise with the GPU; for tests, diagnostics and --capture).
   [[nodiscard]] std::vector<std::int32_t> read_triangle_signs() const;  // s(t) per soup triangle
-  [[nodiscard]] std::uint64_t read_requested_vertices() const;  // > capacity_vertices(): overflow
-  [[nodiscard]] std::vector<VolumeTriangle> read_triangles() const;  // the drawn triangles
+  // Both parts' vertices; > capacity_vertices(): overflow (then nothing is drawn).
+  [[nodiscard]] std::uint64_t read_requested_vertices() const;
+  // The drawn triangles as counted: the forward part, then the reversed part's triangles with
+  // their last two vertices swapped.
+  [[nodiscard]] std::vector<VolumeTriangle> read_triangles() const;
 
  private:
   const ComputeVolumeSoup* soup_;

@@ -125,8 +125,29 @@ ShadedSoupMesh::ShadedSoupMesh(std::span<const ShadedSoupPart> parts)
 
 namespace {
 
-// The light's volume: its given mesh, its GPU-built triangles, or both (LightVolume).
-void draw_volume(const LightVolume& lv) {
+// The volume pass's stencil operations: z-fail counts back faces +1 and front faces -1 where
+// the depth test fails, z-pass front +1 and back -1 where it passes; `swapped` exchanges the
+// facings (IndirectVolumeDraw::reversed: each triangle counts as its own reversal).
+void set_volume_stencil_ops(StencilMethod method, bool swapped) {
+  const GLenum front = swapped ? GL_BACK : GL_FRONT;
+  const GLenum back = swapped ? GL_FRONT : GL_BACK;
+  if (method == StencilMethod::zfail) {
+    glStencilOpSeparate(back, GL_KEEP, GL_INCR_WRAP, GL_KEEP);
+    glStencilOpSeparate(front, GL_KEEP, GL_DECR_WRAP, GL_KEEP);
+  } else {
+    // z-pass. The caps are drawn as well and never count here (GL_LESS fails for them): a
+    // front cap lies on a receiver at the visible point's depth or behind it, a back cap at
+    // depth 1. A cap between the eye and the near plane (depth-clamped to 0) would count;
+    // a z-pass proven by exact/zpass_proof.h has no face there.
+    glStencilOpSeparate(front, GL_KEEP, GL_KEEP, GL_INCR_WRAP);
+    glStencilOpSeparate(back, GL_KEEP, GL_KEEP, GL_DECR_WRAP);
+  }
+}
+
+// The light's volume: its given mesh, its GPU-built triangles, or both (LightVolume), counted
+// with `method`'s stencil operations (set here).
+void draw_volume(const LightVolume& lv, StencilMethod method) {
+  set_volume_stencil_ops(method, false);
   if (lv.volume != nullptr) {
     glBindVertexArray(lv.volume->vertex_array());
     glDrawElements(GL_TRIANGLES, lv.volume->index_count(), GL_UNSIGNED_INT, nullptr);
@@ -135,17 +156,23 @@ void draw_volume(const LightVolume& lv) {
     glBindVertexArray(lv.indirect.vertex_array);
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, lv.indirect.command);
     glDrawArraysIndirect(GL_TRIANGLES, nullptr);
+    if (lv.indirect.reversed) {
+      set_volume_stencil_ops(method, true);
+      // The second DrawArraysIndirectCommand: four GLuint after the first.
+      glDrawArraysIndirect(GL_TRIANGLES, reinterpret_cast<const void*>(4 * sizeof(GLuint)));
+      set_volume_stencil_ops(method, false);
+    }
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
   }
 }
 
 // The fragments of the volume that pass the depth test `depth_func` against the receivers'
 // depths (the stencil test passes: GL_ALWAYS), by an occlusion query; synchronises.
-std::uint64_t samples_passed(GLenum depth_func, const LightVolume& lv) {
+std::uint64_t samples_passed(GLenum depth_func, const LightVolume& lv, StencilMethod method) {
   const Query query = Query::create(GL_SAMPLES_PASSED);
   glDepthFunc(depth_func);
   glBeginQuery(GL_SAMPLES_PASSED, query.name());
-  draw_volume(lv);
+  draw_volume(lv, method);
   glEndQuery(GL_SAMPLES_PASSED);
   GLuint64 samples = 0;
   glGetQueryObjectui64v(query.name(), GL_QUERY_RESULT, &samples);  // waits for the draw
@@ -203,30 +230,20 @@ StencilShadowFrame StencilShadowRenderer::render(const OffscreenTarget& target, 
     glClear(GL_STENCIL_BUFFER_BIT);
     glEnable(GL_STENCIL_TEST);
     glStencilFunc(GL_ALWAYS, 0, 0xFF);
-    if (lv.stencil.value_or(options.method) == StencilMethod::zfail) {
-      glStencilOpSeparate(GL_BACK, GL_KEEP, GL_INCR_WRAP, GL_KEEP);
-      glStencilOpSeparate(GL_FRONT, GL_KEEP, GL_DECR_WRAP, GL_KEEP);
-    } else {
-      // z-pass. The caps are drawn as well and never count here (GL_LESS fails for them): a
-      // front cap lies on a receiver at the visible point's depth or behind it, a back cap at
-      // depth 1. A cap between the eye and the near plane (depth-clamped to 0) would count;
-      // a z-pass proven by exact/zpass_proof.h has no face there.
-      glStencilOpSeparate(GL_FRONT, GL_KEEP, GL_KEEP, GL_INCR_WRAP);
-      glStencilOpSeparate(GL_BACK, GL_KEEP, GL_KEEP, GL_DECR_WRAP);
-    }
+    const StencilMethod method = lv.stencil.value_or(options.method);
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     glDepthMask(GL_FALSE);
     glDepthFunc(GL_LESS);  // a cap at the visible point's own depth fails: "behind" it
     glEnable(GL_DEPTH_CLAMP);  // w = 0 caps reach depth 1 exactly; rounding must not clip them
-    draw_volume(lv);
+    draw_volume(lv, method);
     stage.reset();
     if (i == 0 && options.count_fragments) {
       // Nothing written: all fragments (depth test always passes), then those whose count
       // changed in the pass above (z-fail: depth test fails, i.e. GEQUAL; z-pass: LESS).
       glStencilMask(0);
-      const bool zfail = lv.stencil.value_or(options.method) == StencilMethod::zfail;
-      frame.first_volume_fragments = samples_passed(GL_ALWAYS, lv);
-      frame.first_stencil_updates = samples_passed(zfail ? GL_GEQUAL : GL_LESS, lv);
+      const bool zfail = method == StencilMethod::zfail;
+      frame.first_volume_fragments = samples_passed(GL_ALWAYS, lv, method);
+      frame.first_stencil_updates = samples_passed(zfail ? GL_GEQUAL : GL_LESS, lv, method);
       glStencilMask(0xFF);
       glDepthFunc(GL_LESS);
     }

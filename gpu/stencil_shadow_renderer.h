@@ -87,9 +87,19 @@ enum class StencilMethod { zfail, zpass };
 // A volume the GPU built itself (gpu/compute_volume.h): a vertex array of vec4 triangles
 // (attribute 0) drawn by glDrawArraysIndirect(GL_TRIANGLES) from `command`, a
 // DrawArraysIndirectCommand whose count only the GPU knows.
+//
+// With `reversed` (pertri, gpu/per_triangle_volume.h), a second DrawArraysIndirectCommand
+// follows the first in `command`: triangles stored in the vertex order of a triangle they
+// cancel, each standing for its own reversal. They are drawn with the stencil operations of
+// the two facings swapped, so such a pair is one primitive drawn twice: the same fragments at
+// the same depths (only stencil state differs between the draws, which GL's invariance rules
+// let no rasterisation depend on), counted once up and once down whatever the depth test
+// says. Two copies in opposite vertex orders round their depths apart near the visible
+// surface and need not cancel (docs/gpu.md, "Per-triangle volumes").
 struct IndirectVolumeDraw {
   GLuint vertex_array = 0;
   GLuint command = 0;
+  bool reversed = false;
 };
 
 // A light and the volume its shadows are counted with: `volume`, `indirect`, or both (their
