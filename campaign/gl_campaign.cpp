@@ -107,48 +107,20 @@ std::vector<std::array<std::uint32_t, 2>> hard_pixels(const LightRun& run, std::
   return pixels;
 }
 
-// A hard scene's failure shrunk: its parts merged into one soup after the floor (the very
-// triangles in the very order: the canonical soup, the depth pre-pass and the exact image are
-// those of the scene), the failing light alone, the camera held, near plane included; the
-// triangles by ddmin on the window around the first hard pixel, then that pixel alone.
+// A hard scene's failure shrunk (shrink_scene_failure) and recorded with its parts.
 ShrunkGlFailure shrink_hard_failure(const GlCampaignOptions& options, const GlCampaignFailure& failure) {
   ShrunkGlFailure out;
   out.failure = failure;
   const HardSceneCase h = hard_scene_case(options.seed, failure.index, options.width, options.height);
   out.parts = h.parts;
-  Soup casters;
-  for (std::size_t m = 1; m < h.scene.meshes.size(); ++m) append_soup(casters, h.scene.meshes[m].soup);
-  out.scene.meshes.resize(2);
-  out.scene.meshes[0] = h.scene.meshes[0];
-  out.scene.meshes[1].name = "casters";
-  out.scene.meshes[1].soup = casters;
-  out.scene.lights = {h.scene.lights.at(failure.light)};
-  out.scene.camera = h.scene.camera;
-  out.original_triangles = casters.triangles.size();
-  const gpu::ShadowMethod method = options.methods[failure.method];
-  gpu::ShadowMethodOptions method_options;
-  method_options.sign = options.sign;
-  const auto clamp_window = [&](std::uint32_t x, std::uint32_t y, std::uint32_t reach) {
-    const std::uint32_t x0 = x > reach ? x - reach : 0, y0 = y > reach ? y - reach : 0;
-    return PixelWindow{x0, y0, std::min(x + reach + 1, options.width) - x0, std::min(y + reach + 1, options.height) - y0};
-  };
-  // An open volume needs no pixel: the window is one, for the exact image's sake.
-  out.window = failure.kind == GlFailureKind::closure ? PixelWindow{0, 0, 1, 1}
-                                                      : clamp_window(failure.pixel[0], failure.pixel[1], kShrinkReach);
-  Scene candidate = out.scene;
-  const auto still_fails = [&](const Soup& soup) {
-    candidate.meshes[1].soup = soup;
-    return fails_as(compare_in_window(candidate, method, 0, out.window, method_options), failure.kind);
-  };
-  const ShrinkResult shrunk = shrink_soup(casters, still_fails, kMaxShrinkTests);
-  out.scene.meshes[1].soup = shrunk.soup;
+  SceneShrink shrunk = shrink_scene_failure(h.scene, 0, failure.light, options.methods[failure.method], failure.kind,
+                                            failure.pixel, options.sign);
+  out.scene = std::move(shrunk.scene);
+  out.pixels = std::move(shrunk.pixels);
+  out.window = shrunk.window;
+  out.original_triangles = shrunk.original_triangles;
   out.tests = shrunk.tests;
   out.minimal = shrunk.minimal;
-  if (failure.kind == GlFailureKind::hard_errors) {
-    const LightRun run = compare_in_window(out.scene, method, 0, out.window, method_options);
-    out.pixels = hard_pixels(run, options.width);
-    if (!out.pixels.empty()) out.window = clamp_window(out.pixels.front()[0], out.pixels.front()[1], 0);
-  }
   return out;
 }
 
@@ -190,6 +162,50 @@ std::string_view gl_scene_source_name(GlSceneSource source) {
   return source == GlSceneSource::hard ? "hard" : "soups";
 }
 
+SceneShrink shrink_scene_failure(const Scene& scene, std::size_t held_mesh, std::size_t light,
+                                 gpu::ShadowMethod method, GlFailureKind kind, std::array<std::uint32_t, 2> pixel,
+                                 gpu::SignMode sign) {
+  if (held_mesh >= scene.meshes.size() || light >= scene.lights.size())
+    throw std::invalid_argument("shrink_scene_failure: no such mesh or light");
+  const std::uint32_t width = scene.camera.width, height = scene.camera.height;
+  if (pixel[0] >= width || pixel[1] >= height) throw std::invalid_argument("shrink_scene_failure: pixel outside the image");
+  SceneShrink out;
+  Soup casters;
+  for (std::size_t m = 0; m < scene.meshes.size(); ++m)
+    if (m != held_mesh) append_soup(casters, scene.meshes[m].soup);
+  casters.normals.clear();
+  out.scene.meshes.resize(2);
+  out.scene.meshes[0] = scene.meshes[held_mesh];
+  out.scene.meshes[1].name = "casters";
+  out.scene.meshes[1].soup = casters;
+  out.scene.lights = {scene.lights[light]};
+  out.scene.camera = scene.camera;
+  out.original_triangles = casters.triangles.size();
+  gpu::ShadowMethodOptions method_options;
+  method_options.sign = sign;
+  const auto window_around = [&](std::uint32_t x, std::uint32_t y, std::uint32_t reach) {
+    const std::uint32_t x0 = x > reach ? x - reach : 0, y0 = y > reach ? y - reach : 0;
+    return PixelWindow{x0, y0, std::min(x + reach + 1, width) - x0, std::min(y + reach + 1, height) - y0};
+  };
+  // An open volume needs no pixel: the window is one, for the exact image's sake.
+  out.window = kind == GlFailureKind::closure ? PixelWindow{0, 0, 1, 1} : window_around(pixel[0], pixel[1], kShrinkReach);
+  Scene candidate = out.scene;
+  const auto still_fails = [&](const Soup& soup) {
+    candidate.meshes[1].soup = soup;
+    return fails_as(compare_in_window(candidate, method, 0, out.window, method_options), kind);
+  };
+  const ShrinkResult shrunk = shrink_soup(casters, still_fails, kMaxShrinkTests);
+  out.scene.meshes[1].soup = shrunk.soup;
+  out.tests = shrunk.tests;
+  out.minimal = shrunk.minimal;
+  if (kind == GlFailureKind::hard_errors) {
+    const LightRun run = compare_in_window(out.scene, method, 0, out.window, method_options);
+    out.pixels = hard_pixels(run, width);
+    if (!out.pixels.empty()) out.window = window_around(out.pixels.front()[0], out.pixels.front()[1], 0);
+  }
+  return out;
+}
+
 Scene gl_campaign_scene(const GlCampaignOptions& options, std::uint64_t index) {
   if (options.scenes == GlSceneSource::hard) return hard_scene_case(options.seed, index, options.width, options.height).scene;
   return campaign_view_scene(campaign_view(campaign_case(options.seed, index, options.triangles), options.width, options.height));
@@ -227,6 +243,8 @@ GlCampaignResult run_gl_campaign(const GlCampaignOptions& options) {
       scene = std::move(h.scene);
       parts = std::move(h.parts);
       for (HardPart p : parts) ++result.cases_by_part[static_cast<std::size_t>(p)];
+      result.cases_light_on_plane += h.first_light_on_plane ? 1 : 0;
+      result.cases_edge_on += h.edge_on_view ? 1 : 0;
     } else {
       c = campaign_case(options.seed, i, options.triangles);
       scene = campaign_view_scene(campaign_view(*c, options.width, options.height));
@@ -306,6 +324,12 @@ GlReproducer write_hard_reproducer(const fs::path& dir, const GlCampaignOptions&
         {"size", nlohmann::json::array({camera.width, camera.height})},
         {"near", camera.near_plane}}}};
   write_json_file(r.json, scene);
+  if (!shrunk.pixels.empty()) {
+    // tests/regressions/README.md: "column row" per line, light 0 (the scene's only light).
+    std::string lines;
+    for (const auto& p : shrunk.pixels) lines += fmt::format("{} {}\n", p[0], p[1]);
+    write_text_file(dir / (name + ".pixels"), lines);
+  }
   r.command = fmt::format("shadowcert diff {} --methods {}{}", r.json.string(), gpu::shadow_method_name(method),
                           options.sign == gpu::SignMode::float32 ? " --sign float" : "");
   const Scene back = load_scene_or_mesh(r.json);

@@ -99,6 +99,8 @@ struct GlCampaignResult {
   double exact_seconds = 0.0;  // of which, the exact images (both roundings)
   double shrink_seconds = 0.0;
   std::vector<std::uint64_t> cases_by_part = std::vector<std::uint64_t>(kHardParts, 0);  // hard scenes
+  std::uint64_t cases_light_on_plane = 0;  // hard scenes whose first light lies in a triangle's plane
+  std::uint64_t cases_edge_on = 0;         // hard scenes seen along a side face (HardSceneCase::edge_on_view)
   std::vector<GlCampaignFailure> failures;  // sorted by (index, method)
   std::vector<ShrunkGlFailure> shrunk;  // at most max_shrunk_per_method per method
 };
@@ -111,6 +113,25 @@ struct GlCampaignResult {
 // current GL context. Throws std::invalid_argument("run_gl_campaign: ...") on no method, an
 // empty image or a bad shard.
 [[nodiscard]] GlCampaignResult run_gl_campaign(const GlCampaignOptions& options);
+
+// A failing scene shrunk, as the hard-scene campaign shrinks its failures: mesh `held_mesh`
+// (the floor) kept as it is and first; every other mesh merged, in order, into one mesh
+// "casters" whose triangles ddmin (campaign/soup_shrinker.h, at most 300 tests) removes while
+// `method` still fails as `kind` says on light `light` alone (the scene's camera held, near
+// plane included; `sign` for the GPU-built methods), judged on the pixels within 4 of `pixel`
+// (campaign/window_comparison.h; any pixel for an open volume). `pixels` are then the shrunk
+// scene's hard pixels in that window and `window` the first of them alone.
+struct SceneShrink {
+  Scene scene;  // meshes: the held one, then "casters"; the one light
+  std::vector<std::array<std::uint32_t, 2>> pixels;
+  PixelWindow window;
+  std::size_t original_triangles = 0;  // of the casters
+  std::size_t tests = 0;
+  bool minimal = false;
+};
+[[nodiscard]] SceneShrink shrink_scene_failure(const Scene& scene, std::size_t held_mesh, std::size_t light,
+                                               gpu::ShadowMethod method, GlFailureKind kind,
+                                               std::array<std::uint32_t, 2> pixel, gpu::SignMode sign);
 
 // The scene case `index` of the options renders (soups: its campaign view's scene; hard: its
 // hard scene at the options' size).

@@ -15,11 +15,16 @@
 //     origin, its lowest point on the floor or up to 0.8 above it;
 //   - the floor: a square of two triangles in the plane y = 0, casting and receiving;
 //   - 1 to 3 lights: the first a point light close to one part (0.5 to 1.8 of its radius from
-//     its centre, above the floor; every other scene on the grid of 1/64, where it lies exactly
-//     in planes of the grid parts), the others point lights above the scene or directions;
+//     its centre, above the floor; every other scene on the grid of 1/64, where it may lie
+//     exactly in planes of the grid parts) or, in a quarter of the scenes with an integer part
+//     placed by quarter turns, exactly in the plane of one of its triangles (a + i (b - a) +
+//     j (c - a), quarter weights, exact); the others point lights above the scene or directions;
 //   - the camera looks at the parts' box from a random azimuth and an elevation of 20 to 65
-//     degrees, 45 degrees vertical field of view, the box's bounding sphere in view; its near
-//     plane fitted to the scene (core/near_plane.h).
+//     degrees, 45 degrees vertical field of view, the box's bounding sphere in view; or, in a
+//     quarter of the scenes, from within 1e-6 to 1e-4 (relative) of the plane through the first
+//     light and an edge of a part, at the point where that edge's side face meets the floor: the
+//     face seen edge-on (issue 27, pertri's reversed side quads); its near plane fitted to the
+//     scene (core/near_plane.h).
 #include <cstddef>
 #include <cstdint>
 #include <string_view>
@@ -44,6 +49,8 @@ struct HardSceneCase {
   // meshes: "floor" first, then one per part named by hard_part_name; every mesh casts.
   Scene scene;
   std::vector<HardPart> parts;  // in mesh order, after the floor
+  bool first_light_on_plane = false;  // the first light exactly in a part triangle's plane
+  bool edge_on_view = false;          // the eye next to a side face's plane, looking along it
 };
 
 // Scene `index` of the hard-scene campaign seeded `seed`, for a width x height image (>= 1

@@ -241,7 +241,8 @@ void print_gl_summary(const GlCampaignOptions& gl, const GlCampaignResult& resul
   if (gl.scenes == GlSceneSource::hard) {
     fmt::print("GL methods: {}x{} images of hard-soup scenes (docs/campaign.md), z-fail, {} signs, on {}\n", gl.width,
                gl.height, gpu::sign_mode_name(gl.sign), context.renderer());
-    fmt::print("  parts: {}\n", part_counts(result.cases_by_part));
+    fmt::print("  parts: {}\n  first light in a triangle's plane: {}; seen along a side face: {}\n",
+               part_counts(result.cases_by_part), result.cases_light_on_plane, result.cases_edge_on);
   } else {
     fmt::print("GL methods: {}x{} images of each case's campaign view (docs/campaign.md), z-fail, {} signs, on {}\n",
                gl.width, gl.height, gpu::sign_mode_name(gl.sign), context.renderer());
@@ -417,6 +418,8 @@ int run_fuzz(const FuzzOptions& options) {
                  {"device", context->device()},
                  {"scenes", gl_scene_source_name(gl.scenes)},
                  {"parts", parts},
+                 {"light_on_plane", gl_result->cases_light_on_plane},
+                 {"edge_on", gl_result->cases_edge_on},
                  {"size", {gl.width, gl.height}},
                  {"sign", gpu::sign_mode_name(gl.sign)},
                  {"methods", names},

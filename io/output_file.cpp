@@ -22,4 +22,12 @@ void write_json_file(const std::filesystem::path& file, const nlohmann::json& va
   if (!out) throw InputError(file.string(), "write failed");
 }
 
+void write_text_file(const std::filesystem::path& file, std::string_view text) {
+  create_parent_directories(file);
+  std::ofstream out(file);
+  if (!out) throw InputError(file.string(), "cannot open for writing");
+  out << text;
+  if (!out) throw InputError(file.string(), "write failed");
+}
+
 }  // namespace shadowcert

@@ -7,10 +7,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <iostream>
 
+#include "campaign/window_comparison.h"
 #include "support/gl_test_support.h"
 
 namespace shadowcert {
@@ -72,6 +74,33 @@ TEST_F(GlCampaignTest, HardScenes_RobustMethodsHaveNoFailingScene) {
     EXPECT_EQ(t.hard_error_pixels, 0u);
     EXPECT_GT(t.agree_pixels, options.cases * options.width * options.height / 4);
   }
+}
+
+// The hard scenes' shrinking (shrink_scene_failure) on a scene that fails: case 15 of seed 2
+// (30 triangles) in its campaign view, drawn by cs with float signs (CliFuzz.GlFailure...):
+// fewer triangles, the same failure, and the pixel it names fails alone.
+TEST_F(GlCampaignTest, ShrinkSceneFailure_FewerTrianglesSameFailureOnTheNamedPixel) {
+  const Scene scene = campaign_view_scene(campaign_view(campaign_case(2, 15, 30), 64, 48));
+  SceneComparisonOptions float_signs;
+  float_signs.method_options.sign = gpu::SignMode::float32;
+  const SceneComparison whole = compare_scene(scene, {gpu::ShadowMethod::cs}, float_signs);
+  const std::vector<PixelVerdict>& verdicts = whole.runs.front().lights.front().comparison.verdicts;
+  const auto first = std::find(verdicts.begin(), verdicts.end(), PixelVerdict::hard_error);
+  ASSERT_NE(first, verdicts.end()) << "the case no longer fails: pick another";
+  const auto p = static_cast<std::uint32_t>(first - verdicts.begin());
+  const SceneShrink s = shrink_scene_failure(scene, 1, 0, gpu::ShadowMethod::cs, GlFailureKind::hard_errors,
+                                             {p % 64, p / 64}, gpu::SignMode::float32);
+  EXPECT_EQ(s.original_triangles, 30u);
+  EXPECT_LT(s.scene.meshes[1].soup.triangles.size(), 30u);
+  EXPECT_EQ(s.scene.meshes[0].soup.triangles, scene.meshes[1].soup.triangles);  // the floor held
+  EXPECT_GT(s.tests, 1u);
+  ASSERT_FALSE(s.pixels.empty());
+  EXPECT_EQ(s.window.width * s.window.height, 1u);
+  EXPECT_EQ(s.window.x, s.pixels.front()[0]);
+  EXPECT_EQ(s.window.y, s.pixels.front()[1]);
+  gpu::ShadowMethodOptions options;
+  options.sign = gpu::SignMode::float32;
+  EXPECT_EQ(compare_in_window(s.scene, gpu::ShadowMethod::cs, 0, s.window, options).comparison.hard_errors, 1u);
 }
 
 }  // namespace

@@ -1,8 +1,9 @@
 // The hard-soup scenes of `fuzz --gl --gl-scenes hard` (campaign/hard_scene.h), GL-free: each is
 // a function of (seed, index, size); it holds 3 to 5 distinct parts over a floor in y = 0 that
 // lies under all of them, and every part of the seven is drawn; the first light is a point light
-// above the floor close to a part; the camera sees every vertex of the parts inside the image
-// beyond its fitted near plane.
+// above the floor close to a part, or exactly (exact/light_orientation.h) in the plane of a
+// part's triangle; the camera sees every vertex of the parts inside the image beyond its fitted
+// near plane, or looks along a side face's plane at the floor from within 1e-4 of it.
 #include "campaign/hard_scene.h"
 
 #include <gtest/gtest.h>
@@ -16,6 +17,8 @@
 
 #include "core/near_plane.h"
 #include "core/pixel_ray.h"
+#include "core/vector3.h"
+#include "exact/light_orientation.h"
 
 namespace shadowcert {
 namespace {
@@ -65,6 +68,7 @@ TEST(HardScene, SameSeedIndexAndSize_SameSceneElseAnother) {
 TEST(HardScene, EveryScene_PartsOverTheFloorALightCloseToOneAndAllInView) {
   std::array<std::uint64_t, kHardParts> drawn{};
   std::set<std::size_t> light_counts;
+  std::size_t on_plane = 0, edge_on = 0;
   for (std::uint64_t i = 0; i < kScenes; ++i) {
     SCOPED_TRACE("seed " + std::to_string(kSeed) + ", scene " + std::to_string(i));
     const HardSceneCase h = hard_scene_case(kSeed, i, kWidth, kHeight);
@@ -85,6 +89,7 @@ TEST(HardScene, EveryScene_PartsOverTheFloorALightCloseToOneAndAllInView) {
         ASSERT_TRUE(std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]));
         EXPECT_GE(v[1], 0.0);  // on or above the floor
         reach = std::max({reach, std::fabs(v[0]), std::fabs(v[2])});
+        if (h.edge_on_view) continue;  // it looks at a side face on the floor, not at the parts
         const Projected p = project(f, v);
         ASSERT_GT(p.depth, s.camera.near_plane);
         ASSERT_GE(p.x, 0.0);
@@ -118,9 +123,47 @@ TEST(HardScene, EveryScene_PartsOverTheFloorALightCloseToOneAndAllInView) {
       }
       close = close || d2 <= 4.0 * std::max(r2, 1.0);
     }
-    EXPECT_TRUE(close);
+    EXPECT_TRUE(close || h.first_light_on_plane);
+    if (h.edge_on_view) {
+      // The eye within 1e-4 (relative to its distance from the light) of the plane through the
+      // light and an edge of a part, at a floor point of that plane, above the floor.
+      ++edge_on;
+      const Vec3 l{s.lights[0].position[0], s.lights[0].position[1], s.lights[0].position[2]};
+      const Vec3 e = difference(s.camera.eye, l);
+      bool near_a_plane = false;
+      for (std::size_t m = 1; m < s.meshes.size() && !near_a_plane; ++m)
+        for (const Triangle& t : s.meshes[m].soup.triangles)
+          for (int k = 0; k < 3 && !near_a_plane; ++k) {
+            const Vec3 n = cross(difference(s.meshes[m].soup.vertices[t[k]], l),
+                                 difference(s.meshes[m].soup.vertices[t[(k + 1) % 3]], l));
+            const double nn = std::sqrt(dot(n, n));
+            near_a_plane = nn > 0.0 && std::fabs(dot(e, n)) / nn <= 1.001e-4 * std::sqrt(dot(e, e)) &&
+                           std::fabs(dot(difference(s.camera.target, l), n)) / nn <= 1e-9 * std::sqrt(dot(e, e));
+          }
+      EXPECT_TRUE(near_a_plane);
+      EXPECT_GT(s.camera.eye[1], 0.0);
+      EXPECT_EQ(s.camera.target[1], 0.0);
+    }
+    if (h.first_light_on_plane) {
+      // Exactly in the plane of some triangle of a part that spans one.
+      ++on_plane;
+      bool in_a_plane = false;
+      for (std::size_t m = 1; m < s.meshes.size() && !in_a_plane; ++m)
+        for (const Triangle& t : s.meshes[m].soup.triangles) {
+          const Vec3 &a = s.meshes[m].soup.vertices[t[0]], &b = s.meshes[m].soup.vertices[t[1]],
+                     &c = s.meshes[m].soup.vertices[t[2]];
+          const Vec3 n = cross(difference(b, a), difference(c, a));  // nonzero in double: not collinear
+          if ((n[0] != 0.0 || n[1] != 0.0 || n[2] != 0.0) && light_orientation(a, b, c, s.lights[0]) == Sign::zero) {
+            in_a_plane = true;
+            break;
+          }
+        }
+      EXPECT_TRUE(in_a_plane);
+    }
   }
   for (std::size_t p = 0; p < kHardParts; ++p) EXPECT_GT(drawn[p], 0u) << hard_part_name(static_cast<HardPart>(p));
+  EXPECT_GT(on_plane, 0u);
+  EXPECT_GT(edge_on, 0u);
   EXPECT_EQ(light_counts.size(), 3u);  // one, two and three lights all occur
 }
 
