@@ -438,6 +438,40 @@ TEST(CliFuzz, TinyGlCampaign_ExitsZeroJsonHasEveryGlMethod) {
 // it casts nothing; cs evaluates its light side in float, gets a nonzero sign and shadows a
 // half-space: hard errors (docs/campaign.md, "What the GL campaign found"). If this test starts
 // failing because cs passes, that finding was fixed: pin another failing case.
+// --gl-scenes hard (campaign/hard_scene.h): hard-soup scenes of 3 to 5 parts and 1 to 3 lights;
+// every light of every scene compared, so the pixels add up to lights x pixels.
+TEST(CliFuzz, HardGlScenes_ExitZeroJsonCountsPartsAndEveryLightsPixels) {
+  const fs::path dir = temp_dir("cli_test") / "fuzz_gl_hard";
+  const fs::path json = dir / "gl.json";
+  const RunResult r = run_cli("fuzz --gl --gl-scenes hard --seed 3 --cases 3 --methods exact --gl-methods cs,pertri "
+                              "--gl-size 48x36 --out " + (dir / "out").string() + " --json " + json.string());
+  SHADOWCERT_SKIP_WITHOUT_GL(r);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("hard-soup scenes"), std::string::npos) << r.output;
+  const nlohmann::json j = read_json(json);
+  ASSERT_TRUE(j["gl"].is_object()) << j.dump(2);
+  EXPECT_EQ(j["gl"]["scenes"], "hard");
+  std::uint64_t parts = 0;
+  for (const auto& [name, n] : j["gl"]["parts"].items()) parts += n.get<std::uint64_t>();
+  EXPECT_GE(parts, 9u);  // 3 to 5 parts a scene
+  EXPECT_LE(parts, 15u);
+  EXPECT_TRUE(j["gl"].contains("light_on_plane"));
+  EXPECT_TRUE(j["gl"].contains("edge_on"));
+  for (const char* run : {"gl-cs", "gl-pertri"}) {
+    SCOPED_TRACE(run);
+    const nlohmann::json& m = j["methods"][run];
+    EXPECT_EQ(m["failures"], 0);
+    EXPECT_TRUE(m["failures_by_part"].contains("stl_torus"));
+    const std::uint64_t pixels = m["hard_error_pixels"].get<std::uint64_t>() +
+                                 m["ambiguous_pixels"].get<std::uint64_t>() + m["agree_pixels"].get<std::uint64_t>();
+    EXPECT_EQ(pixels % (48u * 36u), 0u);
+    EXPECT_GE(pixels, 3u * 48u * 36u);
+    EXPECT_LE(pixels, 9u * 48u * 36u);
+  }
+  EXPECT_EQ(run_cli("fuzz --gl --gl-scenes walls --cases 1").exit_code, 2);
+  EXPECT_EQ(run_cli("fuzz --gl-scenes hard --cases 1").exit_code, 2);  // needs --gl
+}
+
 TEST(CliFuzz, GlFailure_ShrunkToASceneThatDiffReplays) {
   const fs::path dir = temp_dir("cli_test") / "gl_campaign_failure";
   const fs::path json = dir / "gl.json";
