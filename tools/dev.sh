@@ -20,6 +20,7 @@ PACKAGES=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libegl-dev libepoxy-dev libpng-dev libglm-dev libgl1-mesa-dri libegl-mesa0
   python3-matplotlib chromium   # shadowcert bench's plots (tools/bench_plots.py), its report's browser test
+  libembree-dev                 # the float ray tracer peer `rt` (docs/ray-tracing.md)
 )
 
 # Only `sanitize` needs these: clang 14, its sanitizer and libFuzzer runtimes
