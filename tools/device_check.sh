@@ -21,7 +21,8 @@
 # a 4M-triangle frame takes minutes in software).
 #
 # SHADOWCERT_DEVICE_STEPS: the steps to run, comma-separated (default all: gl_tests,
-# render_bench, lamp_in_room, real_meshes, bench_default), to fit a short device lease.
+# render_bench, lamp_in_room, real_meshes, bench_default; on demand: lamp_diag), to fit a
+# short device lease.
 #
 # SHADOWCERT_DEVICE_PREBUILT=BUNDLE: no build; the programs and libraries tools/device_bundle.sh
 # put in BUNDLE (for a GPU machine that cannot install Debian's packages). The GL tests are then
@@ -119,6 +120,17 @@ want render_bench && step render_bench 120 "$OUT_DIR/render_bench.txt" "$RENDER_
 # The cube-map shadow maps: a point light at the exact centre of a room's bounds, every method.
 want lamp_in_room && step lamp_in_room 60 "$OUT_DIR/lamp_in_room.log" "$SHADOWCERT" diff data/scenes/lamp_in_room.json --size "$RESOLUTION" \
   --methods all,pcf,pcss,smoothie --json "$OUT_DIR/lamp_in_room.json"
+# Where lamp_in_room fails on NVIDIA (docs/gpu.md#nvidia-figures: 155,677 hard errors for every
+# volume method on an H200, 0 on llvmpipe): cpu's overlay and masks at full size under z-fail and
+# z-pass, and at the scene's own 320x240, to see which surfaces and which part of the volume.
+want lamp_diag && step lamp_diag 120 "$OUT_DIR/lamp_diag.log" bash -c '
+  for mode in zfail zpass; do
+    "$1" diff data/scenes/lamp_in_room.json --size "$2" --methods cpu --stencil "$mode" \
+      --out "$3/lamp_diag_$mode" --json "$3/lamp_diag_$mode.json"
+  done
+  "$1" diff data/scenes/lamp_in_room.json --methods cpu,pertri --out "$3/lamp_diag_320x240" \
+    --json "$3/lamp_diag_320x240.json"
+  exit 0' _ "$SHADOWCERT" "$RESOLUTION" "$OUT_DIR"
 # The bundled real meshes at full size: the robust methods must show 0 hard errors on the GPU too.
 want real_meshes && step real_meshes 120 "$OUT_DIR/real_meshes.log" bash -c '
   failed=0
