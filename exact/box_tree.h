@@ -1,7 +1,8 @@
 #pragma once
-// Internal to exact/: a bounding-volume tree over closed axis-aligned boxes (a CGAL AABB tree
-// inside), queried with a segment or a ray: it reports every box the query meets, decided
-// exactly on the doubles (CGAL's filtered Do_intersect_3 of Epick), so a caller that bounds
+// Internal to exact/: a bounding-volume tree over closed axis-aligned boxes (a binary BVH of
+// its own, binned-SAH built in parallel: exact/box_tree.cpp), queried with a segment or a ray:
+// it reports every box the query meets, decided exactly on the doubles (CGAL's filtered
+// Do_intersect_3 of Epick on each box a certified slab test cannot rule out), so a caller that bounds
 // its objects by these boxes never loses a candidate. With LeafTest::skip it also reports
 // boxes whose parent node the query meets but which it misses itself: a superset, for callers
 // whose own exact test is cheaper than one more box test.
@@ -25,8 +26,7 @@ enum class LeafTest : bool { skip, exact };
 
 class BoxTree {
  public:
-  // Box i gets id i. Built now (a Morton pre-order keeps the build cache-friendly); queries
-  // are const and run concurrently.
+  // Box i gets id i. Built now (in parallel, TBB); queries are const and run concurrently.
   BoxTree(const std::vector<Box>& boxes, LeafTest leaf_test);
   ~BoxTree();
   BoxTree(const BoxTree&) = delete;
