@@ -27,6 +27,7 @@
 #include "io/output_file.h"
 #include "pipeline/analytic_comparison.h"
 #include "pipeline/comparison_pictures.h"
+#include "pipeline/ray_traced_comparison.h"
 #include "pipeline/scene_comparison.h"
 #include "pipeline/soft_shadow_pictures.h"
 #include "io/scene_input.h"
@@ -222,6 +223,68 @@ nlohmann::json method_json(const MethodRun& run, const DiffOptions& options) {
   return j;
 }
 
+// A ray-traced run's summary: diff's figures and its own times (docs/ray-tracing.md).
+nlohmann::json ray_traced_json(const RayTracedRun& run) {
+  nlohmann::json j{{"robust", false},
+                   {"ray_traced", true},
+                   {"mode", raytrace::build_mode_name(ray_traced_entry(run.method).mode)},
+                   {"hard_errors", run.sum(&PixelComparison::hard_errors)},
+                   {"ambiguous", run.sum(&PixelComparison::ambiguous)},
+                   {"agree", run.sum(&PixelComparison::agree)},
+                   {"coverage_errors", run.sum(&PixelComparison::coverage_errors)},
+                   {"lit_errors", run.sum(&PixelComparison::lit_errors)},
+                   {"count_errors", run.sum(&PixelComparison::count_errors)},
+                   {"closed", nullptr},
+                   {"gl_ms", run.ms()},
+                   {"build_seconds", run.build_seconds},
+                   {"trace_seconds", run.trace_seconds},
+                   {"failed", false}};
+  nlohmann::json per_light = nlohmann::json::array();
+  for (const LightRun& l : run.lights) {
+    nlohmann::json lj = comparison_json(l.comparison);
+    if (l.soft) lj["soft"] = soft_errors_json(*l.soft);
+    per_light.push_back(lj);
+  }
+  j["per_light"] = per_light;
+  if (!run.lights.empty() && run.lights.front().soft)
+    j["soft_seconds"] = {{"build", run.soft_build_seconds}, {"trace", run.soft_trace_seconds}};
+  return j;
+}
+
+// Every run of the comparison as the pictures and tables show it: the GL runs, then the
+// ray-traced ones (pipeline/ray_traced_comparison.h), each with its name and per-light frames.
+struct RunView {
+  std::string name;
+  const std::vector<LightRun>* lights = nullptr;
+  bool held_robust = false;
+  bool failed = false;
+  std::optional<bool> closed;
+  double ms = 0.0;    // GL: mean ms per frame summed over lights; rt: build and trace
+  std::string note;   // after the figures: "  FAILED", "  (baseline)", ...
+  std::string parameters;  // the report's parameter cell
+};
+
+std::vector<RunView> run_views(const SceneComparison& comparison, const DiffOptions& options) {
+  std::vector<RunView> views;
+  for (const MethodRun& run : comparison.runs)
+    views.push_back({std::string(gpu::shadow_method_name(run.method)), &run.lights, run.held_robust, run.failed(),
+                     run.closed(), run.gl_ms(),
+                     run.failed()                          ? "  FAILED"
+                     : run.held_robust                     ? ""
+                     : gpu::uses_shadow_map(run.method)    ? "  (baseline)"
+                                                           : "  (smooth surface: its error)",
+                     gpu::uses_shadow_map(run.method) ? fmt::format("{0}x{0} depth map", options.shadowmap_size)
+                                                      : std::string()});
+  for (const RayTracedRun& run : comparison.ray_traced)
+    views.push_back({std::string(ray_traced_method_name(run.method)), &run.lights, false, false, std::nullopt, run.ms(),
+                     fmt::format("  (float peer; build {:.1f} ms, trace {:.1f} ms)", 1000.0 * run.build_seconds,
+                                 1000.0 * run.trace_seconds),
+                     fmt::format("Embree {} mode, CPU: build {:.1f} ms, trace {:.1f} ms",
+                                 raytrace::build_mode_name(ray_traced_entry(run.method).mode),
+                                 1000.0 * run.build_seconds, 1000.0 * run.trace_seconds)});
+  return views;
+}
+
 // The silhouette runs against the analytic shadow, one line each (reported, never a failure).
 void print_analytic(const AnalyticShadowImage& truth, const Scene& scene, const std::vector<MethodRun>& runs) {
   std::string casters;
@@ -249,12 +312,12 @@ std::string analytic_fact(const AnalyticCounts& a) {
 
 // Step 1: what the options ask for, checked before any file is read.
 struct DiffRequest {
-  std::vector<gpu::ShadowMethod> methods;
+  MethodSelection methods;
   StencilChoice stencil_choice = StencilChoice::zfail;
 };
 
 DiffRequest validate_diff(const DiffOptions& options) {
-  const std::vector<gpu::ShadowMethod> methods = shadow_methods_option(options.methods, "--methods");
+  const MethodSelection methods = method_selection_option(options.methods, "--methods");
   const StencilChoice stencil_choice = stencil_option(options.stencil, options.zpass, options.zfail);
   if (options.shadowmap_size < 1 || options.shadowmap_size > gpu::kMaxShadowMapSize)
     throw CLI::ValidationError("--shadowmap-size", fmt::format("must be in [1, {}], got {}", gpu::kMaxShadowMapSize,
@@ -317,6 +380,7 @@ SceneComparisonOptions comparison_options_of(const DiffRequest& request, const D
     soft.progress = isatty(fileno(stderr)) != 0;
     comparison_options.soft = soft;
   }
+  comparison_options.ray_traced = request.methods.ray_traced;
   // A progress bar only on a terminal: logs and pipes get no carriage returns.
   comparison_options.progress = isatty(fileno(stderr)) != 0;
   return comparison_options;
@@ -328,7 +392,7 @@ struct DiffResult {
   const DiffRequest& request;
   const Scene& scene;
   std::size_t triangles;
-  const gpu::EglContext& context;
+  const gpu::EglContext* context;  // nullptr: no GL method and no --edges (no context opened)
   const SceneComparison& comparison;
   const EdgeMapComparisonOptions& edge_options;
   const std::optional<EdgeMapComparison>& edge_maps;
@@ -363,7 +427,6 @@ void write_diff_images(const DiffResult& result) {
   const DiffOptions& options = result.options;
   const SceneComparison& comparison = result.comparison;
   const ExactImage& exact = comparison.exact;
-  const std::vector<MethodRun>& runs = comparison.runs;
   const std::size_t light_count = scene.lights.size();
   const std::optional<EdgeMapComparison>& edge_maps = result.edge_maps;
   if (!options.out.empty()) {
@@ -375,17 +438,17 @@ void write_diff_images(const DiffResult& result) {
       // The counts in a perceptual colour map: the gray file holds n mod 256, where 1 and 2 look black.
       gpu::write_png((dir / ("exact_counts_viridis" + light_suffix(k, light_count) + ".png")).string(),
                      count_colour_image(exact, k, counts_top(exact)));
-      for (const MethodRun& run : runs) {
-        const std::string name(gpu::shadow_method_name(run.method));
+      for (const RunView& run : run_views(comparison, options)) {
+        const std::string& name = run.name;
+        const LightRun& l = (*run.lights)[k];
         const std::string s = light_suffix(k, light_count);
-        gpu::write_png((dir / (name + "_mask" + s + ".png")).string(), gl_mask(run.lights[k].frame));
-        gpu::write_png((dir / (name + "_overlay" + s + ".png")).string(),
-                       overlay(run.lights[k].frame.colour, run.lights[k].comparison));
+        gpu::write_png((dir / (name + "_mask" + s + ".png")).string(), gl_mask(l.frame));
+        gpu::write_png((dir / (name + "_overlay" + s + ".png")).string(), overlay(l.frame.colour, l.comparison));
         if (!comparison.soft.empty()) {
           gpu::write_png((dir / (name + "_soft_error" + s + ".png")).string(),
-                         soft_error_image(comparison.soft[k].image, run.lights[k].frame.first_light));
+                         soft_error_image(comparison.soft[k].image, l.frame.first_light));
           write_light_image(dir / (name + "_light" + s + ".png"), scene.camera.width, scene.camera.height,
-                            run.lights[k].frame.first_light);
+                            l.frame.first_light);
         }
       }
       if (!comparison.soft.empty()) {
@@ -416,8 +479,8 @@ nlohmann::json diff_summary(const DiffResult& result) {
       {"size", {scene.camera.width, scene.camera.height}},
       {"stencil", stencil_choice_name(result.request.stencil_choice)},
       {"stencil_per_light", stencil_json(comparison.stencil)},
-      {"renderer", result.context.renderer()},
-      {"device", result.context.device()},
+      {"renderer", result.context ? result.context->renderer() : std::string()},
+      {"device", result.context ? result.context->device() : std::string()},
       {"lights", light_count},
       {"triangles", result.triangles},
       {"exact_seconds", exact.stats.seconds},
@@ -435,6 +498,8 @@ nlohmann::json diff_summary(const DiffResult& result) {
       {"methods", nlohmann::json::object()},
       {"passed", comparison.passed()}};
   for (const MethodRun& run : runs) summary["methods"][std::string(gpu::shadow_method_name(run.method))] = method_json(run, options);
+  for (const RayTracedRun& run : comparison.ray_traced)
+    summary["methods"][std::string(ray_traced_method_name(run.method))] = ray_traced_json(run);
   for (const SilhouetteVolumes& s : comparison.silhouettes)
     summary["methods"][std::string(gpu::shadow_method_name(s.method))]["casters"] = silhouette_casters_json(s);
   if (comparison.analytic) summary["analytic"] = analytic_truth_json(*comparison.analytic, scene);
@@ -467,7 +532,7 @@ void write_html_report(const DiffResult& result) {
   report.facts = {{"image", fmt::format("{}x{}, {} light(s), {} triangles", scene.camera.width, scene.camera.height,
                                         light_count, result.triangles)},
                   {"stencil", stencil_facts(result.request.stencil_choice, comparison)},
-                  {"renderer", result.context.renderer()},
+                  {"renderer", result.context ? result.context->renderer() : std::string("none (no GL method)")},
                   {"exact image", fmt::format("{:.2f} s (tree {:.2f}, hits {:.2f}, footprints {:.2f}, counts {:.2f}; "
                                               "{} rays, {} counts), and {:.2f} s for the float-rounded scene",
                                               exact.stats.seconds, exact.stats.tree_seconds, exact.stats.hit_seconds,
@@ -487,19 +552,21 @@ void write_html_report(const DiffResult& result) {
                     soft_light_text(scene.lights[k], comparison.soft_radius, comparison.soft_angle_degrees),
                     r.image.samples.size(), reference_half_width(static_cast<std::uint32_t>(r.image.samples.size())),
                     r.image.stats.seconds + r.contact_seconds));
-    for (const MethodRun& run : runs)
-      if (run.lights[k].soft)
-        report.facts.emplace_back("soft error, " + std::string(gpu::shadow_method_name(run.method)) +
+    for (const RunView& run : run_views(comparison, options))
+      if ((*run.lights)[k].soft)
+        report.facts.emplace_back("soft error, " + run.name +
                                       (light_count > 1 ? fmt::format(", light {}", k) : std::string()),
-                                  soft_fact(*run.lights[k].soft));
+                                  soft_fact(*(*run.lights)[k].soft));
   }
-  for (const MethodRun& run : runs)
-    report.rows.push_back({std::string(gpu::shadow_method_name(run.method)), run.held_robust,
-                           run.sum(&PixelComparison::hard_errors), run.sum(&PixelComparison::ambiguous),
-                           run.sum(&PixelComparison::agree), run.closed(), run.gl_ms(),
-                           gpu::uses_shadow_map(run.method)
-                               ? fmt::format("{0}x{0} depth map", options.shadowmap_size)
-                               : std::string()});
+  const auto sum = [](const RunView& run, std::uint64_t PixelComparison::*figure) {
+    std::uint64_t n = 0;
+    for (const LightRun& l : *run.lights) n += l.comparison.*figure;
+    return n;
+  };
+  for (const RunView& run : run_views(comparison, options))
+    report.rows.push_back({run.name, run.held_robust, sum(run, &PixelComparison::hard_errors),
+                           sum(run, &PixelComparison::ambiguous), sum(run, &PixelComparison::agree), run.closed,
+                           run.ms, run.parameters});
   for (std::size_t k = 0; k < light_count; ++k) {
     const std::string s = light_count > 1 ? fmt::format(", light {}", k) : std::string();
     for (const auto& [name, image] : exact_images(exact, k)) {
@@ -520,15 +587,16 @@ void write_html_report(const DiffResult& result) {
       report.exact_images.push_back({"error colours: -1 (too dark) to +1 (too bright)",
                                      gpu::encode_png(diverging_colour_bar(256, 16))});
     }
-    for (const MethodRun& run : runs) {
-      const std::string name(gpu::shadow_method_name(run.method));
+    for (const RunView& run : run_views(comparison, options)) {
+      const std::string& name = run.name;
+      const LightRun& l = (*run.lights)[k];
       report.method_images.push_back(
           {name + s,
-           {{name + " overlay" + s, gpu::encode_png(overlay(run.lights[k].frame.colour, run.lights[k].comparison))},
-            {name + " lit mask" + s, gpu::encode_png(gl_mask(run.lights[k].frame))},
+           {{name + " overlay" + s, gpu::encode_png(overlay(l.frame.colour, l.comparison))},
+            {name + " lit mask" + s, gpu::encode_png(gl_mask(l.frame))},
             {"exact lit mask" + s, gpu::encode_png(exact_mask(exact, k))}}});
       if (!comparison.soft.empty()) {
-        const gpu::StencilShadowFrame& f = run.lights[k].frame;
+        const gpu::StencilShadowFrame& f = l.frame;
         report.method_images.back().second.push_back(
             {name + " light" + s, gpu::encode_png(light_image_gray(scene.camera.width, scene.camera.height,
                                                                      f.first_light))});
@@ -554,8 +622,11 @@ void print_diff(const DiffResult& result) {
   const std::vector<MethodRun>& runs = comparison.runs;
   const std::size_t light_count = scene.lights.size();
   const std::optional<EdgeMapComparison>& edge_maps = result.edge_maps;
-  fmt::print("{}: {} triangles, {} light(s), {}x{}, {} on {}\n", options.input, result.triangles, light_count,
-             scene.camera.width, scene.camera.height, stencil_choice_name(result.request.stencil_choice), result.context.renderer());
+  fmt::print("{}: {} triangles, {} light(s), {}x{}, {}\n", options.input, result.triangles, light_count,
+             scene.camera.width, scene.camera.height,
+             result.context ? fmt::format("{} on {}", stencil_choice_name(result.request.stencil_choice),
+                                          result.context->renderer())
+                            : std::string("ray-traced methods only (no GL context)"));
   print_stencil(comparison.stencil);
   for (const SilhouetteVolumes& s : comparison.silhouettes) print_silhouette_casters(s);
   fmt::print("  exact image: {:.2f} s (tree {:.2f}, hits {:.2f}, footprints {:.2f}, counts {:.2f}), float-rounded "
@@ -564,15 +635,15 @@ void print_diff(const DiffResult& result) {
              exact.stats.count_seconds, comparison.rounded_seconds, ambiguous_pixels(exact).dump());
   fmt::print("  {:<10} {:>11} {:>10} {:>10} {:>7} {:>9}\n", "method", "hard errors", "ambiguous", "agree", "closed",
              "gl ms");
-  for (const MethodRun& run : runs) {
-    const std::optional<bool> closed = run.closed();
-    fmt::print("  {:<10} {:>11} {:>10} {:>10} {:>7} {:>9.2f}{}\n", gpu::shadow_method_name(run.method),
-               run.sum(&PixelComparison::hard_errors), run.sum(&PixelComparison::ambiguous),
-               run.sum(&PixelComparison::agree), closed ? (*closed ? "yes" : "NO") : "-", run.gl_ms(),
-               run.failed() ? "  FAILED"
-               : run.held_robust ? ""
-               : gpu::uses_shadow_map(run.method) ? "  (baseline)"
-                                                           : "  (smooth surface: its error)");
+  for (const RunView& run : run_views(comparison, options)) {
+    std::uint64_t hard = 0, ambiguous = 0, agree = 0;
+    for (const LightRun& l : *run.lights) {
+      hard += l.comparison.hard_errors;
+      ambiguous += l.comparison.ambiguous;
+      agree += l.comparison.agree;
+    }
+    fmt::print("  {:<10} {:>11} {:>10} {:>10} {:>7} {:>9.2f}{}\n", run.name, hard, ambiguous, agree,
+               run.closed ? (*run.closed ? "yes" : "NO") : "-", run.ms, run.note);
   }
   if (comparison.analytic) print_analytic(*comparison.analytic, scene, runs);
   if (edge_maps) print_edge_maps(*edge_maps);
@@ -586,9 +657,8 @@ void print_diff(const DiffResult& result) {
                r.image.stats.seconds + r.contact_seconds);
     fmt::print("  {:<10} {:>9} {:>7} {:>8} {:>8} {:>8} {:>11} {:>12} {:>9} {:>9}\n", "method", "mean err", "max",
                "umbra", "penumbra", "outside", "leaks", "acne", "signed", "ref noise");
-    for (const MethodRun& run : runs)
-      if (run.lights[k].soft)
-        fmt::print("  {:<10} {}\n", gpu::shadow_method_name(run.method), soft_line(*run.lights[k].soft));
+    for (const RunView& run : run_views(comparison, options))
+      if ((*run.lights)[k].soft) fmt::print("  {:<10} {}\n", run.name, soft_line(*(*run.lights)[k].soft));
   }
   fmt::print("  {}\n", comparison.passed() ? "passed: no robust method has a hard error or an open volume"
                               : "FAILED: a robust method has a hard error or an open volume");
@@ -597,14 +667,17 @@ void print_diff(const DiffResult& result) {
 int run_diff(const DiffOptions& options) {
   const DiffRequest request = validate_diff(options);                       // 1. the options
   const DiffScene d = load_diff_scene(options);                             // 2. the scene
-  const gpu::EglContext context = gpu::open_gl_context("diff", options.device);
-  const SceneComparison comparison =                                        // 3, 4. exact image and GL
-      compare_scene(d.scene, request.methods, comparison_options_of(request, options));
+  // A GL context only where something draws with GL: `--methods rt` runs on any machine.
+  std::optional<gpu::EglContext> context;
+  if (!request.methods.gl.empty() || options.edges) context.emplace(gpu::open_gl_context("diff", options.device));
+  const SceneComparison comparison =                                        // 3, 4. exact image, GL, rt
+      compare_scene(d.scene, request.methods.gl, comparison_options_of(request, options));
   // --edges: the edge maps' scores (reported, never a failure).
   const EdgeMapComparisonOptions edge_options;
   std::optional<EdgeMapComparison> edge_maps;
   if (options.edges) edge_maps = compare_edge_maps(d.scene, edge_options);
-  const DiffResult r{options, request, d.scene, d.triangles, context, comparison, edge_options, edge_maps};
+  const DiffResult r{options, request, d.scene, d.triangles, context ? &*context : nullptr, comparison, edge_options,
+                     edge_maps};
   if (!options.out.empty()) write_diff_images(r);                           // 5. images
   const nlohmann::json summary = diff_summary(r);                           // 6. summary
   if (!options.out.empty()) write_json_file(std::filesystem::path(options.out) / "summary.json", summary);
@@ -628,7 +701,8 @@ void add_diff_command(CLI::App& app, int& exit_code) {
                   "Comma-separated methods to compare: cpu, cs, gs, ts, pertri, shadowmap, and the smooth-silhouette "
                   "methods discrete, accurate, smooth, smooth-gpu (docs/smooth-silhouettes.md), and the soft "
                   "shadow-map methods pcf, pcss, smoothie (docs/smoothies.md; baselines like shadowmap, their lit "
-                  "mask where the light is at least 1/2); default: all, the first six");
+                  "mask where the light is at least 1/2), and the ray-traced peers rt, rt-robust (Embree on the CPU, "
+                  "no GL; docs/ray-tracing.md; their hard errors reported, never a failure); default: all, the first six");
   add_silhouette_options(*cmd, options->silhouette);
   cmd->add_option("--stencil", options->stencil,
                   "Stencil counting of the volume methods: zfail (default; faces behind the visible point), zpass "

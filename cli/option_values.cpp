@@ -42,6 +42,8 @@ void check_light_angle(double degrees, bool zero_allowed, const std::string& opt
 
 gpu::ShadowMethod shadow_method_option(const std::string& name, const std::string& option) {
   if (const MethodEntry* entry = find_method(name)) return entry->method;
+  if (find_ray_traced_method(name) != nullptr)
+    throw CLI::ValidationError(option, "'" + name + "' is traced on the CPU, not a GL method");
   throw CLI::ValidationError(option, "unknown method '" + name + "': use " + method_names());
 }
 
@@ -79,6 +81,14 @@ ShardOption shard_option(const std::string& text, const std::string& option) {
 std::vector<gpu::ShadowMethod> shadow_methods_option(const std::string& list, const std::string& option) {
   try {
     return parse_method_list(list);
+  } catch (const std::invalid_argument& e) {
+    throw CLI::ValidationError(option, e.what());
+  }
+}
+
+MethodSelection method_selection_option(const std::string& list, const std::string& option) {
+  try {
+    return parse_method_selection(list);
   } catch (const std::invalid_argument& e) {
     throw CLI::ValidationError(option, e.what());
   }

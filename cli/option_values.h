@@ -10,6 +10,7 @@
 
 #include "core/camera.h"
 #include "gpu/shadow_method_renderer.h"
+#include "pipeline/method_registry.h"
 #include "pipeline/stencil_choice.h"
 
 namespace shadowcert::cli {
@@ -56,5 +57,8 @@ struct ShardOption {
 // empty list): the registry's in_all methods (pipeline/method_registry.h's parse_method_list).
 // Throws CLI::ValidationError naming `option`, the unknown name and the names.
 [[nodiscard]] std::vector<gpu::ShadowMethod> shadow_methods_option(const std::string& list, const std::string& option);
+// The same list with the ray-traced methods too (rt, rt-robust: pipeline/method_registry.h's
+// parse_method_selection); "all" stays the in_all GL methods.
+[[nodiscard]] MethodSelection method_selection_option(const std::string& list, const std::string& option);
 
 }  // namespace shadowcert::cli

@@ -63,7 +63,31 @@ const std::array<MethodEntry, gpu::kShadowMethodTable.size()> kRegistry{{
      "docs/smooth-silhouettes.md", kOneEpsilon},
 }};
 
+// The ray-traced methods, after the GL ones (docs/ray-tracing.md).
+constexpr std::array<RayTracedEntry, 2> kRayTraced{{
+    {RayTracedMethod::rt, "rt", raytrace::BuildMode::fast, false,
+     "rt (no GL: Embree ray-traces the centre rays on the CPU, one shadow ray per hit and light, in float; "
+     "Embree's default fast build; raytrace/ray_traced_image.h)",
+     "docs/ray-tracing.md"},
+    {RayTracedMethod::rt_robust, "rt-robust", raytrace::BuildMode::robust, false,
+     "rt-robust (rt with Embree's robust mode: RTC_SCENE_FLAG_ROBUST and a high-quality BVH)", "docs/ray-tracing.md"},
+}};
+
 }  // namespace
+
+std::span<const RayTracedEntry> ray_traced_registry() { return kRayTraced; }
+
+const RayTracedEntry& ray_traced_entry(RayTracedMethod method) {
+  for (const RayTracedEntry& e : kRayTraced)
+    if (e.method == method) return e;
+  throw std::invalid_argument("ray_traced_entry: no entry for method " + std::to_string(static_cast<int>(method)));
+}
+
+const RayTracedEntry* find_ray_traced_method(std::string_view name) {
+  for (const RayTracedEntry& e : kRayTraced)
+    if (e.name == name) return &e;
+  return nullptr;
+}
 
 std::span<const std::string_view> method_option_flags(MethodOption option) {
   static constexpr std::array<std::string_view, 3> kStencil{"--stencil", "--zpass", "--zfail"};
@@ -106,11 +130,13 @@ bool robust(gpu::ShadowMethod method) { return method_entry(method).robust; }
 std::string method_names(std::string_view separator) {
   std::string names;
   for (const MethodEntry& e : kRegistry) names += (names.empty() ? "" : std::string(separator)) + std::string(e.name());
+  for (const RayTracedEntry& e : kRayTraced) names += std::string(separator) + std::string(e.name);
   return names;
 }
 
-std::vector<gpu::ShadowMethod> parse_method_list(std::string_view list) {
-  std::vector<gpu::ShadowMethod> methods;
+MethodSelection parse_method_selection(std::string_view list) {
+  MethodSelection selection;
+  std::vector<gpu::ShadowMethod>& methods = selection.gl;
   const auto add = [&](gpu::ShadowMethod m) {
     if (std::find(methods.begin(), methods.end(), m) == methods.end()) methods.push_back(m);
   };
@@ -120,7 +146,7 @@ std::vector<gpu::ShadowMethod> parse_method_list(std::string_view list) {
   };
   if (list.empty()) {
     add_all();
-    return methods;
+    return selection;
   }
   std::size_t start = 0;
   while (start <= list.size()) {
@@ -131,25 +157,46 @@ std::vector<gpu::ShadowMethod> parse_method_list(std::string_view list) {
       add_all();
       continue;
     }
+    if (const RayTracedEntry* r = find_ray_traced_method(name)) {
+      if (std::find(selection.ray_traced.begin(), selection.ray_traced.end(), r->method) == selection.ray_traced.end())
+        selection.ray_traced.push_back(r->method);
+      continue;
+    }
     const MethodEntry* e = find_method(name);
     if (e == nullptr) throw std::invalid_argument("unknown method '" + std::string(name) + "': use " + method_names() + " or all");
     add(e->method);
   }
-  return methods;
+  return selection;
+}
+
+std::vector<gpu::ShadowMethod> parse_method_list(std::string_view list) {
+  MethodSelection selection = parse_method_selection(list);
+  if (!selection.ray_traced.empty()) {
+    std::string gl_names;
+    for (const MethodEntry& e : kRegistry) gl_names += (gl_names.empty() ? "" : ", ") + std::string(e.name());
+    throw std::invalid_argument("'" + std::string(ray_traced_method_name(selection.ray_traced.front())) +
+                                "' is traced on the CPU, not a GL method: use " + gl_names + " or all");
+  }
+  return std::move(selection.gl);
 }
 
 std::string method_help() {
+  std::vector<std::string_view> clauses;
+  for (const MethodEntry& e : kRegistry) clauses.push_back(e.help);
+  for (const RayTracedEntry& e : kRayTraced) clauses.push_back(e.help);
   std::string help = "The shadow method: ";
-  for (std::size_t i = 0; i < kRegistry.size(); ++i)
-    help += std::string(i == 0 ? "" : i + 1 == kRegistry.size() ? " or " : ", ") + std::string(kRegistry[i].help);
+  for (std::size_t i = 0; i < clauses.size(); ++i)
+    help += std::string(i == 0 ? "" : i + 1 == clauses.size() ? " or " : ", ") + std::string(clauses[i]);
   // Where each is defined, grouped by page in the order the pages first appear.
   std::vector<std::pair<std::string_view, std::string>> pages;
-  for (const MethodEntry& e : kRegistry) {
-    const std::string_view page = e.docs.substr(0, e.docs.find('#'));
+  const auto add_page = [&](std::string_view docs, std::string_view name) {
+    const std::string_view page = docs.substr(0, docs.find('#'));
     auto at = std::find_if(pages.begin(), pages.end(), [&](const auto& p) { return p.first == page; });
     if (at == pages.end()) at = pages.insert(pages.end(), {page, std::string()});
-    at->second += (at->second.empty() ? "" : ", ") + std::string(e.name());
-  }
+    at->second += (at->second.empty() ? "" : ", ") + std::string(name);
+  };
+  for (const MethodEntry& e : kRegistry) add_page(e.docs, e.name());
+  for (const RayTracedEntry& e : kRayTraced) add_page(e.docs, e.name);
   help += ". Defined in ";
   for (std::size_t i = 0; i < pages.size(); ++i)
     help += std::string(i == 0 ? "" : "; ") + std::string(pages[i].first) + " (" + pages[i].second + ")";

@@ -10,6 +10,13 @@
 //   for (const MethodEntry& m : method_registry()) ...                  // display order
 //   const MethodEntry& e = method_entry(gpu::ShadowMethod::pcf);       // e.reads(MethodOption::pcf_kernel)
 //   std::vector<gpu::ShadowMethod> ms = parse_method_list("cpu,pcf");  // "all": the in_all methods
+//
+// Two kinds of method: the GL methods (gpu/shadow_method.h's table, drawn by a GL renderer, one
+// MethodEntry each) and the ray-traced ones (traced on the CPU by Embree, raytrace/: no GL
+// context, no volume, no option of the GL methods; one RayTracedEntry each). Both are named by
+// --method/--methods; a command or a comparison takes a MethodSelection of both kinds:
+//
+//   MethodSelection s = parse_method_selection("cpu,rt-robust");  // s.gl {cpu}, s.ray_traced {rt_robust}
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -20,6 +27,7 @@
 #include <vector>
 
 #include "gpu/shadow_method.h"
+#include "raytrace/embree_scene.h"
 
 namespace shadowcert {
 
@@ -70,9 +78,34 @@ struct MethodEntry {
   [[nodiscard]] bool reads(MethodOption option) const { return (options & static_cast<std::uint32_t>(option)) != 0; }
 };
 
+// The ray-traced methods (docs/ray-tracing.md): float hard shadows of the exact image's own
+// centre rays, one shadow ray per hit and light, by Embree in one of its build modes.
+enum class RayTracedMethod { rt, rt_robust };
+
+struct RayTracedEntry {
+  RayTracedMethod method = RayTracedMethod::rt;
+  std::string_view name;       // the --method value: "rt", "rt-robust"
+  raytrace::BuildMode mode = raytrace::BuildMode::fast;
+  // Never held to the robust rule: a float peer, like the shadow maps, whose hard errors are its
+  // figure (reported by diff and bench, never a failure). Kept as a field so that the rule reads
+  // the same for both kinds.
+  bool robust = false;
+  std::string_view help;       // render --method's clause for it
+  std::string_view docs;       // the docs/ page that defines it
+};
+
 // Every method, in display order (the chain methods, the shadow maps, the silhouette methods):
-// the order of --help, of `--methods all` and of bench's matrix.
+// the order of --help, of `--methods all` and of bench's matrix. The GL methods only; the
+// ray-traced ones follow them (ray_traced_registry()).
 [[nodiscard]] std::span<const MethodEntry> method_registry();
+// The ray-traced methods, in display order (after the GL ones): rt, rt-robust.
+[[nodiscard]] std::span<const RayTracedEntry> ray_traced_registry();
+[[nodiscard]] const RayTracedEntry& ray_traced_entry(RayTracedMethod method);
+// The ray-traced entry of that name; nullptr for any other string.
+[[nodiscard]] const RayTracedEntry* find_ray_traced_method(std::string_view name);
+[[nodiscard]] inline std::string_view ray_traced_method_name(RayTracedMethod method) {
+  return ray_traced_entry(method).name;
+}
 // The entry of `method` (every gpu::ShadowMethod has one).
 [[nodiscard]] const MethodEntry& method_entry(gpu::ShadowMethod method);
 // The entry of that name; nullptr for any other string.
@@ -80,14 +113,26 @@ struct MethodEntry {
 // Whether the method is held to the robust rule (MethodEntry::robust).
 [[nodiscard]] bool robust(gpu::ShadowMethod method);
 
-// Every method name in display order, separated by `separator` ("cpu, cs, ..." or "cpu|cs|...").
+// Every method name in display order, the GL methods then the ray-traced ones, separated by
+// `separator` ("cpu, cs, ..., rt, rt-robust" or "cpu|cs|...").
 [[nodiscard]] std::string method_names(std::string_view separator = ", ");
+
+// Methods of both kinds, each in the order its list named it.
+struct MethodSelection {
+  std::vector<gpu::ShadowMethod> gl;
+  std::vector<RayTracedMethod> ray_traced;
+  [[nodiscard]] bool empty() const { return gl.empty() && ray_traced.empty(); }
+};
 // The methods `list` names, comma-separated, duplicates dropped, in the list's order; "all" (alone
-// or as an entry) stands for the in_all methods; an empty list is "all". Throws
-// std::invalid_argument("unknown method 'x': use cpu, cs, ...") for any other name.
+// or as an entry) stands for the in_all GL methods (a ray-traced method is asked for by name);
+// an empty list is "all". Throws std::invalid_argument("unknown method 'x': use cpu, cs, ...")
+// for any other name.
+[[nodiscard]] MethodSelection parse_method_selection(std::string_view list);
+// The same for a command that draws with GL only (fuzz --gl-methods): a ray-traced name throws
+// std::invalid_argument("'rt' is traced on the CPU, not a GL method: use ...").
 [[nodiscard]] std::vector<gpu::ShadowMethod> parse_method_list(std::string_view list);
 
-// render --method's help: every entry's clause.
+// render --method's help: every entry's clause, GL and ray-traced.
 [[nodiscard]] std::string method_help();
 
 // The methods that read `option`, by name ("pcf" or "shadowmap, pcf, pcss, smoothie").

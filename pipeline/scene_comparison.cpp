@@ -13,6 +13,7 @@
 #include "gpu/shadow_map_renderer.h"
 #include "pipeline/mesh_palette.h"
 #include "pipeline/method_inputs.h"
+#include "pipeline/ray_traced_comparison.h"
 #include "reference/input_rounding.h"
 #include "core/eye_frame.h"
 #include "scene/merged_soup.h"
@@ -132,7 +133,7 @@ LightRun compare_light(gpu::ShadowMethodRenderer& renderer, const ExactImage& ex
 SceneComparison compare_scene(const Scene& scene, const std::vector<gpu::ShadowMethod>& methods,
                               const SceneComparisonOptions& options) {
   if (scene.lights.empty()) throw std::invalid_argument("compare_scene: the scene has no light");
-  if (methods.empty()) throw std::invalid_argument("compare_scene: no method");
+  if (methods.empty() && options.ray_traced.empty()) throw std::invalid_argument("compare_scene: no method");
   const Soup merged = merged_soup(scene);
   if (merged.triangles.empty()) throw std::invalid_argument("compare_scene: the scene has no triangle");
 
@@ -158,6 +159,10 @@ SceneComparison compare_scene(const Scene& scene, const std::vector<gpu::ShadowM
   // The analytic truth is the world scene's (its ellipsoids are in world space).
   if (options.analytic && silhouette_methods && has_analytic_caster(scene))
     result.analytic = analytic_reference(scene, options.silhouette.crease_angle_degrees);
+  // The ray-traced methods trace the world scene, as the exact image does (no GL context).
+  for (const RayTracedMethod method : options.ray_traced)
+    result.ray_traced.push_back(compare_ray_traced(scene, method, result.exact, result.soft, options.ray_traced_threads));
+  if (methods.empty()) return result;
   // The GL methods draw the scene in its eye's frame (core/eye_frame.h), which the reference's
   // float-rounded image models.
   const Scene drawn = eye_relative_scene(scene);

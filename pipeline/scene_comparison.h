@@ -71,6 +71,23 @@ struct MethodRun {
   [[nodiscard]] bool failed() const;
 };
 
+// A ray-traced method (pipeline/method_registry.h's RayTracedMethod: rt, rt-robust) against the
+// exact image (pipeline/ray_traced_comparison.h): per light its lit mask compared as a
+// mask-only method's (LightRun::frame holds its shaded picture, lit mask and light image;
+// gl_ms the run's build and trace time shared among the lights; no closure: no volume).
+// Never held to the robust rule: its hard errors are its figure.
+struct RayTracedRun {
+  RayTracedMethod method = RayTracedMethod::rt;
+  std::vector<LightRun> lights;
+  double build_seconds = 0.0;  // the hard image's BVH builds (every triangle; the casting ones apart)
+  double trace_seconds = 0.0;  // its rays: centre rays and one shadow ray per hit and light
+  // With soft references: the K-sample soft images' builds and rays, summed over the lights.
+  double soft_build_seconds = 0.0;
+  double soft_trace_seconds = 0.0;
+  [[nodiscard]] std::uint64_t sum(std::uint64_t PixelComparison::*figure) const;
+  [[nodiscard]] double ms() const { return 1000.0 * (build_seconds + trace_seconds); }
+};
+
 struct SceneComparisonOptions {
   gpu::ShadowMethodOptions method_options;  // z-fail or z-pass, shadow map size
   // `--stencil auto`: each light counted with z-pass where pipeline/stencil_choice.h proves it
@@ -93,12 +110,17 @@ struct SceneComparisonOptions {
   // scene) and sampling.angle_degrees 0 pcss's angle (method_options.light_angle_degrees, or
   // gpu::kDefaultLightAngleDegrees), so that both model the same area light.
   std::optional<SoftReferenceOptions> soft;
+  // The ray-traced methods to run as well (RayTracedRun), on the CPU in a TBB arena of
+  // ray_traced_threads threads (0: every core).
+  std::vector<RayTracedMethod> ray_traced;
+  unsigned ray_traced_threads = 0;
 };
 
 struct SceneComparison {
   ExactImage exact;  // the reference, marked by the float-rounded scene's image
   double rounded_seconds = 0.0;  // the float-rounded scene's exact image
-  std::vector<MethodRun> runs;   // one per method, in the given order
+  std::vector<MethodRun> runs;   // one per GL method, in the given order
+  std::vector<RayTracedRun> ray_traced;  // one per SceneComparisonOptions::ray_traced, in its order
   // Per light, the stencil method every volume method counted it with, and with stencil_auto
   // the proof that chose it (pipeline/stencil_choice.h); empty when no method draws a volume.
   std::vector<LightStencil> stencil;
@@ -112,7 +134,7 @@ struct SceneComparison {
   double soft_radius = 0.0;  // the area light's radius the references were made with (point lights)
   double soft_angle_degrees = 0.0;  // and its angular radius (directional lights)
 
-  [[nodiscard]] bool passed() const;  // no run failed
+  [[nodiscard]] bool passed() const;  // no GL run failed (a ray-traced run never fails)
 };
 
 // The exact image of `scene` (every mesh receives; those with SceneMesh::casts cast) at its
@@ -133,9 +155,11 @@ struct SceneComparison {
                                      std::size_t timed_frames = 0);
 
 // The reference and every method on `scene` (every mesh receives; the meshes that cast,
-// SceneMesh::casts, cast, as in the GL methods). Preconditions: a GL context is current on this thread; the scene has at least one
-// light and one triangle, and `methods` is not empty (std::invalid_argument("compare_scene:
-// ...") otherwise). Throws what the renderers and the exact image throw.
+// SceneMesh::casts, cast, as in the GL methods), the GL `methods` and options.ray_traced.
+// Preconditions: a GL context is current on this thread when `methods` is not empty; the scene
+// has at least one light and one triangle, and some method is asked for
+// (std::invalid_argument("compare_scene: ...") otherwise). Throws what the renderers, the ray
+// tracer and the exact image throw.
 [[nodiscard]] SceneComparison compare_scene(const Scene& scene, const std::vector<gpu::ShadowMethod>& methods,
                                             const SceneComparisonOptions& options);
 

@@ -91,7 +91,49 @@ TEST(MethodHelp, NamesEveryMethodInDisplayOrder) {
     ASSERT_NE(found, std::string::npos) << e.name();
     at = found;
   }
-  EXPECT_EQ(method_names("|"), "cpu|cs|gs|ts|pertri|shadowmap|pcf|pcss|smoothie|discrete|accurate|smooth|smooth-gpu");
+  EXPECT_EQ(method_names("|"),
+            "cpu|cs|gs|ts|pertri|shadowmap|pcf|pcss|smoothie|discrete|accurate|smooth|smooth-gpu|rt|rt-robust");
+  for (const RayTracedEntry& e : ray_traced_registry()) {
+    const std::size_t found = help.find(std::string(e.help), at);
+    ASSERT_NE(found, std::string::npos) << e.name;
+    at = found;
+  }
+}
+
+// The ray-traced methods: one entry each, found by name, never robust, never in "all".
+TEST(RayTracedRegistry, Entries_NamedModesNotRobust) {
+  ASSERT_EQ(ray_traced_registry().size(), 2u);
+  EXPECT_EQ(ray_traced_method_name(RayTracedMethod::rt), "rt");
+  EXPECT_EQ(ray_traced_method_name(RayTracedMethod::rt_robust), "rt-robust");
+  EXPECT_EQ(ray_traced_entry(RayTracedMethod::rt).mode, raytrace::BuildMode::fast);
+  EXPECT_EQ(ray_traced_entry(RayTracedMethod::rt_robust).mode, raytrace::BuildMode::robust);
+  for (const RayTracedEntry& e : ray_traced_registry()) {
+    EXPECT_FALSE(e.robust) << e.name;
+    EXPECT_EQ(find_ray_traced_method(e.name), &e);
+    EXPECT_EQ(find_method(e.name), nullptr) << e.name << " is no GL method";
+  }
+  EXPECT_EQ(find_ray_traced_method("RT"), nullptr);
+}
+
+TEST(ParseMethodSelection, BothKinds_EachInItsListsOrder) {
+  const MethodSelection s = parse_method_selection("rt-robust,cpu,rt,rt-robust,shadowmap");
+  EXPECT_EQ(s.gl, (std::vector<ShadowMethod>{ShadowMethod::cpu, ShadowMethod::shadowmap}));
+  EXPECT_EQ(s.ray_traced, (std::vector<RayTracedMethod>{RayTracedMethod::rt_robust, RayTracedMethod::rt}));
+  const MethodSelection rt_only = parse_method_selection("rt");
+  EXPECT_TRUE(rt_only.gl.empty());
+  EXPECT_FALSE(rt_only.empty());
+  EXPECT_TRUE(parse_method_selection("all").ray_traced.empty()) << "rt is asked for by name";
+  EXPECT_EQ(parse_method_selection("all").gl, parse_method_list("all"));
+  EXPECT_THROW((void)parse_method_selection("rt,bogus"), std::invalid_argument);
+}
+
+TEST(ParseMethodList, RayTracedName_ThrowsSayingItIsNoGlMethod) {
+  try {
+    (void)parse_method_list("cpu,rt");
+    FAIL() << "not rejected";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("'rt' is traced on the CPU, not a GL method"), std::string::npos) << e.what();
+  }
 }
 
 // Bench's sweeps: each label once per method, as many labels as values.
