@@ -59,10 +59,34 @@ struct Child {
   std::uint32_t count = 0;
 };
 
+// An inner node: its two children's boxes, axis by axis, child 0 and child 1 side by side (so
+// that one slab test runs on both children in the two lanes of a vector register).
 struct Node {
-  std::array<Bounds, 2> box;
+  std::array<std::array<double, 2>, 3> lo;
+  std::array<std::array<double, 2>, 3> hi;
   std::array<Child, 2> child;
+
+  [[nodiscard]] Bounds box(int side) const {
+    Bounds b;
+    for (int k = 0; k < 3; ++k) {
+      b.lo[k] = lo[k][side];
+      b.hi[k] = hi[k][side];
+    }
+    return b;
+  }
+  void set_box(int side, const Bounds& b) {
+    for (int k = 0; k < 3; ++k) {
+      lo[k][side] = b.lo[k];
+      hi[k][side] = b.hi[k];
+    }
+  }
 };
+
+// Where every value of a slab test stays far from overflow: box coordinates, query origins and
+// slacks, and inverse directions all within 2^400 in magnitude, so every product and sum of the
+// test is finite (below 2^803) and the general test's non-finite cases cannot arise.
+inline constexpr double kTame = 0x1p400;
+[[nodiscard]] inline bool tame(double x) { return std::fabs(x) <= kTame; }
 
 inline constexpr std::uint32_t kLeafSize = 4;
 inline constexpr int kBins = 12;
@@ -99,11 +123,40 @@ class Slab {
       inverse_[k] = inv;
       forward_[k] = inv > 0.0;
       widen_[k] = slack[k] * std::fabs(inv);
+      fast_ = fast_ && !parallel_[k] && !free_[k] && tame(inv) && tame(from[k]) && tame(slack[k]);
     }
   }
 
   // false when the piece certainly misses b (dilated); else true with *enter a lower bound of
   // the parameter where it enters.
+  // Both children of `node` at once: in[c] and t[c] as entry(node.box(c)). Valid only when
+  // fast() and the tree is tame: then every axis has a finite nonzero inverse and no value of
+  // the test can overflow, so the general test's special cases never apply and this is the
+  // same computation, without branches (vectorised over the two children).
+  void entry_pair(const Node& node, std::array<bool, 2>& in, std::array<double, 2>& t) const {
+    std::array<double, 2> enter{0.0, 0.0}, leave{t_max_, t_max_};
+    for (int k = 0; k < 3; ++k) {
+      const std::array<double, 2>& near_side = forward_[k] ? node.lo[k] : node.hi[k];
+      const std::array<double, 2>& far_side = forward_[k] ? node.hi[k] : node.lo[k];
+      const double f = from_[k], inv = inverse_[k], widen = widen_[k];
+      for (int c = 0; c < 2; ++c) {
+        const double a_near = (near_side[c] - f) * inv, a_far = (far_side[c] - f) * inv;
+        const double near = a_near - widen, far = a_far + widen;
+        const double near_margin = (std::fabs(a_near) + widen + std::fabs(near)) * kSlabRelativeMargin + kSlabAbsoluteMargin;
+        const double far_margin = (std::fabs(a_far) + widen + std::fabs(far)) * kSlabRelativeMargin + kSlabAbsoluteMargin;
+        enter[c] = std::max(enter[c], near - near_margin);
+        leave[c] = std::min(leave[c], far + far_margin);
+      }
+    }
+    for (int c = 0; c < 2; ++c) {
+      in[c] = enter[c] <= leave[c];
+      t[c] = enter[c];
+    }
+  }
+  // Whether entry_pair applies (given a tame tree): no axis parallel or overflowing, every
+  // input within kTame.
+  [[nodiscard]] bool fast() const { return fast_; }
+
   [[nodiscard]] bool entry(const Bounds& b, double* enter_out) const {
     double enter = 0.0;
     double leave = t_max_;
@@ -141,6 +194,7 @@ class Slab {
   std::array<bool, 3> free_{};
   std::array<bool, 3> forward_{};
   double t_max_;
+  bool fast_ = true;
 };
 
 CGAL::Bbox_3 bbox(const Bounds& b) { return {b.lo[0], b.lo[1], b.lo[2], b.hi[0], b.hi[1], b.hi[2]}; }
@@ -155,6 +209,7 @@ struct BoxTree::Impl {
   std::vector<Node> nodes;          // nodes[0] the root's children, when root is an inner node
   Bounds root_box;
   Child root;                       // count == 0 and no nodes: empty
+  bool tame = true;                 // every box coordinate within kTame (Slab::entry_pair)
 
   Impl(const std::vector<Box>& closed, LeafTest test);
 
@@ -197,6 +252,7 @@ BoxTree::Impl::Impl(const std::vector<Box>& closed, LeafTest test) : leaf_test(t
   boxes.resize(n);
   ids = std::move(order);
   for (std::uint32_t i = 0; i < n; ++i) boxes[i] = input[ids[i]];
+  for (int k = 0; k < 3; ++k) tame = tame && shadowcert::detail::tame(root_box.lo[k]) && shadowcert::detail::tame(root_box.hi[k]);
 }
 
 Child BoxTree::Impl::build(std::uint32_t first, std::uint32_t count, const Bounds& centres,
@@ -264,10 +320,12 @@ Child BoxTree::Impl::build(std::uint32_t first, std::uint32_t count, const Bound
   std::array<Bounds, 2> centre_box;
   for (int side = 0; side < 2; ++side) {
     const std::uint32_t b = side == 0 ? first : middle, e = side == 0 ? middle : first + count;
+    Bounds box;
     for (std::uint32_t i = b; i < e; ++i) {
-      node.box[side].grow(input[order[i]]);
+      box.grow(input[order[i]]);
       centre_box[side].grow(centre[order[i]]);
     }
+    node.set_box(side, box);
   }
   const auto left = [&] { node.child[0] = build(first, middle - first, centre_box[0], order, input, centre, next_node, depth + 1); };
   const auto right = [&] {
@@ -295,15 +353,24 @@ void BoxTree::Impl::traverse(const Slab& slab, const double* bound, Leaf&& leaf)
   std::vector<Entry> overflow;
   std::size_t top = 0;
   Entry current{root, t};
+  const bool fast = tame && slab.fast();
   for (;;) {
     if (bound == nullptr || current.t <= *bound) {
       if (current.child.count != 0) {
         if (!leaf(current.child.index, current.child.count)) return;
       } else {
         const Node& node = nodes[current.child.index];
-        double t0 = 0.0, t1 = 0.0;
-        const bool in0 = slab.entry(node.box[0], &t0) && (bound == nullptr || t0 <= *bound);
-        const bool in1 = slab.entry(node.box[1], &t1) && (bound == nullptr || t1 <= *bound);
+        std::array<bool, 2> in{};
+        std::array<double, 2> ts{};
+        if (fast) {
+          slab.entry_pair(node, in, ts);
+        } else {
+          in[0] = slab.entry(node.box(0), &ts[0]);
+          in[1] = slab.entry(node.box(1), &ts[1]);
+        }
+        const double t0 = ts[0], t1 = ts[1];
+        const bool in0 = in[0] && (bound == nullptr || t0 <= *bound);
+        const bool in1 = in[1] && (bound == nullptr || t1 <= *bound);
         if (in0 && in1) {
           // The nearer first; the other waits on the stack.
           const bool first_near = t0 <= t1;
