@@ -205,10 +205,15 @@ stop_pid_file() {
 }
 
 stop() {
-  # slurmd first, so that it does not report the controller lost; jobs still running are ended
-  # by slurmd's exit only through their own signals: cancel them first.
+  # Jobs first: a running job's slurmstepd outlives slurmd, so the jobs are cancelled and their
+  # end awaited (at most 30 s) while the daemons still run; then slurmd, slurmctld, munged.
   if alive_pid "$DIR/slurmctld.pid" >/dev/null && command -v scancel >/dev/null 2>&1; then
-    scancel --quiet --full --partition=batch 2>/dev/null || true
+    scancel --quiet --partition=batch 2>/dev/null || true
+    local waited=0
+    while [ -n "$(squeue -h -p batch -o %i 2>/dev/null)" ] && [ "$waited" -lt 300 ]; do
+      sleep 0.1
+      waited=$((waited + 1))
+    done
   fi
   stop_pid_file "$DIR/slurmd.pid"
   stop_pid_file "$DIR/slurmctld.pid"
