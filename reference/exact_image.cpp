@@ -24,6 +24,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <stdexcept>
@@ -56,6 +57,12 @@ struct RayHit {
 };
 
 [[nodiscard]] bool countable(const RayHit& hit) { return hit.triangle != kNoHit && !hit.degenerate; }
+
+// A box enclosing a ray's hit point ({lo, hi}: detail::semi_static_hit_box's, else HitPoint's
+// own; every test on P is exact whatever the box, which only filters), computed once per ray for
+// every countable hit: the centre's count, and each corner's count and its four pixels' eye and
+// light pyramids read it (was recomputed for each, up to nine times per ray).
+using PointBox = std::array<Vec3, 2>;
 
 // A light's silhouette edges: the edges of nonzero multiplicity (docs/definitions.md#counts), whose side
 // faces are the shadow volume chain's only finite faces besides the casters themselves.
@@ -203,9 +210,13 @@ RayHit first_hit(const ImageGeometry& g, const PixelRay& ray, std::vector<std::u
 // n(P) for P = the hit point of a countable hit, light number `light` (docs/definitions.md#counts, docs/definitions.md#pixel-protocol): the
 // casting triangles other than the hit one that the open segment P -> light crosses;
 // kUndefinedCount when it touches one (P on a volume boundary).
-std::uint32_t count_at(const ImageGeometry& g, std::size_t light, const PixelRay& ray, const RayHit& hit) {
+// `box`: P's enclosure as HitPoint computes it (the per-ray cache, point_boxes below).
+std::uint32_t count_at(const ImageGeometry& g, std::size_t light, const PixelRay& ray, const RayHit& hit,
+                       const PointBox& box) {
   const std::uint32_t h = hit.triangle;
-  const detail::HitPoint p(detail::RayParameter(ray, g.vertex(h, 0), g.vertex(h, 1), g.vertex(h, 2), hit.direction_side));
+  const detail::HitPoint p(detail::RayParameter(ray, g.vertex(h, 0), g.vertex(h, 1), g.vertex(h, 2), hit.direction_side,
+                                                detail::RayParameter::Unenclosed{}),
+                           box);
   const HomogeneousPoint& l = g.lights[light];
   const std::vector<Sign>& sides = g.light_sides[light];
   std::uint32_t n = 0;
@@ -338,17 +349,33 @@ std::uint8_t footprint_ambiguity(const std::vector<RayHit>& hits, const std::arr
 
 // Where pixel (i, r)'s corner rays meet its hit triangle's plane (all four see it,
 // non-degenerately), in cyclic order.
-std::array<detail::RayParameter, 4> corner_hits(const ImageGeometry& g, const RayGrid& grid,
-                                                const std::vector<RayHit>& hits, std::uint32_t i, std::uint32_t r) {
+struct CornerHits {
+  std::array<detail::RayParameter, 4> parameters;
+  detail::FootprintPolytope::CornerBoxes boxes;  // their HitPoint boxes, from the cache
+};
+
+CornerHits corner_hits(const ImageGeometry& g, const RayGrid& grid, const std::vector<RayHit>& hits,
+                       const PointBox* point_boxes, std::uint32_t i, std::uint32_t r) {
   const std::array<std::size_t, 4> corners{grid.corner(i, r), grid.corner(i + 1, r), grid.corner(i + 1, r + 1),
                                            grid.corner(i, r + 1)};
   const auto at = [&](std::size_t k) {
     const RayHit& hit = hits[corners[k]];
     const std::uint32_t h = hit.triangle;
     return detail::RayParameter(grid.ray(corners[k]), g.vertex(h, 0), g.vertex(h, 1), g.vertex(h, 2),
-                                hit.direction_side);
+                                hit.direction_side, detail::RayParameter::Unenclosed{});
   };
-  return {at(0), at(1), at(2), at(3)};
+  return {{at(0), at(1), at(2), at(3)},
+          {point_boxes[corners[0]], point_boxes[corners[1]], point_boxes[corners[2]], point_boxes[corners[3]]}};
+}
+
+// The boxes HitPoint computes for four parameters (the backdrop's corners, not cached).
+CornerHits with_boxes(const std::array<detail::RayParameter, 4>& parameters) {
+  CornerHits out{parameters, {}};
+  for (std::size_t k = 0; k < 4; ++k) {
+    const detail::HitPoint p(parameters[k]);
+    out.boxes[k] = {p.lo(), p.hi()};
+  }
+  return out;
 }
 
 // A plane beyond every vertex, facing the eye: the far end of the eye pyramid over a pixel whose
@@ -396,12 +423,17 @@ struct Backdrop {
 
 // Whether something besides triangle h is seen inside the footprint: an edge of another
 // triangle crosses the eye pyramid over it (reference/detail/pixel_footprint.h).
-bool footprint_sees_more(const ImageGeometry& g, const Vec3& eye, const std::array<detail::RayParameter, 4>& corners,
-                         std::uint32_t h) {
-  const detail::FootprintPolytope pyramid(finite_point(eye), corners);
+// The pyramid itself is built only for the first candidate other than h (most pixels of a mesh
+// have none: the query's boxes near the eye ray are h's alone).
+bool footprint_sees_more(const ImageGeometry& g, const Vec3& eye, const CornerHits& corners, std::uint32_t h) {
+  Vec3 from, slack;
+  detail::FootprintPolytope::query_box(corners.boxes, from, slack);
+  std::optional<detail::FootprintPolytope> pyramid;
   bool more = false;
-  g.tree.dilated_segment_query(pyramid.query_from(), eye, pyramid.query_slack(), [&](std::uint32_t id) {
-    if (id == h || !pyramid.meets_an_edge_of(g.vertex(id, 0), g.vertex(id, 1), g.vertex(id, 2))) return true;
+  g.tree.dilated_segment_query(from, eye, slack, [&](std::uint32_t id) {
+    if (id == h) return true;
+    if (!pyramid) pyramid.emplace(finite_point(eye), corners.parameters, corners.boxes);
+    if (!pyramid->meets_an_edge_of(g.vertex(id, 0), g.vertex(id, 1), g.vertex(id, 2))) return true;
     more = true;
     return false;
   });
@@ -409,21 +441,24 @@ bool footprint_sees_more(const ImageGeometry& g, const Vec3& eye, const std::arr
 }
 
 // Whether n changes over the footprint: a silhouette edge crosses its light pyramid.
-bool footprint_shadow_varies(const ImageGeometry& g, std::size_t light,
-                             const std::array<detail::RayParameter, 4>& corners) {
+// As footprint_sees_more, the pyramid is built for the first candidate edge only.
+bool footprint_shadow_varies(const ImageGeometry& g, std::size_t light, const CornerHits& corners) {
   const HomogeneousPoint& l = g.lights[light];
-  const detail::FootprintPolytope pyramid(l, corners);
+  Vec3 from, slack;
+  detail::FootprintPolytope::query_box(corners.boxes, from, slack);
+  std::optional<detail::FootprintPolytope> pyramid;
   const Silhouette& silhouette = *g.silhouettes[light];
   bool varies = false;
   const auto visit = [&](std::uint32_t id) {
-    if (!pyramid.meets(silhouette.edges[id][0], silhouette.edges[id][1])) return true;
+    if (!pyramid) pyramid.emplace(l, corners.parameters, corners.boxes);
+    if (!pyramid->meets(silhouette.edges[id][0], silhouette.edges[id][1])) return true;
     varies = true;
     return false;
   };
   if (l[3] == 0.0) {
-    silhouette.tree.dilated_ray_query(pyramid.query_from(), {l[0], l[1], l[2]}, pyramid.query_slack(), visit);
+    silhouette.tree.dilated_ray_query(from, {l[0], l[1], l[2]}, slack, visit);
   } else {
-    silhouette.tree.dilated_segment_query(pyramid.query_from(), {l[0], l[1], l[2]}, pyramid.query_slack(), visit);
+    silhouette.tree.dilated_segment_query(from, {l[0], l[1], l[2]}, slack, visit);
   }
   return varies;
 }
@@ -555,6 +590,26 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
     });
     image.stats.rays = centre_rays + corner_rays;
   }
+  // Every countable hit's point box, once (the centres' for their counts; the corners' for
+  // theirs and for the pyramids of the four pixels around each).
+  // Not value-initialised (zeroing 48 bytes per ray costs more than the boxes): only the
+  // countable hits' entries are written, and only those are read.
+  const std::unique_ptr<PointBox[]> point_boxes(new PointBox[grid.size()]);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, grid.size(), 1024), [&](const auto& r) {
+    for (std::size_t k = r.begin(); k != r.end(); ++k) {
+      const RayHit& hit = hits[k];
+      if (!countable(hit)) continue;
+      const std::uint32_t h = hit.triangle;
+      const PixelRay ray = grid.ray(k);
+      if (const auto box = detail::semi_static_hit_box(ray, {g.vertex(h, 0), g.vertex(h, 1), g.vertex(h, 2)})) {
+        point_boxes[k] = *box;
+        continue;
+      }
+      const detail::HitPoint p(
+          detail::RayParameter(ray, g.vertex(h, 0), g.vertex(h, 1), g.vertex(h, 2), hit.direction_side));
+      point_boxes[k] = {p.lo(), p.hi()};
+    }
+  });
   image.stats.hit_seconds = seconds_since(stage);
 
   // 2. and 3., light by light.
@@ -588,12 +643,13 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
             // All five rays miss (footprint_ambiguity found them alike): a triangle may still
             // poke into the footprint between them, a vertex or an edge within a rounding of
             // GL's sample at the centre (fuzz --gl seed 202 case 1706: 0.001 px).
-            if (!backdrop || footprint_sees_more(g, grid.frame.eye, backdrop->corners(grid, i, row), kNoHit))
+            if (!backdrop || footprint_sees_more(g, grid.frame.eye, with_boxes(backdrop->corners(grid, i, row)), kNoHit))
               geometric[pixel] |= kFootprintTriangles;
             continue;
           }
           if (geometric[pixel] != 0 || !countable(hits[pixel])) continue;
-          if (footprint_sees_more(g, grid.frame.eye, corner_hits(g, grid, hits, i, row), hits[pixel].triangle))
+          if (footprint_sees_more(g, grid.frame.eye, corner_hits(g, grid, hits, point_boxes.get(), i, row),
+                                  hits[pixel].triangle))
             geometric[pixel] |= kFootprintTriangles;
           else if (options.depth_band &&
                    band_meets_surface(g, depth_band(g, grid.frame, grid.ray(pixel), hits[pixel], options.depth_band),
@@ -627,7 +683,7 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
       if (needed[k] != 0) work.push_back(k);
     Progress progress(options, "counts", work.size());
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, work.size(), 64), [&](const auto& r) {
-      for (std::size_t k = r.begin(); k != r.end(); ++k) counts[work[k]] = count_at(g, light, grid.ray(work[k]), hits[work[k]]);
+      for (std::size_t k = r.begin(); k != r.end(); ++k) counts[work[k]] = count_at(g, light, grid.ray(work[k]), hits[work[k]], point_boxes[work[k]]);
       progress.advance(r.size());
     });
     image.stats.counts += work.size();
@@ -654,7 +710,8 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
                 else if (counts[rays[k]] != n) bits |= kFootprintCounts;
               }
             // The corners agree: n must still be constant between them (a shadow sliver).
-            if (bits == 0 && footprints && footprint_shadow_varies(g, light, corner_hits(g, grid, hits, i, row)))
+            if (bits == 0 && footprints &&
+                footprint_shadow_varies(g, light, corner_hits(g, grid, hits, point_boxes.get(), i, row)))
               bits |= kFootprintCounts;
             if (bits == 0 && footprints && options.depth_band &&
                 band_meets_volume(g, light, depth_band(g, grid.frame, grid.ray(pixel), centre, options.depth_band)))

@@ -84,34 +84,60 @@ struct FootprintPolytope::Exact {
   std::array<EPoint, 4> corners;
 };
 
+namespace {
+
+FootprintPolytope::CornerBoxes corner_boxes(const std::array<RayParameter, 4>& corners) {
+  FootprintPolytope::CornerBoxes boxes;
+  for (std::size_t i = 0; i < 4; ++i) {
+    const HitPoint h(corners[i]);
+    boxes[i] = {h.lo(), h.hi()};
+  }
+  return boxes;
+}
+
+}  // namespace
+
 FootprintPolytope::FootprintPolytope(const HomogeneousPoint& apex, const std::array<RayParameter, 4>& corners)
     : apex_(apex), corners_(corners), directional_(apex[3] == 0.0) {
-  std::array<HitPoint, 4> hits{HitPoint(corners[0]), HitPoint(corners[1]), HitPoint(corners[2]), HitPoint(corners[3])};
+  enclose(corner_boxes(corners));
+}
+
+FootprintPolytope::FootprintPolytope(const HomogeneousPoint& apex, const std::array<RayParameter, 4>& corners,
+                                     const CornerBoxes& boxes)
+    : apex_(apex), corners_(corners), directional_(apex[3] == 0.0) {
+  enclose(boxes);
+}
+
+void FootprintPolytope::query_box(const CornerBoxes& boxes, Vec3& from, Vec3& slack) {
   // The origin: the middle of R's enclosing box; the slack covers that box (exact/box_tree.h).
-  Vec3 lo = hits[0].lo(), hi = hits[0].hi();
-  for (const HitPoint& h : hits)
+  Vec3 lo = boxes[0][0], hi = boxes[0][1];
+  for (const auto& h : boxes)
     for (int k = 0; k < 3; ++k) {
-      lo[k] = std::min(lo[k], h.lo()[k]);
-      hi[k] = std::max(hi[k], h.hi()[k]);
+      lo[k] = std::min(lo[k], h[0][k]);
+      hi[k] = std::max(hi[k], h[1][k]);
     }
   for (int k = 0; k < 3; ++k) {
-    from_[k] = std::clamp(lo[k] / 2 + hi[k] / 2, lo[k], hi[k]);
-    slack_[k] = std::nextafter(std::max(hi[k] - from_[k], from_[k] - lo[k]), kInfinity);
+    from[k] = std::clamp(lo[k] / 2 + hi[k] / 2, lo[k], hi[k]);
+    slack[k] = std::nextafter(std::max(hi[k] - from[k], from[k] - lo[k]), kInfinity);
   }
+}
 
+void FootprintPolytope::enclose(const CornerBoxes& boxes) {
+  const CornerBoxes& hits = boxes;
+  query_box(boxes, from_, slack_);
   const CGAL::Protect_FPU_rounding<true> protect;
   std::array<IVec, 4> c;
   for (std::size_t i = 0; i < 4; ++i)
-    for (int k = 0; k < 3; ++k) c[i][k] = Interval(hits[i].lo()[k], hits[i].hi()[k]) - from_[k];
+    for (int k = 0; k < 3; ++k) c[i][k] = Interval(hits[i][0][k], hits[i][1][k]) - from_[k];
   // Zero-initialised explicitly: Interval_nt's default constructor leaves its value unset, and
   // GCC cannot see that only the branch that set `l` (or `a`) reads it.
   const IVec zero{Interval(0.0), Interval(0.0), Interval(0.0)};
   IVec a = zero, l = zero;
   if (directional_) {
-    l = {Interval(apex[0]), Interval(apex[1]), Interval(apex[2])};
+    l = {Interval(apex_[0]), Interval(apex_[1]), Interval(apex_[2])};
     direction_ = store_vec<BoundsVec>(l);
   } else {
-    a = relative({apex[0], apex[1], apex[2]}, from_);
+    a = relative({apex_[0], apex_[1], apex_[2]}, from_);
     vertices_[static_cast<std::size_t>(vertex_count_++)] = store_vec<BoundsVec>(a);
   }
   for (const IVec& corner : c) vertices_[static_cast<std::size_t>(vertex_count_++)] = store_vec<BoundsVec>(corner);
@@ -203,8 +229,9 @@ bool FootprintPolytope::exactly_separated(AxisKind kind, int index, std::initial
 // Every axis is first tried in intervals; only when none separates for certain are the axes
 // the intervals could not settle decided exactly (most segments near the footprint have a
 // certain separating axis, often not the first one tried).
+// Both verdicts run under the caller's Protect_FPU_rounding (one rounding-mode switch for all
+// the axes of a test, not one per axis).
 Verdict FootprintPolytope::face_verdict(std::size_t j, std::initializer_list<const Vec3*> points) const {
-  const CGAL::Protect_FPU_rounding<true> protect;
   const IVec n = load_vec(normals_[j]);
   Extent p;
   for (const Vec3* x : points) p.add(dot(n, relative(*x, from_)));
@@ -215,7 +242,6 @@ Verdict FootprintPolytope::face_verdict(std::size_t j, std::initializer_list<con
 }
 
 Verdict FootprintPolytope::edge_verdict(AxisKind kind, int index, const Vec3& u, const Vec3& v) const {
-  const CGAL::Protect_FPU_rounding<true> protect;
   const IVec pu = relative(u, from_), pv = relative(v, from_);
   const IVec d = shadowcert::difference(pv, pu);
   const auto i = static_cast<std::size_t>(index);
@@ -242,12 +268,16 @@ bool FootprintPolytope::meets(const Vec3& u, const Vec3& v) const {
     if (verdict == Verdict::unsure) unsure[count++] = {kind, index};
     return verdict == Verdict::separated;
   };
-  for (int j = 0; j < 5; ++j)
-    if (consider(AxisKind::face, j, face_verdict(static_cast<std::size_t>(j), {&u, &v}))) return false;
-  for (int i = 0; i < 4; ++i)
-    if (consider(AxisKind::region_edge, i, edge_verdict(AxisKind::region_edge, i, u, v))) return false;
-  for (int i = 0; i < (directional_ ? 1 : 4); ++i)
-    if (consider(AxisKind::apex_edge, i, edge_verdict(AxisKind::apex_edge, i, u, v))) return false;
+  {
+    const CGAL::Protect_FPU_rounding<true> protect;
+    for (int j = 0; j < 5; ++j)
+      if (consider(AxisKind::face, j, face_verdict(static_cast<std::size_t>(j), {&u, &v}))) return false;
+    for (int i = 0; i < 4; ++i)
+      if (consider(AxisKind::region_edge, i, edge_verdict(AxisKind::region_edge, i, u, v))) return false;
+    for (int i = 0; i < (directional_ ? 1 : 4); ++i)
+      if (consider(AxisKind::apex_edge, i, edge_verdict(AxisKind::apex_edge, i, u, v))) return false;
+  }
+  // The exact stage in the default rounding mode.
   for (std::size_t k = 0; k < count; ++k)
     if (exactly_separated(unsure[k].kind, unsure[k].index, {&u, &v})) return false;
   return true;
@@ -255,8 +285,11 @@ bool FootprintPolytope::meets(const Vec3& u, const Vec3& v) const {
 
 bool FootprintPolytope::meets_an_edge_of(const Vec3& a, const Vec3& b, const Vec3& c) const {
   // The whole triangle beside one face plane for certain: no edge can meet.
-  for (std::size_t j = 0; j < 5; ++j)
-    if (face_verdict(j, {&a, &b, &c}) == Verdict::separated) return false;
+  {
+    const CGAL::Protect_FPU_rounding<true> protect;
+    for (std::size_t j = 0; j < 5; ++j)
+      if (face_verdict(j, {&a, &b, &c}) == Verdict::separated) return false;
+  }
   return meets(a, b) || meets(b, c) || meets(c, a);
 }
 

@@ -36,6 +36,10 @@ class FootprintPolytope {
   // the four corner rays meet h's plane, in cyclic order (the pixel's corners (i, r),
   // (i + 1, r), (i + 1, r + 1), (i, r + 1) seen on one plane keep that order).
   FootprintPolytope(const HomogeneousPoint& apex, const std::array<RayParameter, 4>& corners);
+  // The same with each corner's HitPoint box known (lo, hi: what HitPoint(corners[i]) computes,
+  // from a per-ray cache): the same polytope, without recomputing the four boxes.
+  using CornerBoxes = std::array<std::array<Vec3, 2>, 4>;
+  FootprintPolytope(const HomogeneousPoint& apex, const std::array<RayParameter, 4>& corners, const CornerBoxes& boxes);
   ~FootprintPolytope();
   FootprintPolytope(const FootprintPolytope&) = delete;
   FootprintPolytope& operator=(const FootprintPolytope&) = delete;
@@ -51,6 +55,8 @@ class FootprintPolytope {
   // dilated queries).
   [[nodiscard]] const Vec3& query_from() const { return from_; }
   [[nodiscard]] const Vec3& query_slack() const { return slack_; }
+  // The same two, from the corners' boxes alone (before any polytope is built).
+  static void query_box(const CornerBoxes& boxes, Vec3& from, Vec3& slack);
 
  private:
   struct Bounds {
@@ -70,6 +76,7 @@ class FootprintPolytope {
   [[nodiscard]] Verdict edge_verdict(AxisKind kind, int index, const Vec3& u, const Vec3& v) const;
   [[nodiscard]] bool exactly_separated(AxisKind kind, int index, std::initializer_list<const Vec3*> points) const;
   [[nodiscard]] const Exact& exact() const;
+  void enclose(const CornerBoxes& boxes);
 
   HomogeneousPoint apex_;
   std::array<RayParameter, 4> corners_;

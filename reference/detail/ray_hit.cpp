@@ -7,11 +7,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <optional>
 #include <stdexcept>
 #include <utility>
 
 #include "exact/face_crossing.h"
 #include "reference/detail/hit_point_coordinates.h"
+#include "exact/light_orientation_filter.h"
 #include "exact/orient_unchecked.h"
 
 namespace shadowcert::detail {
@@ -52,7 +55,86 @@ bool in_plane_meets(const PixelRay& ray, const Vec3& a, const Vec3& b, const Vec
   return CGAL::do_intersect(r, Epick::Triangle_3(point<Epick>(a), point<Epick>(b), point<Epick>(c)));
 }
 
+// A determinant det[x, y, z] of three rows and a certified bound on its evaluation's error:
+// the expression and bound of exact/light_orientation_filter.h (CGAL's static filter for
+// Orientation_3), for rows x = b - a, y = c - a and z either a difference a - e of doubles or an
+// input direction d (no rounding: the bound only over-estimates). nullopt outside the filter's
+// magnitude range.
+struct BoundedValue {
+  double value = 0.0;
+  double error = 0.0;  // |value - exact| <= error
+};
+
+std::optional<BoundedValue> bounded_determinant(const std::array<double, 3>& x, const std::array<double, 3>& y,
+                                                const std::array<double, 3>& z) {
+  const double max0 = std::max({std::fabs(x[0]), std::fabs(y[0]), std::fabs(z[0])});
+  const double max1 = std::max({std::fabs(x[1]), std::fabs(y[1]), std::fabs(z[1])});
+  const double max2 = std::max({std::fabs(x[2]), std::fabs(y[2]), std::fabs(z[2])});
+  const double smallest = std::min({max0, max1, max2});
+  const double largest = std::max({max0, max1, max2});
+  if (smallest < kOrientationUnderflowGuard || largest >= kOrientationOverflowGuard) return std::nullopt;
+  const double m01 = x[0] * y[1] - y[0] * x[1];
+  const double m02 = x[0] * z[1] - z[0] * x[1];
+  const double m12 = y[0] * z[1] - z[0] * y[1];
+  return BoundedValue{m01 * z[2] - m02 * y[2] + m12 * x[2], kOrientationErrorFactor * max0 * max1 * max2};
+}
+
+// The semi-static stage of t = N / D (hit_point_coordinates.h), in round-to-nearest doubles
+// with no rounding-mode switch: q = fl(N~ / D~) and rho such that t = q (1 + eps), |eps| <= rho.
+// With N = N~ (1 + d1), D = D~ (1 + d2), |d1| <= rN = eN / |N~|, |d2| <= rD = eD / |D~|, and
+// q = (N~ / D~)(1 + d3), |d3| <= u = 2^-53: t = q (1 + d1) / ((1 + d2)(1 + d3)), whose relative
+// deviation is at most (rN + rD + u)(1 + rN) / (1 - rD - u) <= 1.01 (rN + rD + u) when rN, rD
+// <= 2^-10; rho = 2 (rN + rD) + 8u covers it, and every rounding of rho's own evaluation (a
+// relative 4u at most) with room to spare. nullopt where the filter does not apply (N or D
+// within 2^10 of its error, or out of range): the caller takes the interval stage.
+struct SemiStaticParameter {
+  double q = 0.0;
+  double rho = 0.0;
+};
+
+inline constexpr double kUnit = 0x1p-53;
+
+std::optional<SemiStaticParameter> semi_static_parameter(const PixelRay& ray, const std::array<Vec3, 3>& t) {
+  const std::array<double, 3> x{t[1][0] - t[0][0], t[1][1] - t[0][1], t[1][2] - t[0][2]};
+  const std::array<double, 3> y{t[2][0] - t[0][0], t[2][1] - t[0][1], t[2][2] - t[0][2]};
+  const std::array<double, 3> a_e{t[0][0] - ray.origin[0], t[0][1] - ray.origin[1], t[0][2] - ray.origin[2]};
+  const std::array<double, 3> d{ray.direction[0], ray.direction[1], ray.direction[2]};
+  const std::optional<BoundedValue> n = bounded_determinant(x, y, a_e);
+  if (!n) return std::nullopt;
+  const std::optional<BoundedValue> dd = bounded_determinant(x, y, d);
+  if (!dd) return std::nullopt;
+  constexpr double kRange = 0x1p-10;
+  if (!(n->error <= kRange * std::fabs(n->value)) || !(dd->error <= kRange * std::fabs(dd->value))) return std::nullopt;
+  const double q = n->value / dd->value;
+  if (!std::isfinite(q)) return std::nullopt;
+  return SemiStaticParameter{q, 2.0 * (n->error / std::fabs(n->value) + dd->error / std::fabs(dd->value)) + 8.0 * kUnit};
+}
+
+// The absolute term of every bound below: far above any underflow error of the few operations
+// it covers (each at most 2^-1074).
+inline constexpr double kTiny = 0x1p-1000;
+
 }  // namespace
+
+std::optional<std::array<Vec3, 2>> semi_static_hit_box(const PixelRay& ray, const std::array<Vec3, 3>& triangle) {
+  const std::optional<SemiStaticParameter> s = semi_static_parameter(ray, triangle);
+  if (!s) return std::nullopt;
+  // P_k = e_k + t d_k, computed P~ = fl(e_k + y), y = fl(q d_k). t d_k = q d_k (1 + eps), so
+  // |t d_k - y| <= |q d_k| (rho + u) <= 1.01 |y| (rho + u), and the sum adds u |P~| / (1 - u):
+  // |P~ - P_k| <= 1.01 (|y| (rho + 2u) + u |P~|). The margin m below is twice that, times
+  // (1 + 2^-40) for its own roundings (a relative 5u), plus kTiny; forming P~ -+ m rounds by
+  // at most u (|P~| + m), which the doubling covers.
+  std::array<Vec3, 2> box;
+  for (int k = 0; k < 3; ++k) {
+    const double y = s->q * ray.direction[k];
+    const double p = ray.origin[k] + y;
+    const double m = (2.0 * std::fabs(y) * (s->rho + 2.0 * kUnit) + 4.0 * kUnit * std::fabs(p)) * (1.0 + 0x1p-40) + kTiny;
+    box[0][k] = p - m;
+    box[1][k] = p + m;
+    if (!std::isfinite(box[0][k]) || !std::isfinite(box[1][k])) return std::nullopt;
+  }
+  return box;
+}
 
 RayMeeting ray_meets_triangle(const PixelRay& ray, const Vec3& a, const Vec3& b, const Vec3& c) {
   const HomogeneousPoint ha = finite_point(a), hb = finite_point(b), hc = finite_point(c);
@@ -93,11 +175,27 @@ RayParameter::RayParameter(const PixelRay& ray, const Vec3& a, const Vec3& b, co
     : ray_(ray), triangle_{a, b, c}, direction_side_(direction_side), lo_(0.0), hi_(0.0) {
   if (direction_side == Sign::zero)
     throw std::invalid_argument("RayParameter: the ray is parallel to the triangle's plane");
+  if (const std::optional<SemiStaticParameter> s = semi_static_parameter(ray_, triangle_)) {
+    // t in q (1 -+ rho): the margin doubled covers the roundings of its product and of the
+    // sums (each a relative u of a value below 2 |q|; rho >= 8u).
+    const double m = 2.0 * std::fabs(s->q) * s->rho + kTiny;
+    lo_ = std::max(s->q - m, 0.0);  // t >= 0 for every meeting ray_meets_triangle reports
+    hi_ = s->q + m;
+    return;
+  }
   const CGAL::Protect_FPU_rounding<true> protect;
   const auto [n, d] = plane_parameter<Interval>(ray_, triangle_);
   const Interval t = n / d;  // unbounded when d's enclosure contains 0
   lo_ = std::max(t.inf(), 0.0);  // t >= 0 for every meeting ray_meets_triangle reports
   hi_ = t.sup();
+}
+
+RayParameter::RayParameter(const PixelRay& ray, const Vec3& a, const Vec3& b, const Vec3& c, Sign direction_side,
+                           Unenclosed)
+    : ray_(ray), triangle_{a, b, c}, direction_side_(direction_side), lo_(0.0),
+      hi_(std::numeric_limits<double>::infinity()) {
+  if (direction_side == Sign::zero)
+    throw std::invalid_argument("RayParameter: the ray is parallel to the triangle's plane");
 }
 
 Sign RayParameter::compare(const RayParameter& other) const {
@@ -152,6 +250,8 @@ HitPoint::HitPoint(const RayParameter& t) : t_(t) {
     hi_[k] = q.sup();
   }
 }
+
+HitPoint::HitPoint(const RayParameter& t, const std::array<Vec3, 2>& box) : t_(t), lo_(box[0]), hi_(box[1]) {}
 
 HitPoint::~HitPoint() = default;
 HitPoint::HitPoint(HitPoint&&) noexcept = default;

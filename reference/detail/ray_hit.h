@@ -13,6 +13,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <optional>
 
 #include "core/pixel_ray.h"
 #include "core/sign.h"
@@ -43,6 +44,11 @@ class RayParameter {
  public:
   // Precondition: direction_side = sign D != 0 (from ray_meets_triangle).
   RayParameter(const PixelRay& ray, const Vec3& a, const Vec3& b, const Vec3& c, Sign direction_side);
+  // The same parameter with the enclosure [0, +infinity] (every meeting has t >= 0), computed
+  // without a rounding-mode switch: for callers that keep it only for what it was made of (a
+  // HitPoint whose box is known, a footprint's corners); compare() is still exact.
+  struct Unenclosed {};
+  RayParameter(const PixelRay& ray, const Vec3& a, const Vec3& b, const Vec3& c, Sign direction_side, Unenclosed);
 
   // An upper bound of t (+infinity when the enclosure is unbounded).
   [[nodiscard]] double upper() const { return hi_; }
@@ -71,11 +77,23 @@ class RayParameter {
 [[nodiscard]] bool in_plane_contact_before(const PixelRay& ray, const Vec3& a, const Vec3& b, const Vec3& c,
                                            const RayParameter& bound);
 
+// A box enclosing the point where `ray` meets the plane of `triangle` (D != 0), from a
+// semi-static filter in round-to-nearest doubles (certified error bounds, ray_hit.cpp; no
+// rounding-mode switch): nullopt where the filter does not apply (the caller then takes
+// HitPoint's own box). Usually a little wider than HitPoint's; any enclosure serves
+// HitPoint(t, box), whose answers are exact whatever the box.
+[[nodiscard]] std::optional<std::array<Vec3, 2>> semi_static_hit_box(const PixelRay& ray,
+                                                                     const std::array<Vec3, 3>& triangle);
+
 // The point P where the ray meets the plane of a triangle (its RayParameter), with exact
 // predicates on it. Not thread-safe (the exact coordinates are built lazily): one per thread.
 class HitPoint {
  public:
   explicit HitPoint(const RayParameter& t);
+  // The same point with a box known to enclose it (`box`: lo and hi; HitPoint(t)'s own, or
+  // semi_static_hit_box's, as a per-ray cache holds them): every answer is HitPoint(t)'s (the
+  // box only filters; undecided signs go to the exact coordinates).
+  HitPoint(const RayParameter& t, const std::array<Vec3, 2>& box);
   ~HitPoint();
   HitPoint(HitPoint&&) noexcept;
   HitPoint& operator=(HitPoint&&) noexcept;
