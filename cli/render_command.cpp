@@ -32,6 +32,7 @@
 #include "gpu/shadow_method_renderer.h"
 #include "pipeline/method_inputs.h"
 #include "pipeline/method_registry.h"
+#include "pipeline/ray_traced_comparison.h"
 #include "pipeline/scene_smoothies.h"
 #include "pipeline/stencil_choice.h"
 #include "scene/merged_soup.h"
@@ -418,9 +419,81 @@ nlohmann::json report_json(const RenderReport& r) {
   return report;
 }
 
+// ---- a ray-traced method (rt, rt-robust): no GL, the same files ---------------------------------
+
+// The options a ray-traced method reads are the scene's, the size and the files of the first
+// light (--out, --mask, --light-image, --json); every GL option given is refused by name.
+void refuse_gl_options(const RenderOptions& options, const RayTracedEntry& entry) {
+  const auto refuse = [&](bool given, const char* flag, const char* readers) {
+    if (given)
+      throw CLI::ValidationError(flag, fmt::format("is read by {} only; --method {} (Embree on the CPU) does not "
+                                                   "read it", readers, entry.name));
+  };
+  refuse(options.pcf.has_value(), "--pcf", "pcf");
+  refuse(options.pcss, "--pcss", "pcss");
+  refuse(options.light_radius.has_value(), "--light-radius", methods_reading(MethodOption::light_radius).c_str());
+  refuse(options.light_angle.has_value(), "--light-angle", methods_reading(MethodOption::light_radius).c_str());
+  refuse(options.smoothie_width.has_value(), "--smoothie-width", "smoothie");
+  refuse(options.smoothie_space.has_value(), "--smoothie-space", "smoothie");
+  refuse(!options.capture.empty(), "--capture", "the volume methods");
+  refuse(!options.stencil.empty() || options.zpass || options.zfail, "--stencil", "the volume methods");
+  refuse(!options.counts.empty(), "--counts", "the volume methods (stencil counts)");
+  refuse(options.timing, "--timing", "the GL methods (GPU stage times)");
+  refuse(options.device.has_value(), "--device", "the GL methods");
+}
+
+int run_ray_traced_render(const RenderOptions& options, const RayTracedEntry& entry) {
+  const auto start = Clock::now();
+  refuse_gl_options(options, entry);
+  Scene scene = load_image_scene(options.input);
+  if (scene.lights.empty()) throw InputError(options.input, "the scene has no light");
+  apply_image_size(options.size, scene.camera);
+  const std::size_t triangles = merged_soup(scene).triangles.size();
+  if (triangles == 0) throw InputError(options.input, "no triangle to render");
+  // World space, as the exact image: a user's ray tracer takes the scene as it is.
+  const raytrace::RayTracedImage image = ray_traced_scene_image(scene, entry.method);
+  const gpu::StencilShadowFrame frame = ray_traced_frame(scene, image, 0);
+  for (const std::string& file : {options.out, options.mask}) create_parent_directories(file);
+  if (!options.light_image.empty())
+    write_light_image(options.light_image, scene.camera.width, scene.camera.height, frame.first_light);
+  if (!options.out.empty()) gpu::write_png(options.out, frame.colour);
+  if (!options.mask.empty()) gpu::write_png(options.mask, frame.first_lit_mask);
+  std::uint64_t lit = 0, shadowed = 0;
+  for (std::size_t p = 0; p < image.hit_triangles.size(); ++p)
+    if (image.hit_triangles[p] != raytrace::kMissed) ++(image.lit[0][p] != 0 ? lit : shadowed);
+  const std::string mode(raytrace::build_mode_name(entry.mode));
+  fmt::print("{}: {} triangles, {} lights, {}x{}, {} (Embree {} mode on the CPU)\n", options.input, triangles,
+             scene.lights.size(), scene.camera.width, scene.camera.height, entry.name, mode);
+  fmt::print("  first light: {} lit, {} shadowed receiver pixels\n", lit, shadowed);
+  fmt::print("  seconds: build {:.3f}, trace {:.3f} ({} rays, {} shadow rays), all {:.3f}\n",
+             image.stats.build_seconds, image.stats.trace_seconds, image.stats.rays, image.stats.shadow_rays,
+             image.stats.seconds);
+  if (!options.json_file.empty()) {
+    nlohmann::json report{{"input", options.input},
+                          {"method", entry.name},
+                          {"size", {scene.camera.width, scene.camera.height}},
+                          {"renderer", "Embree (CPU), " + mode + " mode"},
+                          {"lights", scene.lights.size()},
+                          {"lit_pixels", lit},
+                          {"shadowed_pixels", shadowed},
+                          {"frame_ms", 1000.0 * (image.stats.build_seconds + image.stats.trace_seconds)},
+                          {"stage_seconds",
+                           {{"build", image.stats.build_seconds}, {"trace", image.stats.trace_seconds}}},
+                          {"rays", image.stats.rays},
+                          {"shadow_rays", image.stats.shadow_rays},
+                          {"seconds", seconds_since(start)}};
+    if (!options.light_image.empty())
+      report["light_image"] = {{"png", options.light_image},
+                               {"pfm", light_image_float_path(options.light_image).string()}};
+    write_json_file(options.json_file, report);
+  }
+  return kExitOk;
+}
+
 // ---- the command: the steps in order -----------------------------------------------------------
 
 int run_render(const RenderOptions& options) {
+  if (const RayTracedEntry* entry = find_ray_traced_method(options.method)) return run_ray_traced_render(options, *entry);
   const auto start = Clock::now();
   const ValidatedRenderOptions v = validate(options);                 // 1. the options
   const DrawnScene d = load_drawn_scene(options);                     // 2. the scene
@@ -466,6 +539,7 @@ void add_render_command(CLI::App& app, int& exit_code) {
   cmd->add_option("input", options->input, kImageInputHelp)->required();
   std::vector<std::string> method_names_list;
   for (const MethodEntry& e : method_registry()) method_names_list.emplace_back(e.name());
+  for (const RayTracedEntry& e : ray_traced_registry()) method_names_list.emplace_back(e.name);
   cmd->add_option("--method", options->method, method_help())
       ->check(CLI::IsMember(method_names_list))
       ->capture_default_str();

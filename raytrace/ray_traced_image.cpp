@@ -211,9 +211,11 @@ FloatRay shadow_ray(const Vec3& p, const Light& light, double offset) {
     // From the float origin the ray leaves from, so that t = 1 is the light.
     const Vec3 d{light.position[0] - r.origin[0], light.position[1] - r.origin[1], light.position[2] - r.origin[2]};
     r.direction = to_float(d);
+    // The same offset at the light's end: a light on a triangle (at a vertex, on an edge, in a
+    // face) must not occlude itself, as the exact count's open segment excludes its end.
     const double length = std::sqrt(dot(d, d));
     r.tnear = length > 0.0 ? static_cast<float>(offset / length) : 0.0f;
-    r.tfar = 1.0f;
+    r.tfar = length > 0.0 ? static_cast<float>(std::max(0.0, 1.0 - offset / length)) : 0.0f;
   }
   return r;
 }
@@ -277,15 +279,24 @@ void build(TraceSetup& setup, const Soup& soup, const RayTracedImageOptions& opt
   stats.build_seconds = seconds_since(start);
 }
 
-// Row r's centre rays: primitives -> soup triangles in `hits`, hit points in `points`.
+// The largest magnitude of v's coordinates.
+double max_abs(const std::array<float, 3>& v) {
+  return std::max({std::abs(static_cast<double>(v[0])), std::abs(static_cast<double>(v[1])),
+                   std::abs(static_cast<double>(v[2]))});
+}
+
+// Row r's centre rays: primitives -> soup triangles in `hits`, hit points in `points`, and each
+// hit's shadow-ray offset in `offsets` (world units: the scene's part plus kHitPointErrorUlps
+// float ulps of the distance travelled and of P's coordinates).
 void trace_row(const TraceSetup& setup, const Tracer& tracer, std::uint32_t row, std::span<std::uint32_t> hits,
                std::vector<FloatRay>& rays, std::vector<std::uint32_t>& primitives, std::vector<float>& t,
-               std::vector<Vec3>& points) {
+               std::vector<Vec3>& points, std::vector<double>& offsets) {
   const std::uint32_t width = setup.frame.width;
   rays.resize(width);
   primitives.resize(width);
   t.resize(width);
   points.resize(width);
+  offsets.resize(width);
   for (std::uint32_t i = 0; i < width; ++i) rays[i] = camera_ray(setup.frame, i + 0.5, row + 0.5);
   tracer.first_hits(setup.visible->get(), rays, primitives, t);
   for (std::uint32_t i = 0; i < width; ++i) {
@@ -294,6 +305,10 @@ void trace_row(const TraceSetup& setup, const Tracer& tracer, std::uint32_t row,
     for (int k = 0; k < 3; ++k)
       points[i][k] = static_cast<double>(rays[i].origin[k]) +
                      static_cast<double>(t[i]) * static_cast<double>(rays[i].direction[k]);
+    constexpr double kFloatUlp = 0x1p-24;  // half an ulp of 1 in float: float's unit roundoff
+    const double travelled = static_cast<double>(t[i]) * max_abs(rays[i].direction);
+    const double p_magnitude = std::max({std::abs(points[i][0]), std::abs(points[i][1]), std::abs(points[i][2])});
+    offsets[i] = setup.offset + kHitPointErrorUlps * kFloatUlp * (travelled + p_magnitude);
   }
 }
 
@@ -324,7 +339,8 @@ tbb::task_arena make_arena(unsigned threads) {
 // Per pixel of a row, the shadow rays towards each of `lights`; visit(light, pixel, occluded).
 template <typename Visit>
 void shadow_rays(const TraceSetup& setup, const Tracer& tracer, std::span<const Light> lights,
-                 std::span<const std::uint32_t> hits, std::span<const Vec3> points, std::vector<FloatRay>& rays,
+                 std::span<const std::uint32_t> hits, std::span<const Vec3> points, std::span<const double> offsets,
+                 std::vector<FloatRay>& rays,
                  std::vector<std::uint8_t>& active, std::vector<std::uint8_t>& occluded, Visit&& visit) {
   const std::size_t width = hits.size();
   rays.resize(width);
@@ -334,7 +350,7 @@ void shadow_rays(const TraceSetup& setup, const Tracer& tracer, std::span<const 
   for (std::size_t k = 0; k < lights.size(); ++k) {
     for (std::size_t i = 0; i < width; ++i) {
       occluded[i] = 0;
-      if (active[i] != 0) rays[i] = shadow_ray(points[i], lights[k], setup.offset);
+      if (active[i] != 0) rays[i] = shadow_ray(points[i], lights[k], offsets[i]);
     }
     tracer.occluded(setup.occluders(), rays, active, occluded);
     for (std::size_t i = 0; i < width; ++i)
@@ -369,12 +385,13 @@ RayTracedImage ray_traced_image(const Soup& soup, std::span<const Light> lights,
       std::vector<std::uint32_t> primitives;
       std::vector<float> t;
       std::vector<Vec3> points;
+      std::vector<double> offsets;
       std::vector<std::uint8_t> active, occluded;
       for (std::uint32_t r = rows.begin(); r != rows.end(); ++r) {
         const std::size_t base = std::size_t{r} * image.width;
         const std::span<std::uint32_t> hits(image.hit_triangles.data() + base, image.width);
-        trace_row(setup, tracer, r, hits, rays, primitives, t, points);
-        shadow_rays(setup, tracer, lights, hits, points, rays, active, occluded,
+        trace_row(setup, tracer, r, hits, rays, primitives, t, points, offsets);
+        shadow_rays(setup, tracer, lights, hits, points, offsets, rays, active, occluded,
                     [&](std::size_t k, std::size_t i, bool blocked) { image.lit[k][base + i] = blocked ? 0 : 255; });
       }
     });
@@ -416,12 +433,13 @@ RayTracedSoftImage ray_traced_soft_image(const Soup& soup, std::span<const Light
       std::vector<std::uint32_t> primitives;
       std::vector<float> t;
       std::vector<Vec3> points;
+      std::vector<double> offsets;
       std::vector<std::uint8_t> active, occluded;
       for (std::uint32_t r = rows.begin(); r != rows.end(); ++r) {
         const std::size_t base = std::size_t{r} * image.width;
         const std::span<std::uint32_t> hits(image.hit_triangles.data() + base, image.width);
-        trace_row(setup, tracer, r, hits, rays, primitives, t, points);
-        shadow_rays(setup, tracer, samples, hits, points, rays, active, occluded,
+        trace_row(setup, tracer, r, hits, rays, primitives, t, points, offsets);
+        shadow_rays(setup, tracer, samples, hits, points, offsets, rays, active, occluded,
                     [&](std::size_t, std::size_t i, bool blocked) { image.lit_samples[base + i] += blocked ? 0 : 1; });
         for (std::uint32_t i = 0; i < image.width; ++i)
           if (hits[i] != kMissed)

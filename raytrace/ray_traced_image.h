@@ -7,18 +7,19 @@
 // Per pixel, the centre ray's first hit (Embree, float vertices and rays) gives the triangle and
 // the hit point P = o + t d (o, d the float ray, t Embree's distance, evaluated in double); per
 // light one shadow ray from P towards the light (a point light: the segment P -> l, t in
-// (tnear, 1]; a directional one: the ray along l) asks Embree whether any CASTING triangle
-// occludes it (rtcOccluded). Lit: the centre ray hits and the shadow ray is not occluded.
+// [tnear, 1 - tnear]; a directional one: the ray along l, t >= tnear) asks Embree whether any
+// CASTING triangle occludes it (rtcOccluded). Lit: the centre ray hits and the shadow ray is not occluded.
 // Triangles that only receive (casts[t] == 0, as ExactImageOptions::casts) are seen and hit but
 // never occlude: the shadow rays are traced in a second scene of the casting triangles alone.
 //
 // Self-hits: the shadow ray starts on the hit triangle, where float rounding of P and of the
-// vertices puts it a little above or below that triangle's plane; it starts at a distance
-// `shadow_ray_offset` x (the diagonal of the soup's bounding box) along its direction
-// (kShadowRayOffset below). A float ray tracer's usual answer: it leaks light where a caster
-// touches its receiver within that distance, and it still self-shadows ("acne") where the light
-// grazes the surface. The exact image has no such tolerance (the hit triangle is excluded
-// exactly): that difference is part of rt's measured error.
+// vertices puts it a little above or below that triangle's plane; it starts a small distance
+// along its direction (kShadowRayOffset and kHitPointErrorUlps below), and a point light's ray
+// ends that distance short of the light (a light on a triangle must not shadow itself). A float
+// ray tracer's usual answer: it leaks light where a caster touches its receiver within that
+// distance, and it still self-shadows ("acne") where the light grazes the surface. The exact
+// image has no such tolerance (the hit triangle is excluded exactly): that difference is part
+// of rt's measured error.
 //
 // Soft shadows: K sample lights (the caller's; the exact soft reference's own samples,
 // reference/disk_light.h's disk_light_samples, so both integrate the same points) each traced as
@@ -27,7 +28,9 @@
 // Parallel over rows with TBB, in an arena of `threads` threads (the BVH builds run there too),
 // in packets of `packet` rays (rtcIntersect4/8/16, rtcOccluded4/8/16; 1: one ray at a time).
 //
-//   raytrace::RayTracedImage rt = raytrace::ray_traced_image(soup, lights, camera, {.mode = BuildMode::robust});
+//   raytrace::RayTracedImageOptions options;
+//   options.mode = raytrace::BuildMode::robust;
+//   raytrace::RayTracedImage rt = raytrace::ray_traced_image(soup, lights, camera, options);
 //   rt.lit[0][p] == 255   // pixel p lit by light 0; rt.hit_triangles[p] the soup triangle seen
 #include <cstdint>
 #include <span>
@@ -45,16 +48,20 @@ inline constexpr std::uint32_t kMissed = 0xFFFFFFFFu;
 // RayTracedSoftImage::light where the centre ray meets nothing (as reference/soft_shadow_image.h's kNoLight).
 inline constexpr float kNoLight = -1.0f;
 
-// The shadow ray's start, in units of the diagonal of the soup's bounding box, along the ray.
-// It absorbs the float error of the shadow ray's origin across the hit triangle's plane: P's
-// rounding to float (half an ulp of its coordinates, about 6e-8 of the scene's extent where the
-// scene is near the origin), the error of Embree's float hit distance (a few ulps of the
-// distance from the eye) and the vertices' rounding to float (half an ulp each), together a few
-// 1e-7 of the extent; 1e-4 clears that 100 times over where the light is more than ~0.06
-// degrees above the surface (the ray rises 1e-4 sin(angle) off the plane). Below that the ray
-// may still hit its own triangle (acne), and a caster nearer than 1e-4 of the extent to P is
-// missed (a leak at contact): rt's own error, a tenth of a pixel where the scene spans 1000 pixels.
+// The shadow ray's start is the sum of two named tolerances (world units along the ray; a point
+// light's ray stops the same distance short of the light):
+//   kShadowRayOffset x the diagonal of the soup's bounding box: the vertices' rounding to float
+//     (half an ulp of their coordinates) seen at the scene's own scale, with a wide margin: the
+//     ray rises offset x sin(angle) off the plane, so it clears a few 1e-7 of the extent where the
+//     light is more than ~0.06 degrees above the surface. A caster nearer than 1e-4 of the extent
+//     to P is missed (a leak at contact): a tenth of a pixel where the scene spans 1000 pixels.
+//   kHitPointErrorUlps float ulps of (the distance the centre ray travelled to P + P's largest
+//     coordinate): the error of P itself, from Embree's float hit distance (relative error a few
+//     ulps: P moves a few ulps of the distance off the plane) and from P's rounding to the float
+//     origin of the shadow ray. It dominates where the eye is far from a small scene
+//     (data/scenes/hard/scale_1e-6.json: the eye 2,000 scene sizes away).
 inline constexpr double kShadowRayOffset = 1e-4;
+inline constexpr double kHitPointErrorUlps = 16.0;
 
 struct RayTracedImageOptions {
   BuildMode mode = BuildMode::fast;
@@ -68,7 +75,8 @@ struct RayTracedImageOptions {
   // Also trace the (width + 1) x (height + 1) pixel-corner rays' first hits (the exact image
   // traces them for its footprints): for benchmarks that time the same rays as exact_image.
   bool corner_rays = false;
-  // The shadow ray's start, a fraction of the bounding box's diagonal (kShadowRayOffset), >= 0.
+  // The scene's part of the shadow ray's start, a fraction of the bounding box's diagonal
+  // (kShadowRayOffset), >= 0; the hit point's part (kHitPointErrorUlps) is added to it.
   double shadow_ray_offset = kShadowRayOffset;
 };
 
