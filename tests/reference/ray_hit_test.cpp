@@ -1,0 +1,113 @@
+// reference/detail/ray_hit.h's semi-static filters (issue 24): semi_static_hit_box must enclose
+// the exact hit point and RayParameter's enclosure the exact parameter, on rays and triangles at
+// every scale the campaign draws (1e-6 to 1e6, offsets of 1e6, nearly parallel rays, far
+// triangles). Containment is checked exactly: HitPoint::side against the box's face planes.
+#include "reference/detail/ray_hit.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <optional>
+#include <random>
+
+namespace {
+
+using namespace shadowcert;
+using detail::HitPoint;
+using detail::RayParameter;
+
+struct Draw {
+  PixelRay ray;
+  std::array<Vec3, 3> triangle;
+};
+
+// A triangle of size `scale` around `centre`, and a ray from a point `distance` away towards a
+// point on or near it; `grazing` tilts the ray almost into the triangle's plane.
+Draw draw(std::mt19937_64& rng, double scale, double offset, double distance, bool grazing) {
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  Draw d;
+  const Vec3 centre{offset + unit(rng) * scale, offset + unit(rng) * scale, offset + unit(rng) * scale};
+  for (Vec3& v : d.triangle) v = {centre[0] + unit(rng) * scale, centre[1] + unit(rng) * scale, centre[2] + unit(rng) * scale};
+  const double wa = std::abs(unit(rng)), wb = std::abs(unit(rng)), wc = std::abs(unit(rng)), sum = wa + wb + wc;
+  Vec3 target{};
+  for (int k = 0; k < 3; ++k)
+    target[k] = (wa * d.triangle[0][k] + wb * d.triangle[1][k] + wc * d.triangle[2][k]) / sum;
+  Vec3 from_dir{unit(rng), unit(rng), unit(rng)};
+  if (grazing) {
+    // Along an edge direction, plus a tiny component: nearly in the plane.
+    for (int k = 0; k < 3; ++k) from_dir[k] = d.triangle[1][k] - d.triangle[0][k] + 1e-9 * scale * unit(rng);
+  }
+  const double norm = std::sqrt(from_dir[0] * from_dir[0] + from_dir[1] * from_dir[1] + from_dir[2] * from_dir[2]);
+  for (int k = 0; k < 3; ++k) d.ray.origin[k] = target[k] + from_dir[k] / norm * distance;
+  for (int k = 0; k < 3; ++k) d.ray.direction[k] = target[k] - d.ray.origin[k];
+  return d;
+}
+
+// The exact side of P of the plane x_k = value, seen as orient(a, b, c, P) with a, b, c spanning
+// it: +1 or -1 by the coordinate's order, 0 on it.
+Sign side_of_coordinate(const HitPoint& p, int k, double value) {
+  Vec3 a{}, b{}, c{};
+  a[k] = b[k] = c[k] = value;
+  b[(k + 1) % 3] = 1.0;
+  c[(k + 2) % 3] = 1.0;
+  // det[b - a, c - a, P - a] = (P_k - value) for this cyclic choice of axes.
+  return p.side(a, b, c);
+}
+
+TEST(SemiStaticHitBox, RandomRaysAtEveryScale_EncloseTheExactPoint) {
+  std::mt19937_64 rng(24);
+  int checked = 0, filtered = 0;
+  for (double scale : {1e-6, 1e-3, 1.0, 1e3, 1e6})
+    for (double offset : {0.0, 1e6})
+      for (double distance : {1.0, 1e3})
+        for (bool grazing : {false, true})
+          for (int i = 0; i < 100; ++i) {
+            const Draw d = draw(rng, scale, offset, distance * scale, grazing);
+            const detail::RayMeeting m = detail::ray_meets_triangle(d.ray, d.triangle[0], d.triangle[1], d.triangle[2]);
+            if (m.direction_side == Sign::zero) continue;
+            const RayParameter t(d.ray, d.triangle[0], d.triangle[1], d.triangle[2], m.direction_side);
+            const HitPoint exact(t);
+            ++checked;
+            const std::optional<std::array<Vec3, 2>> box = detail::semi_static_hit_box(d.ray, d.triangle);
+            if (!box) continue;
+            ++filtered;
+            for (int k = 0; k < 3; ++k) {
+              EXPECT_NE(side_of_coordinate(exact, k, (*box)[0][k]), Sign::negative) << "lo, axis " << k << ", scale " << scale;
+              EXPECT_NE(side_of_coordinate(exact, k, (*box)[1][k]), Sign::positive) << "hi, axis " << k << ", scale " << scale;
+            }
+          }
+  EXPECT_GT(checked, 3000);
+  EXPECT_GT(filtered, checked / 2);  // the filter decides most cases (else it is no speed-up)
+}
+
+TEST(RayParameter, SemiStaticEnclosure_OrdersAsTheExactParameters) {
+  // Two triangles on one ray: compare() (filter first, exact when the enclosures overlap) must
+  // agree with the order of the exact hit points along the ray, read exactly through HitPoint.
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (int i = 0; i < 2000; ++i) {
+    const double scale = std::pow(10.0, 6.0 * unit(rng));
+    const Draw a = draw(rng, scale, 0.0, 4.0 * scale, false);
+    Draw b = a;
+    // b: a's triangle moved along the ray by a tiny or a large step.
+    const double step = (i % 2 == 0 ? 1e-12 : 0.1) * unit(rng);
+    for (Vec3& v : b.triangle)
+      for (int k = 0; k < 3; ++k) v[k] += step * a.ray.direction[k];
+    const auto meet = [](const Draw& d) {
+      return detail::ray_meets_triangle(d.ray, d.triangle[0], d.triangle[1], d.triangle[2]);
+    };
+    const detail::RayMeeting ma = meet(a), mb = meet(b);
+    if (ma.direction_side == Sign::zero || mb.direction_side == Sign::zero) continue;
+    const RayParameter ta(a.ray, a.triangle[0], a.triangle[1], a.triangle[2], ma.direction_side);
+    const RayParameter tb(a.ray, b.triangle[0], b.triangle[1], b.triangle[2], mb.direction_side);
+    const RayParameter ta_plain(a.ray, a.triangle[0], a.triangle[1], a.triangle[2], ma.direction_side,
+                                RayParameter::Unenclosed{});
+    const RayParameter tb_plain(a.ray, b.triangle[0], b.triangle[1], b.triangle[2], mb.direction_side,
+                                RayParameter::Unenclosed{});
+    // The unenclosed parameters always take the exact comparison: the reference order.
+    EXPECT_EQ(ta.compare(tb), ta_plain.compare(tb_plain)) << "case " << i;
+    EXPECT_EQ(tb.compare(ta), tb_plain.compare(ta_plain)) << "case " << i;
+  }
+}
+
+}  // namespace
