@@ -158,6 +158,10 @@ nlohmann::json timing_json(const BenchRun& b, bool synchronised) {
 nlohmann::json parameter_json(const BenchRun& b) {
   const BenchVariant& v = b.variant;
   nlohmann::json p = nlohmann::json::object();
+  if (v.family == BenchFamily::ray_traced) {
+    p["mode"] = raytrace::build_mode_name(ray_traced_entry(v.ray_traced).mode);
+    return p;
+  }
   if (v.family != BenchFamily::edges && gpu::builds_volume_on_gpu(v.method)) p["sign"] = gpu::sign_mode_name(v.sign);
   if (gpu::uses_shadow_map(v.method)) p["shadow_map_size"] = v.shadow_map_size;
   if (v.method == gpu::ShadowMethod::pcf) p["pcf_kernel"] = v.pcf_kernel;
@@ -203,7 +207,8 @@ nlohmann::json run_json(const BenchRun& b, bool synchronised, const nlohmann::js
                        {"contour", nullptr},
                        {"edges", nullptr},
                        {"images", images}};
-  if (const std::optional<bool> closed = r.closed()) {
+  if (const std::optional<bool> closed =
+          b.variant.family == BenchFamily::ray_traced ? std::nullopt : r.closed()) {  // rt: no volume
     error["closed"] = *closed;
     error["volume_triangles"] = r.lights.empty() ? 0 : r.lights.front().volume_triangles;
   }

@@ -3,6 +3,7 @@
 #include <fmt/core.h>
 
 #include <algorithm>
+#include <numeric>
 #include <chrono>
 #include <map>
 #include <set>
@@ -21,6 +22,7 @@
 #include "pipeline/edge_map_pictures.h"
 #include "pipeline/mesh_palette.h"
 #include "pipeline/method_registry.h"
+#include "pipeline/ray_traced_comparison.h"
 #include "pipeline/method_inputs.h"
 #include "pipeline/silhouette_volumes.h"
 #include "pipeline/soft_reference.h"
@@ -166,9 +168,54 @@ BenchRun edge_run(const BenchVariant& variant, const EdgeGroundTruth& truth,
   return b;
 }
 
+// A ray-traced run (pipeline/ray_traced_comparison.h) on the world scene, as diff runs it: its
+// comparisons and soft errors from the first image, then warm_up_frames + frames images timed,
+// each its BVH builds (build_ms: their median) and its rays (a frame, every light at once).
+BenchRun ray_traced_run(const BenchVariant& variant, const Scene& scene, const std::string& scene_name,
+                        const ExactImage& exact, std::span<const SoftReference> soft, const BenchOptions& options) {
+  BenchRun b;
+  b.variant = variant;
+  b.run.held_robust = false;
+  RayTracedRun run = compare_ray_traced(scene, variant.ray_traced, exact, soft);
+  std::vector<SoftShadowErrors> soft_errors;
+  for (std::size_t k = 0; k < run.lights.size(); ++k) {
+    LightRun& l = run.lights[k];
+    if (l.soft) soft_errors.push_back(*l.soft);
+    if (options.images && k == 0) {
+      b.overlay = error_overlay(l.frame.colour, l.comparison);
+      if (!soft.empty()) b.soft_error = soft_error_image(soft[k].image, l.frame.first_light);
+    }
+    l.frame = {};
+    l.comparison.verdicts = {};
+    b.run.lights.push_back(std::move(l));
+  }
+  if (!soft_errors.empty()) b.soft = combined(soft_errors);
+  std::vector<double> build_ms, trace_ms;
+  for (std::size_t f = 0; f < options.warm_up_frames + options.frames; ++f) {
+    const raytrace::RayTracedImage image = ray_traced_scene_image(scene, variant.ray_traced);
+    if (f < options.warm_up_frames) continue;
+    build_ms.push_back(1000.0 * image.stats.build_seconds);
+    trace_ms.push_back(1000.0 * image.stats.trace_seconds);
+  }
+  if (!trace_ms.empty()) {
+    b.build_ms = gpu::summarize(build_ms).median_ms;
+    b.timing.frames = trace_ms.size();
+    b.timing.sync = options.sync;
+    b.timing.frame_cpu = gpu::summarize(trace_ms);
+    b.timing.frame_gpu = b.timing.frame_cpu;  // no GPU: the same wall time under either sync
+    b.timing.mean_cpu_ms = std::accumulate(trace_ms.begin(), trace_ms.end(), 0.0) / static_cast<double>(trace_ms.size());
+  }
+  if (options.progress)
+    options.progress(fmt::format("{} {}: {} hard errors, trace {:.2f} ms, build {:.1f} ms (Embree, CPU)", scene_name,
+                                 variant.id,
+                                 b.run.sum(&PixelComparison::hard_errors), b.timing.frame_cpu.median_ms, b.build_ms));
+  return b;
+}
+
 }  // namespace
 
 std::string method_of(const BenchVariant& v) {
+  if (v.family == BenchFamily::ray_traced) return std::string(ray_traced_method_name(v.ray_traced));
   return v.family == BenchFamily::edges ? "edges" : std::string(gpu::shadow_method_name(v.method));
 }
 
@@ -178,12 +225,13 @@ std::string_view bench_family_name(BenchFamily family) {
     case BenchFamily::silhouette: return "silhouette";
     case BenchFamily::shadow_map: return "shadowmap";
     case BenchFamily::edges: return "edges";
+    case BenchFamily::ray_traced: return "ray_traced";
   }
   return "stencil";
 }
 
 bool BenchVariant::robust() const {
-  if (family == BenchFamily::edges) return false;
+  if (family == BenchFamily::edges || family == BenchFamily::ray_traced) return false;
   return shadowcert::robust(method) && !(gpu::builds_volume_on_gpu(method) && sign == gpu::SignMode::float32);
 }
 
@@ -217,6 +265,14 @@ std::vector<BenchVariant> bench_variants() {
       }
       out.push_back(v);
     }
+  }
+  // The ray-traced methods (Embree on the CPU), after the GL ones as in the registry.
+  for (const RayTracedEntry& entry : ray_traced_registry()) {
+    BenchVariant v;
+    v.family = BenchFamily::ray_traced;
+    v.ray_traced = entry.method;
+    v.id = std::string(entry.name);
+    out.push_back(v);
   }
   // The edge-map filters (issue 14, gpu/edge_map.h), scored against the exact edges.
   for (gpu::EdgeFilter filter : gpu::kEdgeFilters) {
@@ -431,6 +487,10 @@ void bench_scene_into(BenchSceneResult& result, const Scene& scene, const BenchS
     result.running = variant.id;
     if (variant.family == BenchFamily::edges) {
       result.runs.push_back(edge_run(variant, *edge_truth, parts, target, drawn, options));
+      continue;
+    }
+    if (variant.family == BenchFamily::ray_traced) {
+      result.runs.push_back(ray_traced_run(variant, scene, spec.name, exact, soft, options));
       continue;
     }
     BenchRun b;

@@ -38,8 +38,9 @@ namespace shadowcert {
 // ambiguous pixels, closure), silhouette (discrete, accurate, smooth, smooth-gpu: also against
 // the analytic shadow and the conic), shadow_map (shadowmap, pcf, pcss, smoothie: also against
 // the exact soft reference), edges (the edge-map filters of issue 14: precision and recall;
-// no run yet, see bench_variants).
-enum class BenchFamily { stencil, silhouette, shadow_map, edges };
+// no run yet, see bench_variants), ray_traced (rt, rt-robust: Embree on the CPU, hard and
+// ambiguous pixels and the soft error, never a failure; docs/ray-tracing.md).
+enum class BenchFamily { stencil, silhouette, shadow_map, edges, ray_traced };
 [[nodiscard]] std::string_view bench_family_name(BenchFamily family);
 
 // One method at one value of its swept parameter.
@@ -54,6 +55,7 @@ struct BenchVariant {
   double smoothie_width_in_r = 0.0;                            // smoothie: D as a fraction of the light radius R
   SmoothieSpace smoothie_space = SmoothieSpace::world;         // smoothie
   gpu::EdgeFilter edge_filter = gpu::EdgeFilter::diagonal;     // edges (family edges; `method` unused)
+  RayTracedMethod ray_traced = RayTracedMethod::rt;            // family ray_traced (`method` unused)
   // Held to the robust rule (diff's): the robust methods with exact signs; the float-sign runs
   // are the float baseline (wrong where the light is within rounding of a plane).
   [[nodiscard]] bool robust() const;
@@ -63,9 +65,10 @@ struct BenchVariant {
 // shadowmap at 512, 1024, 2048, 4096; pcf 3, 5, 9 and pcss at 2048 (pcss's light radius R: the
 // soft reference's); smoothie at 2048 with D = R/4, R/2, R (world space); discrete, accurate,
 // smooth at eps 0.1, 0.03, 0.01, 0.003, smooth-gpu at 0.01; the edge-map filters (issue 14,
-// gpu/edge_map.h) edges/diagonal, edges/c1, edges/sobel.
+// gpu/edge_map.h) edges/diagonal, edges/c1, edges/sobel; the ray-traced methods rt, rt-robust.
 [[nodiscard]] std::vector<BenchVariant> bench_variants();
-// The method name --methods selects a variant by: render's --method name, "edges" for edge maps.
+// The method name --methods selects a variant by: render's --method name (rt, rt-robust for the
+// ray-traced ones), "edges" for edge maps.
 [[nodiscard]] std::string method_of(const BenchVariant& variant);
 
 // The variants `list` names, comma-separated: a method name (every variant of it: "cs", "smooth")
@@ -150,9 +153,12 @@ struct BenchRun {
   BenchVariant variant;
   // compare_scene's MethodRun for it (per light: comparison, closure, volume triangles, capacity
   // error, analytic and soft figures); the frames are dropped once the images below are made.
+  // A ray-traced run's: its lights' comparisons and soft errors (`run.method` unused).
   MethodRun run;
-  gpu::FrameTiming timing;  // every light's time_frames, summed (each light rendered alone)
-  double build_ms = 0.0;    // the CPU work before the frames, summed over lights
+  gpu::FrameTiming timing;  // every light's time_frames, summed (each light rendered alone); a
+                            // ray-traced run: its images' rays (every light at once), CPU wall
+  double build_ms = 0.0;    // the CPU work before the frames, summed over lights; ray-traced: the
+                            // median of its images' BVH builds
   double smoothie_width = 0.0;  // smoothie: D in world units
   double light_radius = 0.0;    // pcss: R in world units
   std::optional<SoftShadowErrors> soft;  // the lights' soft errors together
@@ -161,7 +167,8 @@ struct BenchRun {
   gpu::RgbaImage overlay;     // the first light's frame with hard errors and ambiguous pixels
                               // (edges: the profile verdicts, reference/edge_scores.h's colours)
   gpu::RgbaImage soft_error;  // the first light's light against its soft reference, when there is one
-  [[nodiscard]] bool failed() const { return run.failed(); }
+  // A ray-traced run never fails (its `run` has no volume and is not held robust).
+  [[nodiscard]] bool failed() const { return variant.family != BenchFamily::ray_traced && run.failed(); }
 };
 
 struct BenchSceneResult {

@@ -29,7 +29,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib import ticker  # noqa: E402
 
-FAMILY_COLOURS = {"stencil": "#1f77b4", "silhouette": "#2ca02c", "shadowmap": "#d62728", "edges": "#9467bd"}
+FAMILY_COLOURS = {"stencil": "#1f77b4", "silhouette": "#2ca02c", "shadowmap": "#d62728", "edges": "#9467bd",
+                  "ray_traced": "#8c564b"}
 PER_FIGURE = 12  # scenes per figure of small multiples
 
 

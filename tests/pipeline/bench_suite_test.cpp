@@ -38,6 +38,23 @@ TEST(BenchVariants, TheMatrix_UniqueIdsInFamilyOrder) {
   }
 }
 
+TEST(BenchVariants, RayTraced_RtAndRtRobustAfterTheGlRunsNeverRobust) {
+  const std::vector<BenchVariant> all = bench_variants();
+  const std::vector<std::string> names = ids(all);
+  const auto rt = std::find(names.begin(), names.end(), "rt");
+  ASSERT_NE(rt, names.end());
+  ASSERT_NE(rt + 1, names.end());
+  EXPECT_EQ(*(rt + 1), "rt-robust");
+  EXPECT_EQ(*(rt - 1), "smooth-gpu/0.01") << "after the GL methods' runs";
+  for (const BenchVariant& v : all) {
+    if (v.family != BenchFamily::ray_traced) continue;
+    EXPECT_FALSE(v.robust()) << v.id;
+    EXPECT_EQ(method_of(v), v.id);
+  }
+  EXPECT_EQ(ids(select_bench_variants("rt-robust,cpu")), (std::vector<std::string>{"cpu", "rt-robust"}));
+  EXPECT_EQ(bench_family_name(BenchFamily::ray_traced), "ray_traced");
+}
+
 TEST(BenchVariants, Selection_ByMethodOrId_InTheMatrixOrder) {
   EXPECT_EQ(ids(select_bench_variants("pcf,cpu")), (std::vector<std::string>{"cpu", "pcf/3", "pcf/5", "pcf/9"}));
   EXPECT_EQ(ids(select_bench_variants("smooth/0.01,cs/float")), (std::vector<std::string>{"cs/float", "smooth/0.01"}));
