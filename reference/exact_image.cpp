@@ -36,6 +36,7 @@
 #include "exact/edge_multiplicity.h"
 #include "exact/face_crossing.h"
 #include "exact/light_orientation.h"
+#include "exact/light_orientation_filter.h"
 #include "reference/detail/pixel_footprint.h"
 #include "reference/detail/ray_hit.h"
 #include "scene/canonical_soup.h"
@@ -423,15 +424,85 @@ struct Backdrop {
 
 // Whether something besides triangle h is seen inside the footprint: an edge of another
 // triangle crosses the eye pyramid over it (reference/detail/pixel_footprint.h).
-// The pyramid itself is built only for the first candidate other than h (most pixels of a mesh
-// have none: the query's boxes near the eye ray are h's alone).
-bool footprint_sees_more(const ImageGeometry& g, const Vec3& eye, const CornerHits& corners, std::uint32_t h) {
+// sign det[x, y, z] of three rows, each an input vector or a rounded difference of doubles,
+// when the semi-static filter of exact/light_orientation_filter.h certifies it (CGAL's static
+// filter for Orientation_3: an exact row only makes its bound an over-estimate); nullopt
+// otherwise. Round-to-nearest, no rounding-mode switch.
+std::optional<Sign> filtered_det_sign(const Vec3& x, const Vec3& y, const Vec3& z) {
+  const double max0 = std::max({std::fabs(x[0]), std::fabs(y[0]), std::fabs(z[0])});
+  const double max1 = std::max({std::fabs(x[1]), std::fabs(y[1]), std::fabs(z[1])});
+  const double max2 = std::max({std::fabs(x[2]), std::fabs(y[2]), std::fabs(z[2])});
+  if (std::min({max0, max1, max2}) < detail::kOrientationUnderflowGuard ||
+      std::max({max0, max1, max2}) >= detail::kOrientationOverflowGuard)
+    return std::nullopt;
+  const double m01 = x[0] * y[1] - y[0] * x[1];
+  const double m02 = x[0] * z[1] - z[0] * x[1];
+  const double m12 = y[0] * z[1] - z[0] * y[1];
+  const double det = m01 * z[2] - m02 * y[2] + m12 * x[2];
+  const double bound = detail::kOrientationErrorFactor * max0 * max1 * max2;
+  if (det > bound) return Sign::positive;
+  if (det < -bound) return Sign::negative;
+  return std::nullopt;
+}
+
+// The eye pyramid hull{e, R} over a pixel lies in five closed half-spaces known without its hit
+// points: beside each face through the eye and two neighbouring corner rays (d_k, d_k+1), on the
+// side of the next corner ray (the corner rays span a convex cone, R lies in it), and on the
+// eye's side of h's plane (R lies in it). A triangle whose three vertices are certainly
+// strictly outside one of them has no edge in the pyramid: the exact answer of
+// FootprintPolytope::meets_an_edge_of, found with a few filtered determinants of input doubles
+// (most candidates are h's neighbours beside R or triangles behind h's plane). Where a filter
+// is unsure, the polytope decides as before.
+class EyePyramidFilter {
+ public:
+  EyePyramidFilter(const Vec3& eye, const CornerHits& corners, const std::array<Vec3, 3>& h, Sign eye_side)
+      : eye_(eye), h_(h), eye_side_(eye_side) {
+    for (std::size_t k = 0; k < 4; ++k) directions_[k] = corners.parameters[k].ray().direction;
+    for (std::size_t k = 0; k < 4; ++k) {
+      const std::optional<Sign> s =
+          filtered_det_sign(directions_[k], directions_[(k + 1) % 4], directions_[(k + 2) % 4]);
+      inside_[k] = s.value_or(Sign::zero);  // zero: this face is not used
+    }
+  }
+
+  [[nodiscard]] bool separates(const Vec3& a, const Vec3& b, const Vec3& c) const {
+    // Beyond h's plane: orient(h, v) = -eye_side for all three, certified.
+    const auto beyond_h = [&](const Vec3& v) {
+      const std::optional<Sign> s = detail::semi_static_light_orientation(h_[0], h_[1], h_[2], {v[0], v[1], v[2], 1.0});
+      return s && *s == -eye_side_;
+    };
+    if (beyond_h(a) && beyond_h(b) && beyond_h(c)) return true;
+    for (std::size_t k = 0; k < 4; ++k) {
+      if (inside_[k] == Sign::zero) continue;
+      const auto outside = [&](const Vec3& v) {
+        const std::optional<Sign> s =
+            filtered_det_sign(directions_[k], directions_[(k + 1) % 4], difference(v, eye_));
+        return s && *s == -inside_[k];
+      };
+      if (outside(a) && outside(b) && outside(c)) return true;
+    }
+    return false;
+  }
+
+ private:
+  Vec3 eye_;
+  std::array<Vec3, 3> h_;
+  Sign eye_side_;
+  std::array<Vec3, 4> directions_{};
+  std::array<Sign, 4> inside_{};
+};
+
+// The pyramid itself is built only for the first candidate other than h that the cheap filter
+// (EyePyramidFilter, for a hit triangle) leaves (most pixels of a mesh have none).
+bool footprint_sees_more(const ImageGeometry& g, const Vec3& eye, const CornerHits& corners, std::uint32_t h,
+                         const EyePyramidFilter* filter = nullptr) {
   Vec3 from, slack;
   detail::FootprintPolytope::query_box(corners.boxes, from, slack);
   std::optional<detail::FootprintPolytope> pyramid;
   bool more = false;
   g.tree.dilated_segment_query(from, eye, slack, [&](std::uint32_t id) {
     if (id == h) return true;
+    if (filter != nullptr && filter->separates(g.vertex(id, 0), g.vertex(id, 1), g.vertex(id, 2))) return true;
     if (!pyramid) pyramid.emplace(finite_point(eye), corners.parameters, corners.boxes);
     if (!pyramid->meets_an_edge_of(g.vertex(id, 0), g.vertex(id, 1), g.vertex(id, 2))) return true;
     more = true;
@@ -648,8 +719,11 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
             continue;
           }
           if (geometric[pixel] != 0 || !countable(hits[pixel])) continue;
-          if (footprint_sees_more(g, grid.frame.eye, corner_hits(g, grid, hits, point_boxes.get(), i, row),
-                                  hits[pixel].triangle))
+          const CornerHits corners = corner_hits(g, grid, hits, point_boxes.get(), i, row);
+          const std::uint32_t h = hits[pixel].triangle;
+          const EyePyramidFilter filter(grid.frame.eye, corners, {g.vertex(h, 0), g.vertex(h, 1), g.vertex(h, 2)},
+                                        hits[pixel].eye_side);
+          if (footprint_sees_more(g, grid.frame.eye, corners, h, &filter))
             geometric[pixel] |= kFootprintTriangles;
           else if (options.depth_band &&
                    band_meets_surface(g, depth_band(g, grid.frame, grid.ray(pixel), hits[pixel], options.depth_band),
