@@ -114,6 +114,33 @@ std::optional<SemiStaticParameter> semi_static_parameter(const PixelRay& ray, co
 // it covers (each at most 2^-1074).
 inline constexpr double kTiny = 0x1p-1000;
 
+// The sign of f(P) = det[x, y, z(P)] for every P in the box lo..hi, when a semi-static bound
+// certifies it: f is affine in P with gradient -/+ (a x b) (the caller's rows a, b: inputs or
+// rounded differences), evaluated at the box's middle M (a double) with rows x, y, z(M) (inputs
+// or rounded differences of doubles). |f~(M) - f(M)| is CGAL's Orientation_3 bound (as in
+// bounded_determinant), and |f(P) - f(M)| <= sum_k |(a x b)_k| |P_k - M_k|, where |(a x b)_k|
+// <= (|a_k+1| |b_k+2| + |a_k+2| |b_k+1|) (1 + u)^2 on the rounded rows and |P_k - M_k| <=
+// hi_k - lo_k + 4u |M_k| (M may round just outside the box). The bound's own evaluation
+// rounds by a relative 16u at most, covered by (1 + 2^-40); kTiny covers underflow.
+std::optional<Sign> box_filtered_sign(const std::array<double, 3>& x, const std::array<double, 3>& y,
+                                      const std::array<double, 3>& z, const std::array<double, 3>& a,
+                                      const std::array<double, 3>& b, const Vec3& lo, const Vec3& hi,
+                                      const Vec3& middle) {
+  const std::optional<BoundedValue> f = bounded_determinant(x, y, z);
+  if (!f) return std::nullopt;
+  double spread = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    const int k1 = (k + 1) % 3, k2 = (k + 2) % 3;
+    const double n = std::fabs(a[k1]) * std::fabs(b[k2]) + std::fabs(a[k2]) * std::fabs(b[k1]);
+    spread += n * ((hi[k] - lo[k]) + 4.0 * kUnit * std::fabs(middle[k]));
+  }
+  const double bound = (f->error + spread * (1.0 + 4.0 * kUnit)) * (1.0 + 0x1p-40) + kTiny;
+  if (!std::isfinite(bound)) return std::nullopt;
+  if (f->value > bound) return Sign::positive;
+  if (f->value < -bound) return Sign::negative;
+  return std::nullopt;
+}
+
 }  // namespace
 
 std::optional<std::array<Vec3, 2>> semi_static_hit_box(const PixelRay& ray, const std::array<Vec3, 3>& triangle) {
@@ -265,7 +292,21 @@ const HitPoint::Exact& HitPoint::exact() const {
   return *exact_;
 }
 
+Vec3 HitPoint::middle() const {
+  Vec3 m;
+  for (int k = 0; k < 3; ++k) m[k] = lo_[k] / 2 + hi_[k] / 2;
+  return m;
+}
+
 Sign HitPoint::side(const Vec3& a, const Vec3& b, const Vec3& c) const {
+  {
+    // Semi-static first (no rounding-mode switch): det[b - a, c - a, P - a], gradient b - a x c - a.
+    const Vec3 m = middle();
+    const std::array<double, 3> x{b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    const std::array<double, 3> y{c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    const std::array<double, 3> z{m[0] - a[0], m[1] - a[1], m[2] - a[2]};
+    if (const std::optional<Sign> s = box_filtered_sign(x, y, z, x, y, lo_, hi_, m)) return *s;
+  }
   {
     const CGAL::Protect_FPU_rounding<true> protect;
     const Vec<Interval> p{Interval(lo_[0], hi_[0]), Interval(lo_[1], hi_[1]), Interval(lo_[2], hi_[2])};
@@ -295,6 +336,25 @@ Sign HitPoint::side(const Vec3& a, const Vec3& b, const Vec3& c) const {
 
 Sign HitPoint::orient_with(const HomogeneousPoint& light, const Vec3& p, const Vec3& q) const {
   const bool point_light = light[3] != 0.0;
+  {
+    // Semi-static first. Point light: det[L - P, p - P, q - P] = det[p - L, q - L, L - P]
+    // (rows 2 and 3 less row 1, then a cyclic permutation), gradient in P: (p - L) x (q - L).
+    // Directional: det[l, p - P, q - P] = det[p - P, q - p, l], gradient (q - p) x l.
+    const Vec3 m = middle();
+    std::optional<Sign> s;
+    if (point_light) {
+      const std::array<double, 3> x{p[0] - light[0], p[1] - light[1], p[2] - light[2]};
+      const std::array<double, 3> y{q[0] - light[0], q[1] - light[1], q[2] - light[2]};
+      const std::array<double, 3> z{light[0] - m[0], light[1] - m[1], light[2] - m[2]};
+      s = box_filtered_sign(x, y, z, x, y, lo_, hi_, m);
+    } else {
+      const std::array<double, 3> x{p[0] - m[0], p[1] - m[1], p[2] - m[2]};
+      const std::array<double, 3> y{q[0] - p[0], q[1] - p[1], q[2] - p[2]};
+      const std::array<double, 3> z{light[0], light[1], light[2]};
+      s = box_filtered_sign(x, y, z, y, z, lo_, hi_, m);
+    }
+    if (s) return *s;
+  }
   {
     const CGAL::Protect_FPU_rounding<true> protect;
     const Vec<Interval> hp{Interval(lo_[0], hi_[0]), Interval(lo_[1], hi_[1]), Interval(lo_[2], hi_[2])};

@@ -113,6 +113,9 @@ class HitPoint {
  private:
   struct Exact;
   const Exact& exact() const;
+  // The box's middle (a double, within rounding of the box): where the semi-static filters of
+  // side and orient_with evaluate.
+  [[nodiscard]] Vec3 middle() const;
 
   RayParameter t_;
   Vec3 lo_{};

@@ -110,4 +110,43 @@ TEST(RayParameter, SemiStaticEnclosure_OrdersAsTheExactParameters) {
   }
 }
 
+// HitPoint's signs with a tight box (the semi-static and interval filters decide) equal the
+// exact ones (a box so wide that every filter fails and P's exact coordinates decide), for
+// planes and light wedges through points at and near P.
+TEST(HitPoint, FilteredSigns_EqualExactSigns) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  const std::array<Vec3, 2> wide{Vec3{-1e300, -1e300, -1e300}, Vec3{1e300, 1e300, 1e300}};
+  int decided = 0;
+  for (double scale : {1e-6, 1.0, 1e6})
+    for (double offset : {0.0, 1e6})
+      for (int i = 0; i < 150; ++i) {
+        const Draw d = draw(rng, scale, offset, 3.0 * scale, false);
+        const detail::RayMeeting m = detail::ray_meets_triangle(d.ray, d.triangle[0], d.triangle[1], d.triangle[2]);
+        if (m.direction_side == Sign::zero) continue;
+        const RayParameter t(d.ray, d.triangle[0], d.triangle[1], d.triangle[2], m.direction_side);
+        const std::optional<std::array<Vec3, 2>> box = detail::semi_static_hit_box(d.ray, d.triangle);
+        if (!box) continue;
+        const HitPoint tight(t, *box);
+        const HitPoint exact(t, wide);
+        // Points near P: its box's middle moved by 0 to 1e-3 of the scale.
+        const Vec3 mid{((*box)[0][0] + (*box)[1][0]) / 2, ((*box)[0][1] + (*box)[1][1]) / 2,
+                       ((*box)[0][2] + (*box)[1][2]) / 2};
+        const auto near = [&](double spread) {
+          return Vec3{mid[0] + spread * scale * unit(rng), mid[1] + spread * scale * unit(rng),
+                      mid[2] + spread * scale * unit(rng)};
+        };
+        for (double spread : {0.0, 1e-12, 1e-6, 1e-3, 1.0}) {
+          const Vec3 a = near(spread), b = near(1.0), c = near(1.0);
+          EXPECT_EQ(tight.side(a, b, c), exact.side(a, b, c)) << "scale " << scale << ", spread " << spread;
+          const HomogeneousPoint point{b[0] + 2.0 * scale, b[1] + 3.0 * scale, b[2], 1.0};
+          const HomogeneousPoint direction{unit(rng), 1.0, unit(rng), 0.0};
+          EXPECT_EQ(tight.orient_with(point, a, c), exact.orient_with(point, a, c)) << "scale " << scale;
+          EXPECT_EQ(tight.orient_with(direction, a, c), exact.orient_with(direction, a, c)) << "scale " << scale;
+          ++decided;
+        }
+      }
+  EXPECT_GT(decided, 2000);
+}
+
 }  // namespace
