@@ -448,8 +448,8 @@ std::optional<Sign> filtered_det_sign(const Vec3& x, const Vec3& y, const Vec3& 
 // The eye pyramid hull{e, R} over a pixel lies in five closed half-spaces known without its hit
 // points: beside each face through the eye and two neighbouring corner rays (d_k, d_k+1), on the
 // side of the next corner ray (the corner rays span a convex cone, R lies in it), and on the
-// eye's side of h's plane (R lies in it). A triangle whose three vertices are certainly
-// strictly outside one of them has no edge in the pyramid: the exact answer of
+// eye's side of h's plane (R lies in it). A triangle each of whose edges has both ends
+// certainly strictly outside one of them has no edge in the pyramid: the exact answer of
 // FootprintPolytope::meets_an_edge_of, found with a few filtered determinants of input doubles
 // (most candidates are h's neighbours beside R or triangles behind h's plane). Where a filter
 // is unsure, the polytope decides as before.
@@ -463,33 +463,72 @@ class EyePyramidFilter {
           filtered_det_sign(directions_[k], directions_[(k + 1) % 4], directions_[(k + 2) % 4]);
       inside_[k] = s.value_or(Sign::zero);  // zero: this face is not used
     }
+    for (std::size_t k = 0; k < 3; ++k) {
+      const Vec3& w = h[(k + 2) % 3];
+      h_side_[k] = detail::semi_static_light_orientation(eye, h[k], h[(k + 1) % 3], {w[0], w[1], w[2], 1.0})
+                       .value_or(Sign::zero);  // zero: this edge line is not used
+    }
   }
 
+  // Whether no edge of triangle abc meets the pyramid: each edge has both ends certainly
+  // strictly outside one common half-space (bits of outcode()).
   [[nodiscard]] bool separates(const Vec3& a, const Vec3& b, const Vec3& c) const {
-    // Beyond h's plane: orient(h, v) = -eye_side for all three, certified.
-    const auto beyond_h = [&](const Vec3& v) {
+    const unsigned oa = outcode(a);
+    if (oa == 0) return false;
+    const unsigned ob = outcode(b);
+    if ((oa & ob) == 0) return false;
+    const unsigned oc = outcode(c);
+    return (ob & oc) != 0 && (oc & oa) != 0;
+  }
+
+  // Whether triangle abc lies in h's plane and outside h: the pyramid meets that plane in R
+  // alone, R lies strictly inside h (its corners are crossings of h), so an abc with every
+  // vertex on the closed far side of one of h's edge lines misses R, and so does each of its
+  // edges. In h's plane the side of the line uv is the side of the plane through the eye, u
+  // and v (the eye is off h's plane). The other half of a floor quad, every floor pixel's
+  // candidate, is caught here.
+  [[nodiscard]] bool beside_in_plane(const Vec3& a, const Vec3& b, const Vec3& c) const {
+    const auto in_plane = [&](const Vec3& v) {
       const std::optional<Sign> s = detail::semi_static_light_orientation(h_[0], h_[1], h_[2], {v[0], v[1], v[2], 1.0});
-      return s && *s == -eye_side_;
+      return s && *s == Sign::zero;  // the filter says zero only for an exactly zero determinant
     };
-    if (beyond_h(a) && beyond_h(b) && beyond_h(c)) return true;
-    for (std::size_t k = 0; k < 4; ++k) {
-      if (inside_[k] == Sign::zero) continue;
-      const auto outside = [&](const Vec3& v) {
-        const std::optional<Sign> s =
-            filtered_det_sign(directions_[k], directions_[(k + 1) % 4], difference(v, eye_));
-        return s && *s == -inside_[k];
+    if (!in_plane(a) || !in_plane(b) || !in_plane(c)) return false;
+    for (std::size_t k = 0; k < 3; ++k) {
+      if (h_side_[k] == Sign::zero) continue;
+      const Vec3& u = h_[k];
+      const Vec3& v = h_[(k + 1) % 3];
+      const auto far_or_on = [&](const Vec3& w) {
+        if (w == u || w == v) return true;  // on the line (a shared vertex: the filter cannot say zero)
+        const std::optional<Sign> s = detail::semi_static_light_orientation(eye_, u, v, {w[0], w[1], w[2], 1.0});
+        return s && *s != h_side_[k];
       };
-      if (outside(a) && outside(b) && outside(c)) return true;
+      if (far_or_on(a) && far_or_on(b) && far_or_on(c)) return true;
     }
     return false;
   }
 
  private:
+  // Bit k (k < 4): v certainly strictly outside the face through corner rays k, k + 1; bit 4:
+  // certainly strictly beyond h's plane.
+  [[nodiscard]] unsigned outcode(const Vec3& v) const {
+    unsigned code = 0;
+    const std::optional<Sign> beyond = detail::semi_static_light_orientation(h_[0], h_[1], h_[2], {v[0], v[1], v[2], 1.0});
+    if (beyond && *beyond == -eye_side_) code |= 16u;
+    const Vec3 from_eye = difference(v, eye_);
+    for (std::size_t k = 0; k < 4; ++k) {
+      if (inside_[k] == Sign::zero) continue;
+      const std::optional<Sign> s = filtered_det_sign(directions_[k], directions_[(k + 1) % 4], from_eye);
+      if (s && *s == -inside_[k]) code |= 1u << k;
+    }
+    return code;
+  }
+
   Vec3 eye_;
   std::array<Vec3, 3> h_;
   Sign eye_side_;
   std::array<Vec3, 4> directions_{};
   std::array<Sign, 4> inside_{};
+  std::array<Sign, 3> h_side_{};  // h's side of the plane through the eye and each of its edges
 };
 
 // The pyramid itself is built only for the first candidate other than h that the cheap filter
@@ -502,7 +541,9 @@ bool footprint_sees_more(const ImageGeometry& g, const Vec3& eye, const CornerHi
   bool more = false;
   g.tree.dilated_segment_query(from, eye, slack, [&](std::uint32_t id) {
     if (id == h) return true;
-    if (filter != nullptr && filter->separates(g.vertex(id, 0), g.vertex(id, 1), g.vertex(id, 2))) return true;
+    if (filter != nullptr && (filter->separates(g.vertex(id, 0), g.vertex(id, 1), g.vertex(id, 2)) ||
+                              filter->beside_in_plane(g.vertex(id, 0), g.vertex(id, 1), g.vertex(id, 2))))
+      return true;
     if (!pyramid) pyramid.emplace(finite_point(eye), corners.parameters, corners.boxes);
     if (!pyramid->meets_an_edge_of(g.vertex(id, 0), g.vertex(id, 1), g.vertex(id, 2))) return true;
     more = true;
