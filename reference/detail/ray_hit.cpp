@@ -307,17 +307,11 @@ Sign HitPoint::side(const Vec3& a, const Vec3& b, const Vec3& c) const {
     const std::array<double, 3> z{m[0] - a[0], m[1] - a[1], m[2] - a[2]};
     if (const std::optional<Sign> s = box_filtered_sign(x, y, z, x, y, lo_, hi_, m)) return *s;
   }
-  {
-    const CGAL::Protect_FPU_rounding<true> protect;
-    const Vec<Interval> p{Interval(lo_[0], hi_[0]), Interval(lo_[1], hi_[1]), Interval(lo_[2], hi_[2])};
-    const Vec<Interval> a_to_p{p[0] - a[0], p[1] - a[1], p[2] - a[2]};
-    const CGAL::Uncertain<CGAL::Sign> s =
-        CGAL::sign(det3(difference<Interval>(b, a), difference<Interval>(c, a), a_to_p));
-    if (CGAL::is_certain(s)) return from_cgal(CGAL::get_certain(s));
-  }
   // P lies on the plane of its own triangle: a triangle in that plane (a coplanar neighbour,
   // the other half of a floor quad) has P on its plane, decided here on the input doubles
-  // (cheap for axis-aligned planes) rather than on P's exact coordinates.
+  // (cheap for axis-aligned planes) rather than on P's exact coordinates; before the intervals,
+  // which cannot decide it (the exact value is zero) and cost a rounding-mode switch for every
+  // floor point's count.
   const auto& h = t_.triangle_;
   const auto on_hit_plane = [&](const Vec3& x) {
     if (x == h[0] || x == h[1] || x == h[2]) return true;
@@ -327,6 +321,14 @@ Sign HitPoint::side(const Vec3& a, const Vec3& b, const Vec3& c) const {
   if (on_hit_plane(a) && on_hit_plane(b) && on_hit_plane(c) && !spans_no_plane(finite_point(h[0]), finite_point(h[1]),
                                                                                  finite_point(h[2])))
     return Sign::zero;
+  {
+    const CGAL::Protect_FPU_rounding<true> protect;
+    const Vec<Interval> p{Interval(lo_[0], hi_[0]), Interval(lo_[1], hi_[1]), Interval(lo_[2], hi_[2])};
+    const Vec<Interval> a_to_p{p[0] - a[0], p[1] - a[1], p[2] - a[2]};
+    const CGAL::Uncertain<CGAL::Sign> s =
+        CGAL::sign(det3(difference<Interval>(b, a), difference<Interval>(c, a), a_to_p));
+    if (CGAL::is_certain(s)) return from_cgal(CGAL::get_certain(s));
+  }
   // det[b - a, c - a, P - a] = det[b - a, c - a, X - W a] / W with W > 0.
   const Exact& p = exact();
   const Vec<CGAL::Mpzf> a_to_p{p.x[0] - p.w * CGAL::Mpzf(a[0]), p.x[1] - p.w * CGAL::Mpzf(a[1]),
