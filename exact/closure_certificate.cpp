@@ -1,11 +1,17 @@
 #include "exact/closure_certificate.h"
 
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <array>
 #include <limits>
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
+
+#include "core/huge_page_advice.h"
 
 namespace shadowcert {
 namespace {
@@ -16,21 +22,27 @@ std::uint64_t id_count(const ShadowVolumeChain& chain) {
   return chain.directional ? n + 1 : 2 * n;
 }
 
-// Calls f(from, to) for every directed boundary edge of every face (right-hand order).
+// Faces are numbered triangles first, then quads. Calls f(from, to) for every directed
+// boundary edge (right-hand order) of faces [first, last).
 template <typename F>
-void for_each_directed_edge(const ShadowVolumeChain& chain, F&& f) {
-  for (const auto& t : chain.triangles) {
+void for_each_directed_edge(const ShadowVolumeChain& chain, std::size_t first, std::size_t last, F&& f) {
+  const std::size_t triangles = chain.triangles.size();
+  for (std::size_t i = first; i < std::min(last, triangles); ++i) {
+    const auto& t = chain.triangles[i];
     f(t[0], t[1]);
     f(t[1], t[2]);
     f(t[2], t[0]);
   }
-  for (const auto& q : chain.quads) {
+  for (std::size_t i = std::max(first, triangles); i < last; ++i) {
+    const auto& q = chain.quads[i - triangles];
     f(q[0], q[1]);
     f(q[1], q[2]);
     f(q[2], q[3]);
     f(q[3], q[0]);
   }
 }
+
+std::size_t face_count(const ShadowVolumeChain& chain) { return chain.triangles.size() + chain.quads.size(); }
 
 // The directed edges are sorted as packed 64-bit keys
 //   (lower id << 33) | (upper id << 1) | (1 if the edge runs upper -> lower),
@@ -52,22 +64,66 @@ std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) {
                               std::to_string(ids) + " ids");
 }
 
-// Offsets of the blocks in the key array: block_start[b] .. block_start[b + 1].
-std::vector<std::size_t> block_starts(const ShadowVolumeChain& chain, std::uint64_t ids) {
-  std::vector<std::size_t> start((ids >> kBlockBits) + 2, 0);
-  for_each_directed_edge(chain, [&](std::uint32_t a, std::uint32_t b) {
-    if (std::max(a, b) >= ids) throw_out_of_range(std::max(a, b), ids);
-    if (a != b) ++start[(std::min(a, b) >> kBlockBits) + 1];
+// In parallel: the faces are cut into fixed chunks (their number depends on the chain, not on
+// the threads); each chunk counts its keys per block, and chunk c's keys of block b go after
+// those of chunks before c, so the key array is the one a sequential pass writes. Blocks are
+// then sorted and reported independently, their reports concatenated in block order.
+constexpr std::size_t kChunkFaces = std::size_t{1} << 16;
+
+struct BlockLayout {
+  std::size_t blocks = 0;
+  std::vector<std::size_t> start;   // offsets of the blocks in the key array, size blocks + 1
+  std::vector<std::size_t> cursor;  // cursor[c * blocks + b]: where chunk c writes its first key of block b
+};
+
+std::size_t chunk_count(const ShadowVolumeChain& chain) { return (face_count(chain) + kChunkFaces - 1) / kChunkFaces; }
+
+BlockLayout block_layout(const ShadowVolumeChain& chain, std::uint64_t ids) {
+  BlockLayout layout;
+  layout.blocks = static_cast<std::size_t>((ids >> kBlockBits) + 1);
+  const std::size_t chunks = chunk_count(chain);
+  const std::size_t faces = face_count(chain);
+  layout.cursor.assign(chunks * layout.blocks, 0);
+  std::vector<char> out_of_range(chunks, 0);
+  tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t c) {
+    std::size_t* count = layout.cursor.data() + c * layout.blocks;
+    bool bad = false;
+    for_each_directed_edge(chain, c * kChunkFaces, std::min(faces, (c + 1) * kChunkFaces),
+                           [&](std::uint32_t a, std::uint32_t b) {
+                             if (std::max(a, b) >= ids)
+                               bad = true;
+                             else if (a != b)
+                               ++count[std::min(a, b) >> kBlockBits];
+                           });
+    out_of_range[c] = bad;
   });
-  for (std::size_t i = 1; i < start.size(); ++i) start[i] += start[i - 1];
-  return start;
+  // The first bad id in face order, as a sequential pass meets it.
+  for (std::size_t c = 0; c < chunks; ++c)
+    if (out_of_range[c] != 0)
+      for_each_directed_edge(chain, c * kChunkFaces, std::min(faces, (c + 1) * kChunkFaces),
+                             [&](std::uint32_t a, std::uint32_t b) {
+                               if (std::max(a, b) >= ids) throw_out_of_range(std::max(a, b), ids);
+                             });
+  layout.start.assign(layout.blocks + 1, 0);
+  std::size_t offset = 0;
+  for (std::size_t b = 0; b < layout.blocks; ++b) {
+    layout.start[b] = offset;
+    for (std::size_t c = 0; c < chunks; ++c) offset += std::exchange(layout.cursor[c * layout.blocks + b], offset);
+  }
+  layout.start[layout.blocks] = offset;
+  return layout;
 }
 
-// Default-initialised, not zeroed: the scatter writes every entry.
-std::unique_ptr<std::uint64_t[]> keys_by_block(const ShadowVolumeChain& chain, std::vector<std::size_t> cursor) {
-  std::unique_ptr<std::uint64_t[]> keys(new std::uint64_t[cursor.back()]);
-  for_each_directed_edge(chain, [&](std::uint32_t a, std::uint32_t b) {
-    if (a != b) keys[cursor[std::min(a, b) >> kBlockBits]++] = edge_key(a, b);
+// Uninitialised, not zeroed: the scatter writes every entry.
+HugePageBuffer<std::uint64_t> keys_by_block(const ShadowVolumeChain& chain, BlockLayout& layout) {
+  HugePageBuffer<std::uint64_t> keys(layout.start.back());
+  const std::size_t faces = face_count(chain);
+  tbb::parallel_for(std::size_t{0}, chunk_count(chain), [&](std::size_t c) {
+    std::size_t* cursor = layout.cursor.data() + c * layout.blocks;
+    for_each_directed_edge(chain, c * kChunkFaces, std::min(faces, (c + 1) * kChunkFaces),
+                           [&](std::uint32_t a, std::uint32_t b) {
+                             if (a != b) keys[cursor[std::min(a, b) >> kBlockBits]++] = edge_key(a, b);
+                           });
   });
   return keys;
 }
@@ -121,12 +177,16 @@ void report_block(std::uint64_t* first, std::uint64_t* last, std::vector<std::ui
 
 ClosureCertificate certify_closure(const ShadowVolumeChain& chain) {
   const std::uint64_t ids = id_count(chain);
-  const std::vector<std::size_t> start = block_starts(chain, ids);
-  const std::unique_ptr<std::uint64_t[]> keys = keys_by_block(chain, start);
+  BlockLayout layout = block_layout(chain, ids);
+  HugePageBuffer<std::uint64_t> keys = keys_by_block(chain, layout);
+  std::vector<std::vector<UnbalancedEdge>> by_block(layout.blocks);
+  tbb::enumerable_thread_specific<std::vector<std::uint64_t>> scratch;
+  tbb::parallel_for(std::size_t{0}, layout.blocks, [&](std::size_t b) {
+    report_block(keys.data() + layout.start[b], keys.data() + layout.start[b + 1], scratch.local(), by_block[b]);
+  });
   ClosureCertificate certificate;
-  std::vector<std::uint64_t> scratch;
-  for (std::size_t b = 0; b + 1 < start.size(); ++b)
-    report_block(keys.get() + start[b], keys.get() + start[b + 1], scratch, certificate.unbalanced);
+  for (const std::vector<UnbalancedEdge>& block : by_block)
+    certificate.unbalanced.insert(certificate.unbalanced.end(), block.begin(), block.end());
   certificate.closed = certificate.unbalanced.empty();
   return certificate;
 }

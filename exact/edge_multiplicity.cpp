@@ -2,12 +2,16 @@
 
 #include "core/float_rounding.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <cmath>
 #include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
 
+#include "core/huge_page_advice.h"
 #include "core/light_side_formula.h"
 #include "exact/light_orientation.h"
 #include "exact/light_orientation_filter.h"
@@ -23,6 +27,9 @@
 
 namespace shadowcert {
 namespace {
+
+// Grain of the parallel loops over edges and triangles: a task's overhead is noise against it.
+constexpr std::size_t kEdgeGrain = std::size_t{1} << 14;
 
 bool has_repeated_index(const Triangle& t) { return t[0] == t[1] || t[1] == t[2] || t[2] == t[0]; }
 
@@ -68,10 +75,13 @@ class SortedSigns {
   // s(t) = D(a, b, c) in the triangle's own order (zero for repeated indices: no table entry).
   [[nodiscard]] std::vector<Sign> caps(const Soup& canonical) const {
     std::vector<Sign> caps(canonical.triangles.size(), Sign::zero);
-    for (std::size_t t = 0; t < caps.size(); ++t) {
-      const Triangle& tri = canonical.triangles[t];
-      if (!has_repeated_index(tri)) caps[t] = sorted_[t] * order_parity(tri[0], tri[1], tri[2]);
-    }
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, caps.size(), kEdgeGrain),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t t = r.begin(); t < r.end(); ++t) {
+                          const Triangle& tri = canonical.triangles[t];
+                          if (!has_repeated_index(tri)) caps[t] = sorted_[t] * order_parity(tri[0], tri[1], tri[2]);
+                        }
+                      });
     return caps;
   }
 
@@ -82,14 +92,25 @@ class SortedSigns {
 // Exact: each triangle's exact sign, evaluated once on its sorted triple; every entry and the
 // caps derive from it by parity, so the chain is closed by construction (docs/definitions.md#counts). The
 // semi-static stage is inlined, so the FPU rounding mode is switched only for the rare
-// triangles it cannot certify.
+// triangles it cannot certify. The signs are all evaluated first, in parallel, at each
+// triangle's entry with o > v (the sorted triple; one per triangle, so each thread writes its
+// own triangles' signs): then entries may be read in any order, by any thread.
 class ExactPlan {
  public:
-  ExactPlan(const Soup& canonical, const Light& light)
-      : canonical_(canonical), light_(light), signs_(canonical.triangles.size()) {}
+  ExactPlan(const Soup& canonical, const EdgeTable& table, const Light& light)
+      : canonical_(canonical), light_(light), signs_(canonical.triangles.size()) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, table.size(), kEdgeGrain),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t e = r.begin(); e < r.end(); ++e) {
+                          const std::uint32_t u = table.edges[e][0], v = table.edges[e][1];
+                          for (std::uint32_t i = table.first_opposite[e]; i < table.first_opposite[e + 1]; ++i)
+                            if (const std::uint32_t o = table.opposite_vertex[i]; o > v)
+                              signs_.set(table.opposite_triangle[i], exact_sign(u, v, o));
+                        }
+                      });
+  }
 
-  Sign entry(std::uint32_t u, std::uint32_t v, std::uint32_t o, std::uint32_t t) {
-    if (o > v) signs_.set(t, exact_sign(u, v, o));
+  [[nodiscard]] Sign entry(std::uint32_t u, std::uint32_t v, std::uint32_t o, std::uint32_t t) const {
     return signs_.entry(u, v, o, t);
   }
   [[nodiscard]] std::vector<Sign> caps() const { return signs_.caps(canonical_); }
@@ -209,27 +230,38 @@ class RefedgePlan {
 
 // ---- running a plan -----------------------------------------------------------------------
 
+// Every plan's entry() may run on any thread in any order: it reads what the plan's
+// constructor prepared, or (refedge) writes only its own triangle's sorted sign, at the one
+// entry of that triangle with o > v.
 template <typename Plan>
 std::vector<std::int32_t> sum_entries(const EdgeTable& table, Plan& plan) {
-  std::vector<std::int32_t> m(table.size());
-  for (std::size_t e = 0; e < table.size(); ++e) {
-    const std::uint32_t u = table.edges[e][0], v = table.edges[e][1];
-    std::int32_t sum = 0;
-    for (std::uint32_t i = table.first_opposite[e]; i < table.first_opposite[e + 1]; ++i)
-      sum += to_int(plan.entry(u, v, table.opposite_vertex[i], table.opposite_triangle[i]));
-    m[e] = -sum;  // docs/definitions.md#counts: m = - sum D(u, v, o)
-  }
+  std::vector<std::int32_t> m;
+  resize_huge(m, table.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, table.size(), kEdgeGrain),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t e = r.begin(); e < r.end(); ++e) {
+                        const std::uint32_t u = table.edges[e][0], v = table.edges[e][1];
+                        std::int32_t sum = 0;
+                        for (std::uint32_t i = table.first_opposite[e]; i < table.first_opposite[e + 1]; ++i)
+                          sum += to_int(plan.entry(u, v, table.opposite_vertex[i], table.opposite_triangle[i]));
+                        m[e] = -sum;  // docs/definitions.md#counts: m = - sum D(u, v, o)
+                      }
+                    });
   return m;
 }
 
 template <typename Plan>
 std::vector<Sign> list_entries(const EdgeTable& table, Plan& plan) {
-  std::vector<Sign> signs(table.opposite_vertex.size());
-  for (std::size_t e = 0; e < table.size(); ++e) {
-    const std::uint32_t u = table.edges[e][0], v = table.edges[e][1];
-    for (std::uint32_t i = table.first_opposite[e]; i < table.first_opposite[e + 1]; ++i)
-      signs[i] = plan.entry(u, v, table.opposite_vertex[i], table.opposite_triangle[i]);
-  }
+  std::vector<Sign> signs;
+  resize_huge(signs, table.opposite_vertex.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, table.size(), kEdgeGrain),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t e = r.begin(); e < r.end(); ++e) {
+                        const std::uint32_t u = table.edges[e][0], v = table.edges[e][1];
+                        for (std::uint32_t i = table.first_opposite[e]; i < table.first_opposite[e + 1]; ++i)
+                          signs[i] = plan.entry(u, v, table.opposite_vertex[i], table.opposite_triangle[i]);
+                      }
+                    });
   return signs;
 }
 
@@ -248,7 +280,7 @@ decltype(auto) with_plan(MultiplicityMethod method, Precision precision, const S
   const bool single = precision == Precision::float32;
   switch (method) {
     case MultiplicityMethod::exact: {
-      ExactPlan plan(canonical, light);
+      ExactPlan plan(canonical, table, light);
       return f(plan);
     }
     case MultiplicityMethod::kim: {

@@ -1,24 +1,138 @@
 #include "scene/canonical_soup.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
+
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <stdexcept>
 #include <string>
+#include <utility>
+
+#include "core/huge_page_advice.h"
 
 namespace shadowcert {
 namespace {
 
-// One record per input vertex. Sorting records by (position, input index) welds and orders in
-// one pass: bitwise-equal positions (and -0 == +0, which compare equal as doubles, docs/definitions.md#inputs
-// ) become adjacent, and the lexicographic order of the groups is the canonical order.
-// Readers have rejected NaN, so double comparison is a strict weak order here.
-struct VertexRecord {
-  Vec3 position;
+// Sorting the input vertices by (position, input index) welds and orders in one pass: equal
+// positions (bitwise, with -0 == +0: docs/definitions.md#inputs) become adjacent, and the
+// lexicographic order of the groups is the canonical order. Each coordinate is compared as an
+// unsigned integer that orders exactly as the doubles do (order_key). The input index makes
+// every vertex distinct, so the sorted order is unique and any correct sort produces it.
+//
+// The sort is a stable radix sort of (key of x, input index) records, which leaves each run of
+// equal x in input order; such runs (few, and short, on real meshes) are then sorted by
+// (y, z, input index). The radix passes run in parallel over fixed chunks of records whose
+// histograms are laid out chunk after chunk within each digit, so every pass writes exactly
+// what a sequential pass writes, on any number of threads.
+
+// Monotone map of finite doubles to unsigned integers: x < y iff key(x) < key(y), and
+// key(-0) == key(+0) (both map to +0's pattern), exactly as double comparison treats them.
+// Readers have rejected NaN (core/soup.h).
+std::uint64_t order_key(double x) {
+  const auto bits = std::bit_cast<std::uint64_t>(x == 0.0 ? 0.0 : x);
+  constexpr std::uint64_t kSign = std::uint64_t{1} << 63;
+  return (bits & kSign) != 0 ? ~bits : bits | kSign;
+}
+
+struct XRecord {
+  std::uint64_t x_key;
   std::uint32_t input_index;
 };
 
-bool record_less(const VertexRecord& a, const VertexRecord& b) {
-  if (a.position != b.position) return a.position < b.position;
-  return a.input_index < b.input_index;
+// Grain of the parallel loops and size of the radix sort's chunks.
+constexpr std::size_t kGrain = std::size_t{1} << 16;
+constexpr unsigned kDigitBits = 11;
+constexpr std::size_t kDigits = std::size_t{1} << kDigitBits;
+
+std::size_t chunk_count(std::size_t n) { return (n + kGrain - 1) / kGrain; }
+
+// Stable LSD radix sort of `records` by x_key; `scratch` has the same size. Passes whose digit
+// is the same in every key move nothing and are skipped.
+void radix_sort_by_x(HugePageBuffer<XRecord>& records, HugePageBuffer<XRecord>& scratch) {
+  const std::size_t n = records.size();
+  const std::size_t chunks = chunk_count(n);
+  std::vector<std::size_t> offset(chunks * kDigits);
+  for (unsigned shift = 0; shift < 64; shift += kDigitBits) {
+    std::fill(offset.begin(), offset.end(), 0);
+    tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t c) {
+      std::size_t* count = offset.data() + c * kDigits;
+      for (std::size_t i = c * kGrain; i < std::min(n, (c + 1) * kGrain); ++i)
+        ++count[(records[i].x_key >> shift) & (kDigits - 1)];
+    });
+    // Digit-major prefix sum: digit d's records chunk by chunk, then digit d + 1's.
+    std::size_t total = 0;
+    bool uniform = false;
+    for (std::size_t d = 0; d < kDigits; ++d)
+      for (std::size_t c = 0; c < chunks; ++c) {
+        std::size_t& slot = offset[c * kDigits + d];
+        if (slot == n) uniform = true;
+        total += std::exchange(slot, total);
+      }
+    if (uniform) continue;
+    tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t c) {
+      std::size_t* cursor = offset.data() + c * kDigits;
+      for (std::size_t i = c * kGrain; i < std::min(n, (c + 1) * kGrain); ++i)
+        scratch[cursor[(records[i].x_key >> shift) & (kDigits - 1)]++] = records[i];
+    });
+    records.swap(scratch);
+  }
+}
+
+// Sorts each run of equal x by (y, z, input index) and marks where each position group starts
+// (new_group[i] != 0 iff record i's position differs from record i - 1's). Runs are
+// independent: each chunk of records takes the runs that begin in it, in parallel. A run's
+// (y, z) keys are gathered once into a local array and sorted there by integers.
+struct YzRecord {
+  std::uint64_t y_key, z_key;
+  std::uint32_t input_index;
+  auto operator<=>(const YzRecord&) const = default;
+};
+
+std::vector<char> sort_runs_and_mark_groups(const std::vector<Vec3>& vertices, HugePageBuffer<XRecord>& records) {
+  const std::size_t n = records.size();
+  std::vector<char> new_group(n, 1);
+  const auto run_begins = [&](std::size_t i) { return i == 0 || records[i].x_key != records[i - 1].x_key; };
+  tbb::parallel_for(std::size_t{0}, chunk_count(n), [&](std::size_t c) {
+    std::vector<YzRecord> run;
+    std::size_t i = c * kGrain;
+    const std::size_t last = std::min(n, (c + 1) * kGrain);
+    while (i < last && !run_begins(i)) ++i;  // that run belongs to an earlier chunk
+    while (i < last) {
+      std::size_t end = i + 1;
+      while (end < n && !run_begins(end)) ++end;
+      if (end - i > 1) {
+        run.clear();
+        for (std::size_t j = i; j < end; ++j) {
+          const Vec3& p = vertices[records[j].input_index];
+          run.push_back({order_key(p[1]), order_key(p[2]), records[j].input_index});
+        }
+        std::sort(run.begin(), run.end());
+        for (std::size_t j = i; j < end; ++j) {
+          const YzRecord& r = run[j - i];
+          records[j].input_index = r.input_index;
+          if (j > i) new_group[j] = r.y_key != run[j - i - 1].y_key || r.z_key != run[j - i - 1].z_key;
+        }
+      }
+      i = end;
+    }
+  });
+  return new_group;
+}
+
+// The first triangle holding an index >= n, or triangles.size() if none: found in parallel,
+// reported as the sequential check would (the lowest such triangle).
+std::size_t first_bad_triangle(const std::vector<Triangle>& triangles, std::size_t n) {
+  return tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, triangles.size(), kGrain), triangles.size(),
+      [&](const tbb::blocked_range<std::size_t>& r, std::size_t found) {
+        for (std::size_t t = r.begin(); t < r.end() && t < found; ++t)
+          if (triangles[t][0] >= n || triangles[t][1] >= n || triangles[t][2] >= n) return t;
+        return found;
+      },
+      [](std::size_t a, std::size_t b) { return std::min(a, b); });
 }
 
 }  // namespace
@@ -28,36 +142,59 @@ CanonicalSoup canonical_soup(const Soup& soup) {
   const bool has_normals = !soup.normals.empty();
   if (has_normals && soup.normals.size() != n)
     throw std::invalid_argument("canonical_soup: normals must be empty or one per vertex");
+  const std::size_t bad = first_bad_triangle(soup.triangles, n);
+  if (bad < soup.triangles.size()) {
+    const Triangle& t = soup.triangles[bad];
+    const std::uint32_t v = t[0] >= n ? t[0] : t[1] >= n ? t[1] : t[2];
+    throw std::invalid_argument("canonical_soup: triangle " + std::to_string(bad) + " has index " +
+                                std::to_string(v) + " but the soup has " + std::to_string(n) + " vertices");
+  }
 
-  std::vector<VertexRecord> records(n);
-  for (std::size_t i = 0; i < n; ++i) records[i] = {soup.vertices[i], static_cast<std::uint32_t>(i)};
-  std::sort(records.begin(), records.end(), record_less);
+  HugePageBuffer<XRecord> records(n), scratch(n);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kGrain), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i < r.end(); ++i)
+      records[i] = {order_key(soup.vertices[i][0]), static_cast<std::uint32_t>(i)};
+  });
+  radix_sort_by_x(records, scratch);
+  const std::vector<char> new_group = sort_runs_and_mark_groups(soup.vertices, records);
+
+  // Group g's first record has the smallest input index of its position, whose coordinates (and
+  // normal) are kept verbatim (a -0 stays -0), as weld_soup keeps them. In parallel: each chunk
+  // of records counts its groups, then numbers them from its prefix offset.
+  const std::size_t chunks = chunk_count(n);
+  std::vector<std::size_t> first_group(chunks, 0);
+  tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t c) {
+    for (std::size_t i = c * kGrain; i < std::min(n, (c + 1) * kGrain); ++i) first_group[c] += new_group[i] != 0;
+  });
+  std::size_t groups = 0;
+  for (std::size_t& g : first_group) groups += std::exchange(g, groups);
 
   CanonicalSoup out;
-  out.canonical_id.resize(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const VertexRecord& r = records[i];
-    // A new group starts where the position changes; its first record has the smallest input
-    // index, whose coordinates (and normal) are kept verbatim, as weld_soup keeps them.
-    if (i == 0 || r.position != records[i - 1].position) {
-      out.soup.vertices.push_back(r.position);
-      if (has_normals) out.soup.normals.push_back(soup.normals[r.input_index]);
+  resize_huge(out.canonical_id, n);
+  resize_huge(out.soup.vertices, groups);
+  if (has_normals) out.soup.normals.resize(groups);
+  tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t c) {
+    std::size_t group = first_group[c];  // the next group's number
+    for (std::size_t i = c * kGrain; i < std::min(n, (c + 1) * kGrain); ++i) {
+      const std::uint32_t input = records[i].input_index;
+      if (new_group[i] != 0) {
+        out.soup.vertices[group] = soup.vertices[input];
+        if (has_normals) out.soup.normals[group] = soup.normals[input];
+        ++group;
+      }
+      out.canonical_id[input] = static_cast<std::uint32_t>(group - 1);
     }
-    out.canonical_id[r.input_index] = static_cast<std::uint32_t>(out.soup.vertices.size() - 1);
-  }
+  });
 
-  out.soup.triangles.reserve(soup.triangles.size());
-  for (std::size_t t = 0; t < soup.triangles.size(); ++t) {
-    Triangle mapped{};
-    for (int k = 0; k < 3; ++k) {
-      const std::uint32_t v = soup.triangles[t][k];
-      if (v >= n)
-        throw std::invalid_argument("canonical_soup: triangle " + std::to_string(t) + " has index " +
-                                    std::to_string(v) + " but the soup has " + std::to_string(n) + " vertices");
-      mapped[k] = out.canonical_id[v];
-    }
-    out.soup.triangles.push_back(mapped);
-  }
+  resize_huge(out.soup.triangles, soup.triangles.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, soup.triangles.size(), kGrain),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t t = r.begin(); t < r.end(); ++t) {
+                        const Triangle& in = soup.triangles[t];
+                        out.soup.triangles[t] = {out.canonical_id[in[0]], out.canonical_id[in[1]],
+                                                 out.canonical_id[in[2]]};
+                      }
+                    });
   return out;
 }
 

@@ -1,10 +1,17 @@
 #include "scene/edge_table.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
+
 #include <algorithm>
 #include <bit>
 #include <limits>
 #include <stdexcept>
 #include <string>
+
+#include "core/huge_page_advice.h"
 
 namespace shadowcert {
 namespace {
@@ -25,45 +32,103 @@ bool has_repeated_index(const Triangle& t) { return t[0] == t[1] || t[1] == t[2]
 // into one bucket per vertex), a second sorts each coarse bucket, small enough to stay in
 // cache, by lower vertex and then by upper vertex. Both passes are stable and triangles are
 // read in ascending order, so uses of one edge end up in ascending triangle order.
+//
+// In parallel: the triangles are cut into fixed chunks (their number depends on the soup, not
+// on the threads), each chunk counts its uses per coarse bucket, and chunk c's uses of bucket b
+// go after those of chunks before c: the scatter writes exactly what the sequential pass
+// writes. The buckets are then sorted independently, and the rows written at offsets known from
+// a prefix sum of each bucket's edge count. So the table is the same on any number of threads.
+constexpr unsigned kCoarseBits = 12;  // at most 4096 buckets: write streams the caches can hold
+constexpr std::size_t kChunkTriangles = std::size_t{1} << 16;
+
 struct CoarseBuckets {
   unsigned shift = 0;                 // coarse bucket of vertex u: u >> shift
-  std::vector<std::uint32_t> start;   // offsets into the use array, size buckets + 1
+  std::size_t count = 0;              // number of buckets
+  std::vector<std::uint32_t> start;   // offsets into the use array, size count + 1
+  // cursor[c * count + b]: where chunk c writes its first use of bucket b.
+  std::vector<std::uint32_t> cursor;
 };
+
+std::size_t chunk_count(std::size_t triangles) { return (triangles + kChunkTriangles - 1) / kChunkTriangles; }
+
+// The first triangle with an index >= n (triangles.size() if none), as a sequential scan finds it.
+std::size_t first_bad_triangle(const std::vector<Triangle>& triangles, std::size_t n) {
+  return tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, triangles.size(), kChunkTriangles), triangles.size(),
+      [&](const tbb::blocked_range<std::size_t>& r, std::size_t found) {
+        for (std::size_t t = r.begin(); t < r.end() && t < found; ++t)
+          if (triangles[t][0] >= n || triangles[t][1] >= n || triangles[t][2] >= n) return t;
+        return found;
+      },
+      [](std::size_t a, std::size_t b) { return std::min(a, b); });
+}
 
 CoarseBuckets count_coarse_buckets(const Soup& canonical) {
   const std::size_t n = canonical.vertices.size();
-  if (canonical.triangles.size() > std::numeric_limits<std::uint32_t>::max() / 3)
+  const std::vector<Triangle>& triangles = canonical.triangles;
+  if (triangles.size() > std::numeric_limits<std::uint32_t>::max() / 3)
     throw std::invalid_argument("build_edge_table: more than 2^32 / 3 triangles do not fit 32-bit entry offsets");
+  const std::size_t bad = first_bad_triangle(triangles, n);
+  if (bad < triangles.size()) {
+    const Triangle& tri = triangles[bad];
+    const std::uint32_t v = tri[0] >= n ? tri[0] : tri[1] >= n ? tri[1] : tri[2];
+    throw std::invalid_argument("build_edge_table: triangle " + std::to_string(bad) + " has index " +
+                                std::to_string(v) + " but the soup has " + std::to_string(n) + " vertices");
+  }
   CoarseBuckets buckets;
-  constexpr unsigned kCoarseBits = 12;  // at most 4096 buckets: write streams the caches can hold
   const auto bits = static_cast<unsigned>(std::bit_width(n));
   buckets.shift = bits > kCoarseBits ? bits - kCoarseBits : 0;
-  buckets.start.assign((n >> buckets.shift) + 2, 0);
-  for (std::size_t t = 0; t < canonical.triangles.size(); ++t) {
-    const Triangle& tri = canonical.triangles[t];
-    for (std::uint32_t v : tri)
-      if (v >= n)
-        throw std::invalid_argument("build_edge_table: triangle " + std::to_string(t) + " has index " +
-                                    std::to_string(v) + " but the soup has " + std::to_string(n) + " vertices");
-    if (has_repeated_index(tri)) continue;  // no edges (edge_table.h)
-    for (int k = 0; k < 3; ++k) ++buckets.start[(std::min(tri[k], tri[(k + 1) % 3]) >> buckets.shift) + 1];
+  buckets.count = (n >> buckets.shift) + 1;
+  const std::size_t chunks = chunk_count(triangles.size());
+  buckets.cursor.assign(chunks * buckets.count, 0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chunks, 1), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t c = r.begin(); c < r.end(); ++c) {
+      std::uint32_t* count = buckets.cursor.data() + c * buckets.count;
+      const std::size_t last = std::min(triangles.size(), (c + 1) * kChunkTriangles);
+      for (std::size_t t = c * kChunkTriangles; t < last; ++t) {
+        const Triangle& tri = triangles[t];
+        if (has_repeated_index(tri)) continue;  // no edges (edge_table.h)
+        for (int k = 0; k < 3; ++k) ++count[std::min(tri[k], tri[(k + 1) % 3]) >> buckets.shift];
+      }
+    }
+  });
+  // Bucket-major prefix sum: bucket b's uses, chunk by chunk, then bucket b + 1's.
+  buckets.start.assign(buckets.count + 1, 0);
+  std::uint32_t offset = 0;
+  for (std::size_t b = 0; b < buckets.count; ++b) {
+    buckets.start[b] = offset;
+    for (std::size_t c = 0; c < chunks; ++c) {
+      std::uint32_t& slot = buckets.cursor[c * buckets.count + b];
+      const std::uint32_t uses = slot;
+      slot = offset;
+      offset += uses;
+    }
   }
-  for (std::size_t i = 1; i < buckets.start.size(); ++i) buckets.start[i] += buckets.start[i - 1];
+  buckets.start[buckets.count] = offset;
   return buckets;
 }
 
-std::vector<EdgeUse> scatter_coarse(const Soup& canonical, const CoarseBuckets& buckets) {
-  std::vector<EdgeUse> uses(buckets.start.back());
-  std::vector<std::uint32_t> cursor(buckets.start.begin(), buckets.start.end() - 1);
-  for (std::uint32_t t = 0; t < canonical.triangles.size(); ++t) {
-    const Triangle& tri = canonical.triangles[t];
-    if (has_repeated_index(tri)) continue;
-    for (int k = 0; k < 3; ++k) {
-      const std::uint32_t a = tri[k], b = tri[(k + 1) % 3], o = tri[(k + 2) % 3];
-      const std::uint32_t lower = std::min(a, b);
-      uses[cursor[lower >> buckets.shift]++] = {lower, std::max(a, b), o, t};
-    }
-  }
+// Uninitialised: the scatter writes every entry.
+HugePageBuffer<EdgeUse> scatter_coarse(const Soup& canonical, CoarseBuckets& buckets) {
+  HugePageBuffer<EdgeUse> uses(buckets.start.back());
+  const std::vector<Triangle>& triangles = canonical.triangles;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chunk_count(triangles.size()), 1),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t c = r.begin(); c < r.end(); ++c) {
+                        std::uint32_t* cursor = buckets.cursor.data() + c * buckets.count;
+                        const std::size_t last = std::min(triangles.size(), (c + 1) * kChunkTriangles);
+                        for (std::size_t t = c * kChunkTriangles; t < last; ++t) {
+                          const Triangle& tri = triangles[t];
+                          if (has_repeated_index(tri)) continue;
+                          for (int k = 0; k < 3; ++k) {
+                            const std::uint32_t a = tri[k], b = tri[(k + 1) % 3], o = tri[(k + 2) % 3];
+                            const std::uint32_t lower = std::min(a, b);
+                            uses[cursor[lower >> buckets.shift]++] = {lower, std::max(a, b), o,
+                                                                      static_cast<std::uint32_t>(t)};
+                          }
+                        }
+                      }
+                    });
   return uses;
 }
 
@@ -85,14 +150,15 @@ void sort_by_upper(EdgeUse* first, EdgeUse* last) {
   }
 }
 
-// Appends the uses of one coarse bucket, whose lower vertices lie in [base, base + 2^shift),
-// to the table: a local counting sort by lower vertex, then by upper, then the rows.
+bool same_edge(const EdgeUse& a, const EdgeUse& b) { return a.lower == b.lower && a.upper == b.upper; }
+
+// Sorts the uses of one coarse bucket, whose lower vertices lie in [base, base + 2^shift), in
+// place: a local counting sort by lower vertex, then by upper. Returns its number of edges.
 class BucketSorter {
  public:
   explicit BucketSorter(unsigned shift) : count_((std::size_t{1} << shift) + 1) {}
 
-  void append(const EdgeUse* first, const EdgeUse* last, std::uint32_t base, std::uint32_t offset,
-              EdgeTable& table) {
+  std::uint32_t sort(EdgeUse* first, EdgeUse* last, std::uint32_t base) {
     std::fill(count_.begin(), count_.end(), 0u);
     for (const EdgeUse* e = first; e < last; ++e) ++count_[e->lower - base + 1];
     for (std::size_t i = 1; i < count_.size(); ++i) count_[i] += count_[i - 1];
@@ -104,15 +170,12 @@ class BucketSorter {
       sort_by_upper(sorted_.data() + begin, sorted_.data() + count_[i]);
       begin = count_[i];
     }
+    std::uint32_t edges = 0;
     for (std::size_t j = 0; j < sorted_.size(); ++j) {
-      const EdgeUse& e = sorted_[j];
-      if (j == 0 || e.upper != sorted_[j - 1].upper || e.lower != sorted_[j - 1].lower) {
-        table.edges.push_back({e.lower, e.upper});
-        table.first_opposite.push_back(offset + static_cast<std::uint32_t>(j));
-      }
-      table.opposite_vertex[offset + j] = e.opposite;
-      table.opposite_triangle[offset + j] = e.triangle;
+      edges += j == 0 || !same_edge(sorted_[j], sorted_[j - 1]);
+      first[j] = sorted_[j];
     }
+    return edges;
   }
 
  private:
@@ -123,22 +186,43 @@ class BucketSorter {
 }  // namespace
 
 EdgeTable build_edge_table(const Soup& canonical) {
-  const CoarseBuckets buckets = count_coarse_buckets(canonical);
-  const std::vector<EdgeUse> uses = scatter_coarse(canonical, buckets);
+  CoarseBuckets buckets = count_coarse_buckets(canonical);
+  HugePageBuffer<EdgeUse> uses = scatter_coarse(canonical, buckets);
+  const std::size_t bucket_count = buckets.count;
+
+  // Each bucket sorted in place; edge_start[b] its number of edges, then (prefix) its first.
+  std::vector<std::uint32_t> edge_start(bucket_count + 1, 0);
+  tbb::enumerable_thread_specific<BucketSorter> sorters(buckets.shift);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, bucket_count, 1), [&](const tbb::blocked_range<std::size_t>& r) {
+    BucketSorter& sorter = sorters.local();
+    for (std::size_t b = r.begin(); b < r.end(); ++b)
+      if (buckets.start[b] < buckets.start[b + 1])
+        edge_start[b + 1] = sorter.sort(uses.data() + buckets.start[b], uses.data() + buckets.start[b + 1],
+                                        static_cast<std::uint32_t>(b << buckets.shift));
+  });
+  for (std::size_t b = 1; b <= bucket_count; ++b) edge_start[b] += edge_start[b - 1];
 
   EdgeTable table;
-  table.opposite_vertex.resize(uses.size());
-  table.opposite_triangle.resize(uses.size());
-  // A closed manifold mesh has exactly two uses per edge: a good first guess.
-  table.edges.reserve(uses.size() / 2 + 1);
-  table.first_opposite.reserve(uses.size() / 2 + 2);
-  BucketSorter sorter(buckets.shift);
-  for (std::size_t c = 0; c + 1 < buckets.start.size(); ++c) {
-    if (buckets.start[c] == buckets.start[c + 1]) continue;
-    sorter.append(uses.data() + buckets.start[c], uses.data() + buckets.start[c + 1],
-                  static_cast<std::uint32_t>(c << buckets.shift), buckets.start[c], table);
-  }
-  table.first_opposite.push_back(static_cast<std::uint32_t>(uses.size()));
+  resize_huge(table.opposite_vertex, uses.size());
+  resize_huge(table.opposite_triangle, uses.size());
+  resize_huge(table.edges, edge_start.back());
+  resize_huge(table.first_opposite, edge_start.back() + 1);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, bucket_count, 1), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t b = r.begin(); b < r.end(); ++b) {
+      std::uint32_t edge = edge_start[b];
+      for (std::uint32_t j = buckets.start[b]; j < buckets.start[b + 1]; ++j) {
+        const EdgeUse& e = uses[j];
+        if (j == buckets.start[b] || !same_edge(e, uses[j - 1])) {
+          table.edges[edge] = {e.lower, e.upper};
+          table.first_opposite[edge] = j;
+          ++edge;
+        }
+        table.opposite_vertex[j] = e.opposite;
+        table.opposite_triangle[j] = e.triangle;
+      }
+    }
+  });
+  table.first_opposite.back() = static_cast<std::uint32_t>(uses.size());
   return table;
 }
 
