@@ -88,6 +88,15 @@ struct Node {
 inline constexpr double kTame = 0x1p400;
 [[nodiscard]] inline bool tame(double x) { return std::fabs(x) <= kTame; }
 
+// A box during the build, with its centre (rounded: it only orders the splits, never decides
+// a query) and its id; the build partitions these records themselves, so that every pass
+// reads them in order.
+struct Primitive {
+  Bounds box;
+  std::array<double, 3> centre;
+  std::uint32_t id;
+};
+
 inline constexpr std::uint32_t kLeafSize = 4;
 inline constexpr int kBins = 12;
 // Past this depth the build splits at the median (depth below 2 * 48 + log2 n).
@@ -218,8 +227,7 @@ struct BoxTree::Impl {
 
   // Builds the subtree over boxes [first, first + count) of `order`, with the bounds of their
   // boxes and of their centres, and returns it as a child.
-  Child build(std::uint32_t first, std::uint32_t count, const Bounds& centres, std::vector<std::uint32_t>& order,
-              const std::vector<Bounds>& input, const std::vector<std::array<double, 3>>& centre,
+  Child build(std::uint32_t first, std::uint32_t count, const Bounds& centres, std::vector<Primitive>& prims,
               std::atomic<std::uint32_t>& next_node, int depth);
 
   // Visits the leaves whose boxes the slab may meet, nearest-first with a bound when `bound` is
@@ -233,106 +241,124 @@ BoxTree::Impl::Impl(const std::vector<Box>& closed, LeafTest test) : leaf_test(t
     throw std::invalid_argument("BoxTree: more than 2^32 boxes");
   const auto n = static_cast<std::uint32_t>(closed.size());
   if (n == 0) return;
-  std::vector<Bounds> input(n);
-  std::vector<std::array<double, 3>> centre(n);
+  std::vector<Primitive> prims(n);
   Bounds centres;
   for (std::uint32_t i = 0; i < n; ++i) {
+    Primitive& p = prims[i];
     for (int k = 0; k < 3; ++k) {
-      input[i].lo[k] = closed[i].lo[k];
-      input[i].hi[k] = closed[i].hi[k];
-      // Rounded: only orders the split, never decides a query.
-      centre[i][k] = closed[i].lo[k] / 2 + closed[i].hi[k] / 2;
+      p.box.lo[k] = closed[i].lo[k];
+      p.box.hi[k] = closed[i].hi[k];
+      p.centre[k] = closed[i].lo[k] / 2 + closed[i].hi[k] / 2;
     }
-    root_box.grow(input[i]);
-    centres.grow(centre[i]);
+    p.id = i;
+    root_box.grow(p.box);
+    centres.grow(p.centre);
   }
-  std::vector<std::uint32_t> order(n);
-  for (std::uint32_t i = 0; i < n; ++i) order[i] = i;
   nodes.resize(n);  // a binary tree over n >= 1 leaves has fewer than n inner nodes
   std::atomic<std::uint32_t> next_node{0};
-  root = build(0, n, centres, order, input, centre, next_node, 0);
+  root = build(0, n, centres, prims, next_node, 0);
   nodes.resize(next_node.load());
   boxes.resize(n);
-  ids = std::move(order);
-  for (std::uint32_t i = 0; i < n; ++i) boxes[i] = input[ids[i]];
+  ids.resize(n);
+  for (std::uint32_t i = 0; i < n; ++i) {
+    boxes[i] = prims[i].box;
+    ids[i] = prims[i].id;
+  }
   for (int k = 0; k < 3; ++k) tame = tame && shadowcert::detail::tame(root_box.lo[k]) && shadowcert::detail::tame(root_box.hi[k]);
 }
 
 Child BoxTree::Impl::build(std::uint32_t first, std::uint32_t count, const Bounds& centres,
-                           std::vector<std::uint32_t>& order, const std::vector<Bounds>& input,
-                           const std::vector<std::array<double, 3>>& centre, std::atomic<std::uint32_t>& next_node,
-                           int depth) {
+                           std::vector<Primitive>& prims, std::atomic<std::uint32_t>& next_node, int depth) {
   if (count <= kLeafSize) return {first, count};
-  // Binned SAH on the centres along each axis; the cheapest split wins. Past kMaxSahDepth
-  // (centres spread so unevenly that the SAH keeps cutting off a few boxes) the median of the
-  // longest axis, so that the depth stays logarithmic.
-  int best_axis = -1, best_bin = 0;
-  double best_cost = kInfinity;
+  const auto begin = prims.begin() + first, end = begin + count;
+  // Binned SAH on the centres along each axis (one pass bins all three); the cheapest split
+  // wins, and its sides' boxes and centre bounds come from the bins. Past kMaxSahDepth (centres
+  // spread so unevenly that the SAH keeps cutting off a few boxes) the median of the longest
+  // axis, so that the depth stays logarithmic.
   std::uint32_t middle = first + count / 2;
-  if (depth >= kMaxSahDepth) {
+  std::array<Bounds, 2> side_box, centre_box;
+  bool sides_known = false;
+  if (depth < kMaxSahDepth) {
+    struct Bin {
+      Bounds box;
+      Bounds centres;
+      std::uint32_t count = 0;
+    };
+    std::array<std::array<Bin, kBins>, 3> bins{};
+    std::array<double, 3> scale{};
+    for (int axis = 0; axis < 3; ++axis) {
+      const double extent = centres.hi[axis] - centres.lo[axis];
+      scale[axis] = extent > 0.0 ? kBins / extent : 0.0;
+    }
+    const auto bin_of = [&](const Primitive& p, int axis) {
+      return std::min(kBins - 1, static_cast<int>((p.centre[axis] - centres.lo[axis]) * scale[axis]));
+    };
+    for (auto it = begin; it != end; ++it)
+      for (int axis = 0; axis < 3; ++axis) {
+        Bin& bin = bins[axis][bin_of(*it, axis)];
+        bin.box.grow(it->box);
+        bin.centres.grow(it->centre);
+        ++bin.count;
+      }
+    int best_axis = -1, best_bin = 0;
+    double best_cost = kInfinity;
+    for (int axis = 0; axis < 3; ++axis) {
+      if (!(scale[axis] > 0.0)) continue;
+      std::array<double, kBins> right_cost{};
+      Bounds right;
+      std::uint32_t right_count = 0;
+      for (int b = kBins - 1; b > 0; --b) {
+        right.grow(bins[axis][b].box);
+        right_count += bins[axis][b].count;
+        right_cost[b] = right.half_area() * right_count;
+      }
+      Bounds left;
+      std::uint32_t left_count = 0;
+      for (int b = 0; b < kBins - 1; ++b) {
+        left.grow(bins[axis][b].box);
+        left_count += bins[axis][b].count;
+        const double cost = left.half_area() * left_count + right_cost[b + 1];
+        if (left_count > 0 && left_count < count && cost < best_cost) {
+          best_cost = cost;
+          best_axis = axis;
+          best_bin = b;
+        }
+      }
+    }
+    if (best_axis >= 0) {
+      const auto split = std::partition(begin, end, [&](const Primitive& p) { return bin_of(p, best_axis) <= best_bin; });
+      middle = static_cast<std::uint32_t>(split - prims.begin());
+      for (int b = 0; b < kBins; ++b) {
+        const int side = b <= best_bin ? 0 : 1;
+        side_box[side].grow(bins[best_axis][b].box);
+        centre_box[side].grow(bins[best_axis][b].centres);
+      }
+      sides_known = true;
+    }
+  } else {
     int axis = 0;
     for (int k = 1; k < 3; ++k)
       if (centres.hi[k] - centres.lo[k] > centres.hi[axis] - centres.lo[axis]) axis = k;
-    std::nth_element(order.begin() + first, order.begin() + middle, order.begin() + first + count,
-                     [&](std::uint32_t a, std::uint32_t b) { return centre[a][axis] < centre[b][axis]; });
+    std::nth_element(begin, prims.begin() + middle, end,
+                     [axis](const Primitive& a, const Primitive& b) { return a.centre[axis] < b.centre[axis]; });
   }
-  for (int axis = 0; axis < 3 && depth < kMaxSahDepth; ++axis) {
-    const double lo = centres.lo[axis], extent = centres.hi[axis] - lo;
-    if (!(extent > 0.0)) continue;
-    std::array<Bounds, kBins> bin_box;
-    std::array<std::uint32_t, kBins> bin_count{};
-    const double scale = kBins / extent;
+  if (!sides_known) {
+    // Every centre alike (or the median split): halves by count, bounds by a pass.
+    if (middle == first || middle == first + count) middle = first + count / 2;
     for (std::uint32_t i = first; i < first + count; ++i) {
-      const std::uint32_t id = order[i];
-      const int b = std::min(kBins - 1, static_cast<int>((centre[id][axis] - lo) * scale));
-      bin_box[b].grow(input[id]);
-      ++bin_count[b];
-    }
-    std::array<double, kBins> right_cost{};
-    Bounds right;
-    std::uint32_t right_count = 0;
-    for (int b = kBins - 1; b > 0; --b) {
-      right.grow(bin_box[b]);
-      right_count += bin_count[b];
-      right_cost[b] = right.half_area() * right_count;
-    }
-    Bounds left;
-    std::uint32_t left_count = 0;
-    for (int b = 0; b < kBins - 1; ++b) {
-      left.grow(bin_box[b]);
-      left_count += bin_count[b];
-      const double cost = left.half_area() * left_count + right_cost[b + 1];
-      if (left_count > 0 && left_count < count && cost < best_cost) {
-        best_cost = cost;
-        best_axis = axis;
-        best_bin = b;
-      }
+      const int side = i < middle ? 0 : 1;
+      side_box[side].grow(prims[i].box);
+      centre_box[side].grow(prims[i].centre);
     }
   }
-  if (best_axis >= 0) {
-    const double lo = centres.lo[best_axis], scale = kBins / (centres.hi[best_axis] - lo);
-    const auto split = std::partition(order.begin() + first, order.begin() + first + count, [&](std::uint32_t id) {
-      return std::min(kBins - 1, static_cast<int>((centre[id][best_axis] - lo) * scale)) <= best_bin;
-    });
-    middle = static_cast<std::uint32_t>(split - order.begin());
-  }
-  if (middle == first || middle == first + count) middle = first + count / 2;  // every centre alike
 
   const std::uint32_t index = next_node.fetch_add(1);
   Node& node = nodes[index];
-  std::array<Bounds, 2> centre_box;
-  for (int side = 0; side < 2; ++side) {
-    const std::uint32_t b = side == 0 ? first : middle, e = side == 0 ? middle : first + count;
-    Bounds box;
-    for (std::uint32_t i = b; i < e; ++i) {
-      box.grow(input[order[i]]);
-      centre_box[side].grow(centre[order[i]]);
-    }
-    node.set_box(side, box);
-  }
-  const auto left = [&] { node.child[0] = build(first, middle - first, centre_box[0], order, input, centre, next_node, depth + 1); };
+  node.set_box(0, side_box[0]);
+  node.set_box(1, side_box[1]);
+  const auto left = [&] { node.child[0] = build(first, middle - first, centre_box[0], prims, next_node, depth + 1); };
   const auto right = [&] {
-    node.child[1] = build(middle, first + count - middle, centre_box[1], order, input, centre, next_node, depth + 1);
+    node.child[1] = build(middle, first + count - middle, centre_box[1], prims, next_node, depth + 1);
   };
   if (count >= kParallelBuild) {
     tbb::parallel_invoke(left, right);
