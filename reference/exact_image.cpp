@@ -18,6 +18,7 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 
 #include <algorithm>
 #include <atomic>
@@ -81,7 +82,7 @@ struct ImageGeometry {
   std::vector<std::vector<Sign>> light_sides;  // [light][triangle]: s(t) of docs/definitions.md#orientation
   std::vector<std::unique_ptr<Silhouette>> silhouettes;  // of the casting triangles
   std::vector<std::unique_ptr<Silhouette>> casting_edges;  // with a depth band: every edge of a caster
-  detail::BoxTree tree;
+  const detail::BoxTree& tree;
 
   [[nodiscard]] const Vec3& vertex(std::uint32_t triangle, int k) const {
     return soup.vertices[soup.triangles[triangle][static_cast<std::size_t>(k)]];
@@ -660,21 +661,37 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
     return i - window.x < window.width && row - window.y < window.height;  // unsigned: below x wraps
   };
 
-  ImageGeometry g{soup, options.casts, {}, {}, {}, {}, detail::BoxTree(triangle_boxes(soup), detail::LeafTest::exact)};
-  // Every triangle is seen (the box tree above); the volumes are the casting triangles' alone.
-  // The silhouettes and volume faces serve only the footprint tests (options.footprints).
+  // Every triangle is seen (the box tree); the volumes are the casting triangles' alone. The
+  // silhouettes and volume faces serve only the footprint tests (options.footprints). The tree
+  // and the lights' data are independent: built side by side.
   const bool footprints = options.footprints;
-  const CanonicalSoup canonical =
-      canonical_soup(!footprints ? Soup{} : options.casts.empty() ? soup : casting_soup(soup, options.casts));
-  const EdgeTable table = build_edge_table(canonical.soup);
-  for (const Light& light : lights) {
-    g.lights.push_back(light.position);
-    g.light_sides.push_back(light_sides(soup, light));
-    if (!footprints) continue;
-    g.silhouettes.push_back(silhouette(canonical.soup, table, light));
-    if (options.depth_band)
-      g.casting_edges.push_back(casting_edges(canonical.soup, table, casting_sides(g.light_sides.back(), options.casts)));
-  }
+  std::unique_ptr<detail::BoxTree> tree;
+  std::vector<HomogeneousPoint> light_points;
+  std::vector<std::vector<Sign>> sides_of_lights;
+  std::vector<std::unique_ptr<Silhouette>> silhouettes, edges_of_casters;
+  tbb::parallel_invoke(
+      [&] { tree = std::make_unique<detail::BoxTree>(triangle_boxes(soup), detail::LeafTest::exact); },
+      [&] {
+        const CanonicalSoup canonical =
+            canonical_soup(!footprints ? Soup{} : options.casts.empty() ? soup : casting_soup(soup, options.casts));
+        const EdgeTable table = build_edge_table(canonical.soup);
+        for (const Light& light : lights) {
+          light_points.push_back(light.position);
+          sides_of_lights.push_back(light_sides(soup, light));
+          if (!footprints) continue;
+          silhouettes.push_back(silhouette(canonical.soup, table, light));
+          if (options.depth_band)
+            edges_of_casters.push_back(
+                casting_edges(canonical.soup, table, casting_sides(sides_of_lights.back(), options.casts)));
+        }
+      });
+  const ImageGeometry g{soup,
+                        options.casts,
+                        std::move(light_points),
+                        std::move(sides_of_lights),
+                        std::move(silhouettes),
+                        std::move(edges_of_casters),
+                        *tree};
   ExactImage image;
   image.width = grid.width;
   image.height = grid.height;
