@@ -167,6 +167,23 @@ class Slab {
       t[c] = enter[c];
     }
   }
+  // One box as entry(b), under entry_pair's conditions (fast() and a tame tree): no branch.
+  [[nodiscard]] bool entry_fast(const Bounds& b, double* enter_out) const {
+    double enter = 0.0, leave = t_max_;
+    for (int k = 0; k < 3; ++k) {
+      const double f = from_[k], inv = inverse_[k], widen = widen_[k];
+      const double a_near = ((forward_[k] ? b.lo[k] : b.hi[k]) - f) * inv;
+      const double a_far = ((forward_[k] ? b.hi[k] : b.lo[k]) - f) * inv;
+      const double near = a_near - widen, far = a_far + widen;
+      const double near_margin = (std::fabs(a_near) + widen + std::fabs(near)) * kSlabRelativeMargin + kSlabAbsoluteMargin;
+      const double far_margin = (std::fabs(a_far) + widen + std::fabs(far)) * kSlabRelativeMargin + kSlabAbsoluteMargin;
+      enter = std::max(enter, near - near_margin);
+      leave = std::min(leave, far + far_margin);
+    }
+    *enter_out = enter;
+    return !(enter > leave);
+  }
+
   // Whether entry_pair applies (given a tame tree): no axis parallel or overflowing, every
   // input within kTame.
   [[nodiscard]] bool fast() const { return fast_; }
@@ -477,10 +494,12 @@ namespace {
 template <typename Tree>
 void visit_slab(const Tree& tree, const Slab& slab, const double* bound, void* visit,
                 bool (*callback)(void*, std::uint32_t)) {
+  const bool fast = tree.tame && slab.fast();
   tree.traverse(slab, bound, [&](std::uint32_t first, std::uint32_t count) {
     for (std::uint32_t i = first; i < first + count; ++i) {
       double t = 0.0;
-      if (!slab.entry(tree.boxes[i], &t) || (bound != nullptr && t > *bound)) continue;
+      const bool in = fast ? slab.entry_fast(tree.boxes[i], &t) : slab.entry(tree.boxes[i], &t);
+      if (!in || (bound != nullptr && t > *bound)) continue;
       if (!callback(visit, tree.ids[i])) return false;
     }
     return true;
