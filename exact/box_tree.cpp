@@ -312,10 +312,15 @@ Child BoxTree::Impl::build(std::uint32_t first, std::uint32_t count, const Bound
       if (centres.hi[k] - centres.lo[k] > centres.hi[longest] - centres.lo[longest]) longest = k;
     for (int axis = 0; axis < 3; ++axis) {
       const double extent = centres.hi[axis] - centres.lo[axis];
-      scale[axis] = extent > 0.0 && (count <= kAllAxes || axis == longest) ? kBins / extent : 0.0;
+      scale[axis] = extent > 0.0 && std::isfinite(kBins / extent) && (count <= kAllAxes || axis == longest)
+                        ? kBins / extent
+                        : 0.0;
     }
     const auto bin_of = [&](const Primitive& p, int axis) {
-      return std::min(kBins - 1, static_cast<int>((p.centre[axis] - centres.lo[axis]) * scale[axis]));
+      // Clamped in double before the conversion: a difference that overflows (coordinates near
+      // the double range) or an inf * 0 would make the cast undefined. std::max(0.0, NaN) is 0.
+      const double x = (p.centre[axis] - centres.lo[axis]) * scale[axis];
+      return static_cast<int>(std::min(static_cast<double>(kBins - 1), std::max(0.0, x)));
     };
     for (auto it = begin; it != end; ++it)
       for (int axis = 0; axis < 3; ++axis) {
