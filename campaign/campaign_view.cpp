@@ -9,6 +9,8 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "core/portable_math.h"
+
 namespace shadowcert {
 namespace {
 
@@ -75,7 +77,7 @@ Camera campaign_view_camera(const Soup& soup, std::uint32_t width, std::uint32_t
   const Box box = used_vertex_box(soup);
   const Vec3 c = centre(box);
   const double half_fov = 0.5 * kCampaignViewFovDegrees * std::numbers::pi / 180.0;
-  const double distance = kViewMargin * radius(box) / std::sin(half_fov);
+  const double distance = kViewMargin * radius(box) / portable::sin(half_fov);
   Camera camera;
   camera.target = c;
   camera.eye = {c[0] + distance * kViewDirection[0], c[1] + distance * kViewDirection[1],

@@ -12,6 +12,7 @@
 
 #include "campaign/random_soup.h"
 #include "core/near_plane.h"
+#include "core/portable_math.h"
 #include "core/vector3.h"
 #include "scene/affine_transform.h"
 #include "scene/hard_soups.h"
@@ -137,12 +138,12 @@ Soup placed(Soup s, SceneRandom& rng, double ring_angle, double lift, bool& quar
   s = shifted(std::move(s), {-snapped(c[0]), -snapped(c[1]), -snapped(c[2])});
   double half = 0.0;
   for (int k = 0; k < 3; ++k) half = std::max(half, 0.5 * (box.hi[k] - box.lo[k]));
-  const double scale = half > 0.0 ? std::ldexp(1.0, -static_cast<int>(std::ceil(std::log2(half / kPartHalfExtent)))) : 1.0;
+  const double scale = half > 0.0 ? std::ldexp(1.0, -static_cast<int>(std::ceil(portable::log2(half / kPartHalfExtent)))) : 1.0;
   quarter_turns = rng.chance(0.5);
   Vec3 degrees{};
   for (double& d : degrees) d = quarter_turns ? 90.0 * static_cast<double>(rng.below(4)) : rng.between(0.0, 360.0);
   const double radius = rng.between(kRingMin, kRingMax);
-  const Vec3 at{snapped(radius * std::cos(ring_angle)), 0.0, snapped(radius * std::sin(ring_angle))};
+  const Vec3 at{snapped(radius * portable::cos(ring_angle)), 0.0, snapped(radius * portable::sin(ring_angle))};
   s = transformed(s, compose_trs(at, {scale, scale, scale}, degrees));
   Box3 turned;
   turned.add(s);
@@ -176,7 +177,7 @@ Vec3 random_direction(SceneRandom& rng, double min_y) {
   const double y = rng.between(min_y, 1.0);
   const double angle = rng.between(0.0, 2.0 * std::numbers::pi);
   const double r = std::sqrt(std::max(0.0, 1.0 - y * y));
-  return {r * std::cos(angle), y, r * std::sin(angle)};
+  return {r * portable::cos(angle), y, r * portable::sin(angle)};
 }
 
 // The eye moved to within kEdgeOnMin to kEdgeOnMax (relative to its distance from the light)
@@ -210,7 +211,7 @@ bool edge_on_view(SceneRandom& rng, const Scene& scene, Camera& camera) {
   // The eye into the plane, then off it by a small random share of its distance to the light.
   const Vec3 eye = camera.eye;
   const double side = dot(difference(eye, l), n);
-  const double off = std::pow(10.0, rng.between(std::log10(kEdgeOnMin), std::log10(kEdgeOnMax))) *
+  const double off = portable::exp10(rng.between(portable::log10(kEdgeOnMin), portable::log10(kEdgeOnMax))) *
                      std::sqrt(dot(difference(eye, l), difference(eye, l))) * (rng.chance(0.5) ? 1.0 : -1.0);
   const Vec3 moved{eye[0] - (side - off) * n[0], eye[1] - (side - off) * n[1], eye[2] - (side - off) * n[2]};
   if (!(moved[1] > 0.3)) return false;
@@ -306,11 +307,11 @@ HardSceneCase hard_scene_case(std::uint64_t seed, std::uint64_t index, std::uint
   const double sphere = std::max(all.radius(), 1.0);
   const double elevation = rng.between(20.0, 65.0) * std::numbers::pi / 180.0;
   const double azimuth = rng.between(0.0, 2.0 * std::numbers::pi);
-  const double distance_to_eye = rng.between(1.05, 1.4) * sphere / std::sin(kFovDegrees * std::numbers::pi / 360.0);
+  const double distance_to_eye = rng.between(1.05, 1.4) * sphere / portable::sin(kFovDegrees * std::numbers::pi / 360.0);
   Camera& camera = out.scene.camera;
-  camera.eye = {target[0] + distance_to_eye * std::cos(elevation) * std::cos(azimuth),
-                target[1] + distance_to_eye * std::sin(elevation),
-                target[2] + distance_to_eye * std::cos(elevation) * std::sin(azimuth)};
+  camera.eye = {target[0] + distance_to_eye * portable::cos(elevation) * portable::cos(azimuth),
+                target[1] + distance_to_eye * portable::sin(elevation),
+                target[2] + distance_to_eye * portable::cos(elevation) * portable::sin(azimuth)};
   camera.target = target;
   // A quarter of the scenes look at one side face edge-on instead (edge_on_view).
   if (rng.chance(0.25)) out.edge_on_view = edge_on_view(rng, out.scene, camera);

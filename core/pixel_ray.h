@@ -19,6 +19,7 @@
 #include <string>
 
 #include "core/camera.h"
+#include "core/portable_math.h"
 #include "core/soup.h"
 #include "core/vector3.h"
 
@@ -64,7 +65,7 @@ struct PixelRay {
   frame.right = normalized(cross(frame.forward, camera.up));
   frame.up = cross(frame.right, frame.forward);
   constexpr double kPi = 3.14159265358979323846;
-  frame.half_height = std::tan(camera.fov_y_degrees * (kPi / 180.0) / 2.0);
+  frame.half_height = portable::tan(camera.fov_y_degrees * (kPi / 180.0) / 2.0);
   // The aspect first, as GLM's perspective does: a square image gets half_width == half_height.
   frame.half_width = frame.half_height * (static_cast<double>(camera.width) / static_cast<double>(camera.height));
   frame.width = camera.width;

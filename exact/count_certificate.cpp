@@ -13,6 +13,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "core/portable_math.h"
 #include "exact/chain_crossings.h"
 #include "exact/count_sampling.h"
 
@@ -253,7 +254,7 @@ Box clip_box(const Box& sampling_box, const std::vector<Vec3>& user_points) {
 // samples: the side of the box's volume shared by the samples.
 double piece_length(const Box& box, std::uint64_t samples) {
   const double volume = (box.hi[0] - box.lo[0]) * (box.hi[1] - box.lo[1]) * (box.hi[2] - box.lo[2]);
-  const double length = std::cbrt(volume / static_cast<double>(std::max<std::uint64_t>(samples, 1)));
+  const double length = portable::cbrt(volume / static_cast<double>(std::max<std::uint64_t>(samples, 1)));
   if (length > 0.0 && std::isfinite(length)) return length;
   return std::max({box.hi[0] - box.lo[0], box.hi[1] - box.lo[1], box.hi[2] - box.lo[2], 1.0});
 }

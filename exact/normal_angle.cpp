@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/portable_math.h"
 #include "core/vector3.h"
 
 namespace shadowcert {
@@ -104,7 +105,7 @@ double angle_cosine(double degrees) {
   if (degrees == 120.0) return -0.5;
   if (degrees == 180.0) return -1.0;
   constexpr double kPi = 3.14159265358979323846;
-  return std::cos(degrees * (kPi / 180.0));
+  return portable::cos(degrees * (kPi / 180.0));
 }
 
 Sign bend_angle_sign(const Vec3& u, const Vec3& v, const Vec3& o1, const Vec3& o2, double cosine) {

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/box.h"
+#include "core/portable_math.h"
 #include "core/vector3.h"
 #include "scene/split_mix_random.h"
 
@@ -47,7 +48,7 @@ std::array<double, 2> concentric_disk_point(double u, double v) {
     r = b;
     phi = kPi / 2.0 - (kPi / 4.0) * (a / b);
   }
-  return {r * std::cos(phi), r * std::sin(phi)};
+  return {r * portable::cos(phi), r * portable::sin(phi)};
 }
 
 Vec3 scene_bounds_centre(const Soup& soup) {
@@ -70,7 +71,7 @@ std::vector<Light> disk_light_samples(const Light& light, const Vec3& facing, co
     throw std::invalid_argument("disk_light_samples: the sample count must be a perfect square n x n >= 1, got " +
                                 std::to_string(sampling.samples));
   // The disk's radius at distance 1 for a directional light, in world units for a point light.
-  const double size = light.directional() ? std::tan(angle * (kPi / 180.0)) : radius;
+  const double size = light.directional() ? portable::tan(angle * (kPi / 180.0)) : radius;
   if ((light.directional() ? angle : radius) == 0.0) return {light};
 
   const Vec3 l{light.position[0], light.position[1], light.position[2]};
@@ -100,7 +101,7 @@ std::vector<Light> disk_light_samples(const Light& light, const Vec3& facing, co
       Light sample{{0.0, 0.0, 0.0, light.position[3]}};
       if (ball) {
         const Vec3 direction = sphere_point(u, v);
-        const double r = size * std::sin(ball_radial_angle(random.unit()));
+        const double r = size * portable::sin(ball_radial_angle(random.unit()));
         for (int k = 0; k < 3; ++k) sample.position[k] = centre[k] + r * direction[k];
       } else {
         const auto [x, y] = concentric_disk_point(u, v);
@@ -115,7 +116,7 @@ Vec3 sphere_point(double u, double v) {
   const double z = 1.0 - 2.0 * v;
   const double ring = std::sqrt(std::max(0.0, 1.0 - z * z));
   const double phi = 2.0 * kPi * u;
-  return {ring * std::cos(phi), ring * std::sin(phi), z};
+  return {ring * portable::cos(phi), ring * portable::sin(phi), z};
 }
 
 double ball_radial_angle(double w) {
@@ -125,7 +126,7 @@ double ball_radial_angle(double w) {
   double lo = 0.0, hi = kPi / 2.0;
   for (int step = 0; step < 64; ++step) {
     const double mid = 0.5 * (lo + hi);
-    if ((2.0 * mid - std::sin(2.0 * mid)) / kPi < target) lo = mid; else hi = mid;
+    if ((2.0 * mid - portable::sin(2.0 * mid)) / kPi < target) lo = mid; else hi = mid;
   }
   return 0.5 * (lo + hi);
 }

@@ -5,6 +5,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "core/portable_math.h"
 #include "core/vector3.h"
 
 namespace shadowcert {
@@ -67,7 +68,7 @@ std::vector<Vec3> ellipsoid_shadow_boundary(const Ellipsoid& e, const Light& lig
   boundary.reserve(samples);
   for (std::size_t i = 0; i < samples; ++i) {
     const double angle = 2.0 * std::numbers::pi * static_cast<double>(i) / static_cast<double>(samples);
-    const Vec3 u = add(scale(axis, offset), add(scale(b1, radius * std::cos(angle)), scale(b2, radius * std::sin(angle))));
+    const Vec3 u = add(scale(axis, offset), add(scale(b1, radius * portable::cos(angle)), scale(b2, radius * portable::sin(angle))));
     boundary.push_back(shadow_on_plane(add(e.centre, apply(e, u)), light, plane));
   }
   return boundary;

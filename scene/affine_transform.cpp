@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "core/portable_math.h"
+
 namespace shadowcert {
 namespace {
 
@@ -22,7 +24,7 @@ std::array<double, 2> cos_sin_degrees(double degrees) {
     return exact[static_cast<std::size_t>(k)];
   }
   const double radians = reduced * std::numbers::pi / 180.0;
-  return {std::cos(radians), std::sin(radians)};
+  return {portable::cos(radians), portable::sin(radians)};
 }
 
 Matrix3 multiply(const Matrix3& a, const Matrix3& b) {

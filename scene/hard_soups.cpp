@@ -5,6 +5,8 @@
 #include <utility>
 #include <vector>
 
+#include "core/portable_math.h"
+
 namespace shadowcert {
 namespace {
 
@@ -22,8 +24,8 @@ Soup half_fan(std::uint32_t k) {
   Soup s;
   s.vertices = {{0.0, 0.0, 0.0}, {0.0, 1.0, 0.0}};
   for (std::uint32_t i = 0; i < k; ++i) {
-    const double angle = std::acos(-1.0) * (i + 0.5) / k;
-    s.vertices.push_back({std::cos(angle), 0.5, std::sin(angle)});
+    const double angle = portable::kPi * (i + 0.5) / k;
+    s.vertices.push_back({portable::cos(angle), 0.5, portable::sin(angle)});
     s.triangles.push_back(i % 2 == 0 ? Triangle{0, 1, i + 2} : Triangle{1, 0, i + 2});
   }
   return s;

@@ -4,6 +4,8 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "core/portable_math.h"
+
 namespace shadowcert {
 
 LightOrbit default_light_orbit(const Box& bounds) {
@@ -31,8 +33,8 @@ std::vector<Light> orbit_lights(const LightOrbit& orbit, std::size_t frames) {
   lights.reserve(frames);
   for (std::size_t i = 0; i < frames; ++i) {
     const double a = 2.0 * std::numbers::pi * orbit.turns * static_cast<double>(i) / static_cast<double>(frames);
-    lights.push_back(Light{{orbit.center[0] + orbit.radius * std::cos(a), orbit.center[1] + orbit.height,
-                            orbit.center[2] + orbit.radius * std::sin(a), 1.0}});
+    lights.push_back(Light{{orbit.center[0] + orbit.radius * portable::cos(a), orbit.center[1] + orbit.height,
+                            orbit.center[2] + orbit.radius * portable::sin(a), 1.0}});
   }
   return lights;
 }

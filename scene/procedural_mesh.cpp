@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/portable_math.h"
 #include "scene/sphere_grid_layout.h"
 
 namespace shadowcert {
@@ -44,7 +45,7 @@ std::array<double, 2> circle_point(std::uint64_t i, std::uint64_t n) {
     return quarters[4 * m / n];
   }
   const double angle = 2.0 * std::numbers::pi * static_cast<double>(m) / static_cast<double>(n);
-  return {std::cos(angle), std::sin(angle)};
+  return {portable::cos(angle), portable::sin(angle)};
 }
 
 Vec3 place(const Vec3& center, double radius, const Vec3& unit) {
@@ -287,7 +288,7 @@ Soup torus_knot(const Vec3& center, std::uint32_t p, std::uint32_t q, double maj
   s.normals.reserve(n);
   for (std::uint32_t i = 0; i < segments; ++i) {
     const double t = 2.0 * std::numbers::pi * static_cast<double>(i) / static_cast<double>(segments);
-    const double cp = std::cos(dp * t), sp = std::sin(dp * t), cq = std::cos(dq * t), sq = std::sin(dq * t);
+    const double cp = portable::cos(dp * t), sp = portable::sin(dp * t), cq = portable::cos(dq * t), sq = portable::sin(dq * t);
     const double rho = R + r * cq, drho = -r * dq * sq, ddrho = -r * dq * dq * cq;
     const Vec3 c{rho * cp, r * sq, rho * sp};
     const Vec3 d1{drho * cp - rho * dp * sp, r * dq * cq, drho * sp + rho * dp * cp};

@@ -15,6 +15,7 @@
 #include "core/camera.h"
 #include "core/input_error.h"
 #include "core/near_plane.h"
+#include "core/portable_math.h"
 #include "core/vector3.h"
 #include "scene/affine_transform.h"
 #include "scene/detail/generator_params.h"
@@ -207,7 +208,7 @@ Light default_light(const std::vector<SceneMesh>& meshes, const JsonField& root)
       }
   Light light;  // core's default, for an empty scene
   if (!(lo[0] <= hi[0])) return light;
-  const double diagonal = std::hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
+  const double diagonal = portable::hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
   const double height = diagonal > 0.0 ? diagonal : 1.0;
   light.position = {lo[0] / 2 + hi[0] / 2, hi[1] + height, lo[2] / 2 + hi[2] / 2, 1.0};
   if (!std::isfinite(light.position[0]) || !std::isfinite(light.position[1]) || !std::isfinite(light.position[2]))
@@ -226,7 +227,7 @@ Vec3 max_normalised(const Vec3& v) {
 bool nearly_parallel(const Vec3& a, const Vec3& b) {
   const Vec3 u = max_normalised(a), v = max_normalised(b);
   const Vec3 c = cross(u, v);
-  return std::hypot(c[0], c[1], c[2]) <= 1e-12;
+  return portable::hypot(c[0], c[1], c[2]) <= 1e-12;
 }
 
 std::uint32_t read_image_side(const JsonField& field) {

@@ -21,7 +21,6 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -34,37 +33,16 @@
 #include "scene/merged_soup.h"
 #include "scene/procedural_mesh.h"
 #include "scene/scene_file.h"
+#include "support/bit_digest.h"
 #include "support/mesh_data.h"
 
 namespace {
 
 using namespace shadowcert;
 
-// FNV-1a over the bytes of every output, in a fixed order.
-class Digest {
- public:
-  template <typename T>
-  void add(const std::vector<T>& values) {
-    add_bytes(values.size());
-    for (const T& v : values) add_bytes(v);
-  }
-  [[nodiscard]] std::string hex() const {
-    std::ostringstream out;
-    out << std::hex << state_;
-    return out.str();
-  }
-
- private:
-  template <typename T>
-  void add_bytes(const T& value) {
-    const auto* bytes = reinterpret_cast<const unsigned char*>(&value);
-    for (std::size_t k = 0; k < sizeof(T); ++k) state_ = (state_ ^ bytes[k]) * 0x100000001b3ULL;
-  }
-  std::uint64_t state_ = 0xcbf29ce484222325ULL;
-};
-
+// Every output of the image, in a fixed order.
 std::string digest(const ExactImage& image) {
-  Digest d;
+  test::BitDigest d;
   d.add(std::vector<std::uint32_t>{image.width, image.height});
   d.add(image.hit_triangles);
   d.add(image.view_ambiguity);

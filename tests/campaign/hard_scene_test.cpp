@@ -19,6 +19,8 @@
 #include "core/pixel_ray.h"
 #include "core/vector3.h"
 #include "exact/light_orientation.h"
+#include "scene/merged_soup.h"
+#include "support/bit_digest.h"
 
 namespace shadowcert {
 namespace {
@@ -165,6 +167,19 @@ TEST(HardScene, EveryScene_PartsOverTheFloorALightCloseToOneAndAllInView) {
   EXPECT_GT(on_plane, 0u);
   EXPECT_GT(edge_on, 0u);
   EXPECT_EQ(light_counts.size(), 3u);  // one, two and three lights all occur
+}
+
+// A seed's hard scenes are the same bits on every machine (core/portable_math.h, not libm):
+// soups, lights, camera and its pixel-ray frame, pinned; also run with glibc's FMA variants off.
+TEST(HardScene, SeedThree_SameOnEveryMachine) {
+  test::BitDigest digest;
+  for (std::uint64_t index = 0; index < 12; ++index) {
+    const HardSceneCase hard = hard_scene_case(3, index, 128, 96);
+    digest.add(merged_soup(hard.scene));
+    for (const Light& light : hard.scene.lights) digest.add(light);
+    digest.add(hard.scene.camera);
+  }
+  EXPECT_EQ(digest.hex(), "5cdd1bc60ddf9a25");
 }
 
 }  // namespace

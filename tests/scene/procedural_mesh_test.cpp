@@ -13,6 +13,10 @@
 #include <utility>
 
 #include "scene/sphere_grid_layout.h"
+#include "scene/affine_transform.h"
+#include "scene/hard_soups.h"
+#include "scene/light_orbit.h"
+#include "support/bit_digest.h"
 
 using shadowcert::Soup;
 using shadowcert::cross;
@@ -104,6 +108,24 @@ template <typename F>
     return ::testing::AssertionFailure() << "message '" << e.what() << "' does not start with " << function;
   }
   return ::testing::AssertionFailure() << "no std::invalid_argument";
+}
+
+// Procedural meshes, rotations and light orbits are the same bits on every machine
+// (core/portable_math.h, not libm, whose sin/cos differ by CPU), pinned; also run with glibc's
+// FMA variants off.
+TEST(ProceduralMesh, EveryGenerator_SameOnEveryMachine) {
+  using namespace shadowcert;
+  test::BitDigest digest;
+  digest.add(uv_sphere({0.1, 0.2, 0.3}, 0.7, 33, 17));
+  digest.add(icosphere({0.0, 1.0, 0.0}, 1.3, 3));
+  digest.add(torus({0.0, 0.0, 0.0}, 1.0, 0.3, 40, 12));
+  digest.add(torus_knot({0.0, 0.0, 0.0}, 2, 3, 1.0, 0.4, 0.1, 96, 8));
+  digest.add(sphere_grid(20000));
+  digest.add(random_soup(5, 300, 2.0));
+  digest.add(half_fan(64));
+  digest.add(transformed(box({-1, -1, -1}, {1, 2, 3}), compose_trs({1, 2, 3}, {1, 0.5, 2}, {30, 47, -71})));
+  for (const Light& light : orbit_lights(LightOrbit{{0.5, 0.0, -0.5}, 3.0, 2.0, 1.25}, 37)) digest.add(light);
+  EXPECT_EQ(digest.hex(), "5e7973b0d204a7d0");
 }
 
 }  // namespace
