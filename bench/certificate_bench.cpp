@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/peak_memory.h"
 #include "exact/closure_certificate.h"
 #include "exact/count_certificate.h"
 #include "exact/edge_multiplicity.h"
@@ -33,6 +34,8 @@
 namespace {
 
 using namespace shadowcert;
+using bench::reset_peak_rss;
+using bench::rss_line_mib;
 
 // Above the grid (x, z in [-12.25, 12.25], spheres resting on y = 0) and off-axis, so that
 // shadows fall obliquely between the spheres and on the ground below.
@@ -43,19 +46,6 @@ double peak_rss_mib() {
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
   return static_cast<double>(usage.ru_maxrss) / 1024.0;  // Linux: kilobytes
-}
-
-// The resident set's high-water mark since the last reset_peak_rss (VmHWM of /proc/self/status),
-// so that one benchmark's peak is its own, not that of whatever ran before it in the process.
-void reset_peak_rss() {
-  std::ofstream clear("/proc/self/clear_refs");
-  clear << "5";  // Linux >= 4.0: resets the peak to the current resident set
-}
-double rss_line_mib(const std::string& key) {
-  std::ifstream status("/proc/self/status");
-  for (std::string line; std::getline(status, line);)
-    if (line.rfind(key, 0) == 0) return std::stod(line.substr(key.size())) / 1024.0;  // kB
-  return 0.0;
 }
 
 struct Prepared {

@@ -17,12 +17,14 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <map>
 #include <vector>
 
 #include <tbb/task_arena.h>
 
 #include <cstdio>
 
+#include "bench/peak_memory.h"
 #include "io/soup_file.h"
 #include "raytrace/ray_traced_image.h"
 #include "reference/exact_image.h"
@@ -186,6 +188,72 @@ void BM_ExactVsEmbree_SphereGrid100k(benchmark::State& state) {
 BENCHMARK(BM_ExactVsEmbree_SphereGrid100k)
     ->Args({1024, 768})
     ->ArgNames({"w", "h"})
+    ->Unit(benchmark::kSecond)
+    ->UseRealTime()
+    ->Iterations(1);
+
+
+// Issue 24's scaling table (docs/diff.md#scaling): Milet's sphere grid of 100K, 1M and 4M
+// triangles over the floor, at 1024x768 and 1920x1080, Embree (robust, corner rays) then the
+// exact image, one run each on the same scene, rays and threads, each stage's time and the peak
+// of the resident set it added (reset before each: bench/peak_memory.h).
+const BenchScene& sphere_grid_scene_of(std::int64_t triangles) {
+  static std::map<std::int64_t, BenchScene> scenes;
+  auto it = scenes.find(triangles);
+  if (it != scenes.end()) return it->second;
+  scenes.clear();  // one grid at a time: the 4M soup alone is 300 MB
+  BenchScene s = sphere_grid_scene();
+  s.soup = floor_quad(16.0);
+  s.soup.normals.clear();
+  append_soup(s.soup, sphere_grid(static_cast<std::uint64_t>(triangles)));
+  return scenes.emplace(triangles, std::move(s)).first->second;
+}
+
+void BM_ExactVsEmbree_Scaling(benchmark::State& state) {
+  const BenchScene& scene = sphere_grid_scene_of(state.range(0));
+  Camera camera = scene.camera;
+  camera.width = static_cast<std::uint32_t>(state.range(1));
+  camera.height = static_cast<std::uint32_t>(state.range(2));
+  const unsigned threads = static_cast<unsigned>(tbb::this_task_arena::max_concurrency());
+  raytrace::RayTracedImageOptions rt_options;
+  rt_options.mode = raytrace::BuildMode::robust;
+  rt_options.corner_rays = true;
+  rt_options.threads = threads;
+  double embree = 0.0, exact = 0.0, embree_peak = 0.0, exact_peak = 0.0;
+  for (auto _ : state) {
+    double before = bench::rss_line_mib("VmRSS:");
+    bench::reset_peak_rss();
+    {
+      const raytrace::RayTracedImage rt = raytrace::ray_traced_image(scene.soup, scene.lights, camera, rt_options);
+      embree = rt.stats.seconds;
+      embree_peak = bench::rss_line_mib("VmHWM:") - before;
+    }
+    before = bench::rss_line_mib("VmRSS:");
+    bench::reset_peak_rss();
+    const ExactImage image = exact_image(scene.soup, scene.lights, camera);
+    exact = image.stats.seconds;
+    exact_peak = bench::rss_line_mib("VmHWM:") - before;
+  }
+  state.counters["threads"] = threads;
+  state.counters["triangles"] = static_cast<double>(scene.soup.triangles.size());
+  state.counters["embree_s"] = embree;
+  state.counters["exact_s"] = exact;
+  state.counters["ratio"] = exact / embree;
+  state.counters["embree_peak_MiB"] = embree_peak;
+  state.counters["exact_peak_MiB"] = exact_peak;
+  std::printf("scaling: sphere grid %zu triangles %ux%u, %u threads: exact %.3f s, %.0f MiB; Embree robust %.3f s, "
+              "%.0f MiB; exact/Embree %.2f\n",
+              scene.soup.triangles.size(), camera.width, camera.height, threads, exact, exact_peak, embree, embree_peak,
+              exact / embree);
+}
+BENCHMARK(BM_ExactVsEmbree_Scaling)
+    ->Args({100'000, 1024, 768})
+    ->Args({100'000, 1920, 1080})
+    ->Args({1'000'000, 1024, 768})
+    ->Args({1'000'000, 1920, 1080})
+    ->Args({4'000'000, 1024, 768})
+    ->Args({4'000'000, 1920, 1080})
+    ->ArgNames({"triangles", "w", "h"})
     ->Unit(benchmark::kSecond)
     ->UseRealTime()
     ->Iterations(1);
