@@ -21,6 +21,7 @@ PACKAGES=(
   libegl-dev libepoxy-dev libpng-dev libglm-dev libgl1-mesa-dri libegl-mesa0
   python3-matplotlib chromium   # shadowcert bench's plots (tools/bench_plots.py), its report's browser test
   libembree-dev                 # the float ray tracer peer `rt` (docs/ray-tracing.md)
+  pybind11-dev python3-numpy python3-pytest   # `import shadowcert` (python/, docs/python.md) and its tests
   slurm-wlm munge               # the real single-node Slurm job array test (tools/slurm.sh, docs/batch-runs.md)
 )
 

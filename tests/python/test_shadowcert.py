@@ -1,0 +1,219 @@
+"""`import shadowcert` (python/, docs/python.md) against the CLI and against counts worked out by hand.
+
+Run by ctest (`python_module`, label python) with PYTHONPATH at the module's build folder and
+SHADOWCERT_CLI, SHADOWCERT_SOURCE_DIR and SHADOWCERT_TEST_DATA set (tests/CMakeLists.txt).
+"""
+import json
+import os
+import subprocess
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import shadowcert
+
+SOURCE = Path(os.environ.get("SHADOWCERT_SOURCE_DIR", Path(__file__).resolve().parents[2]))
+TEST_DATA = Path(os.environ.get("SHADOWCERT_TEST_DATA", SOURCE / "tests" / "data"))
+CLI = os.environ.get("SHADOWCERT_CLI")
+
+CUBE = TEST_DATA / "good" / "cube_quads.off"
+MESHES = [
+    CUBE,
+    SOURCE / "data" / "meshes" / "edge_cases" / "trimesh_shared.STL",
+    SOURCE / "data" / "meshes" / "edge_cases" / "trimesh_multibody.stl",
+    SOURCE / "data" / "meshes" / "closed_manifold" / "thingi10k_65004.stl",
+]
+
+
+def cli_certify(mesh, light, tmp_path, *options):
+    if not CLI:
+        pytest.fail("SHADOWCERT_CLI is not set (ctest sets it to build/cli/shadowcert)")
+    out = tmp_path / "certify.json"
+    light_text = ",".join(repr(float(x)) for x in light)
+    run = subprocess.run([CLI, "certify", str(mesh), "--light", light_text, "--json", str(out), *options],
+                         capture_output=True, text=True, timeout=300)
+    assert run.returncode == 0, run.stdout + run.stderr
+    return json.loads(out.read_text())
+
+
+def without_timings(value):
+    """The report less what differs run to run: seconds and the input's name."""
+    if isinstance(value, dict):
+        return {k: without_timings(v) for k, v in value.items()
+                if k not in ("seconds", "stage_seconds", "input")}
+    if isinstance(value, list):
+        return [without_timings(v) for v in value]
+    return value
+
+
+def test_read_soup_shapes_and_dtypes():
+    vertices, triangles = shadowcert.read_soup(str(CUBE))
+    assert vertices.dtype == np.float64 and vertices.ndim == 2 and vertices.shape[1] == 3
+    assert triangles.dtype == np.uint32 and triangles.ndim == 2 and triangles.shape[1] == 3
+    assert triangles.shape[0] == 12  # six quads, fan-triangulated
+    assert triangles.max() < vertices.shape[0]
+    assert np.all(np.isfinite(vertices))
+
+
+def test_read_soup_bad_file_is_value_error(tmp_path):
+    with pytest.raises(ValueError, match="missing.off"):
+        shadowcert.read_soup(str(tmp_path / "missing.off"))
+    bad = tmp_path / "bad.off"
+    bad.write_text("OFF\n3 1 0\n0 0 0\n1 0 0\nnan 1 0\n3 0 1 2\n")
+    with pytest.raises(ValueError, match="bad.off"):
+        shadowcert.read_soup(str(bad))
+
+
+@pytest.mark.parametrize("mesh", MESHES, ids=lambda p: p.name)
+@pytest.mark.parametrize("light", [(1.5, 7.0, 2.5, 1.0), (0.3, 1.0, -0.2, 0.0)], ids=["point", "directional"])
+def test_certify_equals_the_cli(mesh, light, tmp_path):
+    expected = cli_certify(mesh, light, tmp_path, "--samples", "400", "--seed", "3")
+    vertices, triangles = shadowcert.read_soup(str(mesh))
+    got = shadowcert.certify(vertices, triangles, light, samples=400, seed=3)
+    assert set(got) == set(expected)
+    assert set(got["methods"]) == {"exact", "kim", "peciva", "refedge"}
+    assert without_timings(got) == without_timings(expected)
+    assert got["methods"]["exact"]["closed"] is True
+    assert got["methods"]["exact"]["count_failures"] == 0
+
+
+def test_certify_one_method_double_precision_equals_the_cli(tmp_path):
+    light = (1.0, 2.0, 3.0, 0.0)
+    expected = cli_certify(CUBE, light, tmp_path, "--method", "refedge", "--precision", "double", "--samples", "100")
+    vertices, triangles = shadowcert.read_soup(str(CUBE))
+    got = shadowcert.certify(vertices, triangles, light, method="refedge", precision="double", samples=100)
+    assert list(got["methods"]) == ["refedge"]
+    assert without_timings(got) == without_timings(expected)
+
+
+def test_certify_accepts_other_integer_and_float_dtypes():
+    vertices, triangles = shadowcert.read_soup(str(CUBE))
+    a = shadowcert.certify(vertices, triangles, (1, 5, 2, 1), method="exact", samples=50)
+    b = shadowcert.certify(vertices.astype(np.float32).astype(np.float64).tolist(),
+                           triangles.astype(np.int64), (1, 5, 2, 1), method="exact", samples=50)
+    assert without_timings(a) == without_timings(b)
+
+
+def quad_soup():
+    """A floor quad at y = 0 (two triangles, facing up) and one triangle at y = 1 above it."""
+    vertices = np.array([[-4, 0, -4], [4, 0, -4], [4, 0, 4], [-4, 0, 4],
+                         [-1, 1, -1], [1, 1, -1], [0, 1, 1]], dtype=np.float64)
+    triangles = np.array([[0, 2, 1], [0, 3, 2], [4, 6, 5]], dtype=np.uint32)
+    return vertices, triangles
+
+
+def pixel_rays(eye, target, size, fov_y=45.0):
+    """core/pixel_ray.h's rays through the pixel centres, (h, w, 3) directions, up = +y."""
+    eye, target = np.asarray(eye, float), np.asarray(target, float)
+    width, height = size
+    forward = (target - eye) / np.linalg.norm(target - eye)
+    right = np.cross(forward, [0.0, 1.0, 0.0])
+    right /= np.linalg.norm(right)
+    up = np.cross(right, forward)
+    half_height = np.tan(np.radians(fov_y) / 2)
+    half_width = half_height * width / height
+    x = np.arange(width) + 0.5
+    y = np.arange(height) + 0.5
+    a = (2 * x / width - 1) * half_width
+    b = (1 - 2 * y / height) * half_height
+    return forward + a[None, :, None] * right + b[:, None, None] * up
+
+
+def inside_xz(points, corners):
+    """Strictly inside the triangle `corners` (x, z) with a margin, and strictly outside with a margin."""
+    signs = []
+    for k in range(3):
+        a, b = corners[k], corners[(k + 1) % 3]
+        signs.append((b[0] - a[0]) * (points[..., 1] - a[1]) - (b[1] - a[1]) * (points[..., 0] - a[0]))
+    signs = np.stack(signs)
+    inside = np.all(signs > 1e-3, axis=0) | np.all(signs < -1e-3, axis=0)
+    clear = np.all(np.abs(signs) > 1e-3, axis=0)
+    return inside, clear
+
+
+def test_exact_image_counts_match_the_shadow_worked_out_by_hand():
+    vertices, triangles = quad_soup()
+    light = np.array([[3.0, 4.0, 0.0, 1.0]])  # off to the side: the shadow falls beside the occluder
+    eye, target, size = [0.0, 6.0, 8.0], [0.0, 0.0, 0.0], (96, 64)
+    image = shadowcert.exact_image(vertices, triangles, light, {"eye": eye, "target": target, "size": list(size)})
+    counts, lit, ambiguity, hits = image["counts"], image["lit"], image["ambiguity"], image["hit_triangles"]
+    assert counts.shape == (1, 64, 96) and counts.dtype == np.uint32
+    assert lit.shape == (1, 64, 96) and lit.dtype == np.uint8
+    assert ambiguity.shape == (1, 64, 96) and ambiguity.dtype == np.uint8
+    assert hits.shape == (64, 96) and hits.dtype == np.uint32
+    # Each centre ray by hand: where it meets the occluder's plane y = 1 and the floor y = 0.
+    d = pixel_rays(eye, target, size)
+    e = np.asarray(eye)
+    on_occluder = e[[0, 2]] + d[..., [0, 2]] * ((1.0 - e[1]) / d[..., 1])[..., None]
+    on_floor = e[[0, 2]] + d[..., [0, 2]] * ((0.0 - e[1]) / d[..., 1])[..., None]
+    hits_occluder, clear_occluder = inside_xz(on_occluder, vertices[4:7][:, [0, 2]])
+    floor_inside = np.all(np.abs(on_floor) < 4 - 1e-3, axis=-1)
+    # The floor point's segment to the light (3, 4, 0) crosses y = 1 at 1/4 of the way.
+    crossing = light[0, [0, 2]] + (on_floor - light[0, [0, 2]]) * 0.75
+    shadowed, clear_shadow = inside_xz(crossing, vertices[4:7][:, [0, 2]])
+    decided = (ambiguity[0] == 0) & clear_occluder & clear_shadow
+    assert np.all(hits[decided & hits_occluder] == 2)
+    floor = decided & ~hits_occluder & floor_inside
+    assert np.all(np.isin(hits[floor], [0, 1]))
+    assert floor.sum() > 1000 and (floor & shadowed).sum() > 50
+    assert np.array_equal(counts[0][floor], shadowed[floor].astype(np.uint32))
+    assert np.array_equal(lit[0][floor] == 255, ~shadowed[floor])
+    assert np.all(counts[0][decided & hits_occluder] == 0)  # lit from above
+    missed = decided & ~hits_occluder & ~np.all(np.abs(on_floor) < 4 + 1e-3, axis=-1)
+    missed |= decided & (d[..., 1] >= 0)
+    assert np.all(hits[missed] == shadowcert.NO_HIT)
+    assert np.all(counts[0][missed] == shadowcert.NO_HIT)
+
+
+def test_exact_image_several_lights_and_the_same_answer_per_light():
+    vertices, triangles = quad_soup()
+    lights = np.array([[0.0, 4.0, 0.0, 1.0], [0.2, 1.0, 0.1, 0.0]])
+    both = shadowcert.exact_image(vertices, triangles, lights, eye=[0, 6, 8], target=[0, 0, 0], size=(24, 16))
+    for k in range(2):
+        one = shadowcert.exact_image(vertices, triangles, lights[k], eye=[0, 6, 8], target=[0, 0, 0], size=(24, 16))
+        assert np.array_equal(both["counts"][k], one["counts"][0])
+        assert np.array_equal(both["ambiguity"][k], one["ambiguity"][0])
+
+
+BAD_ARRAYS = [
+    ("wrong vertex shape", lambda v, t: (v[:, :2], t), "vertices must be an \\(n, 3\\) array"),
+    ("wrong triangle shape", lambda v, t: (v, t.reshape(-1)), "triangles must be an \\(m, 3\\) array"),
+    ("float triangles", lambda v, t: (v, t.astype(np.float64)), "triangles must be an integer array"),
+    ("string vertices", lambda v, t: (v.astype(str), t), "vertices must be a float array"),
+    ("NaN", lambda v, t: (np.where(np.arange(v.size).reshape(v.shape) == 4, np.nan, v), t),
+     "vertex 1 has a non-finite coordinate"),
+    ("inf", lambda v, t: (np.where(np.arange(v.size).reshape(v.shape) == 0, np.inf, v), t),
+     "vertex 0 has a non-finite coordinate"),
+    ("index out of range", lambda v, t: (v, np.where(t == t.max(), v.shape[0], t)),
+     "triangle \\d+ has vertex index 8, but the soup has 8 vertices"),
+    ("negative index", lambda v, t: (v, t.astype(np.int64) - 1), "triangle 0 has vertex index -1, but the soup has 8 vertices"),
+]
+
+
+@pytest.mark.parametrize("name,spoil,message", BAD_ARRAYS, ids=[b[0] for b in BAD_ARRAYS])
+def test_bad_arrays_raise_value_error(name, spoil, message):
+    vertices, triangles = shadowcert.read_soup(str(CUBE))
+    v, t = spoil(vertices, triangles)
+    with pytest.raises(ValueError, match="certify: " + message):
+        shadowcert.certify(v, t, (1, 5, 2, 1))
+    with pytest.raises(ValueError, match="exact_image: " + message):
+        shadowcert.exact_image(v, t, [1, 5, 2, 1], eye=[3, 4, 5], target=[0, 0, 0], size=(8, 8))
+
+
+def test_bad_lights_methods_and_cameras_raise_value_error():
+    vertices, triangles = shadowcert.read_soup(str(CUBE))
+    with pytest.raises(ValueError, match="certify: the light needs finite coordinates and w = 0 or w = 1"):
+        shadowcert.certify(vertices, triangles, (1, 2, 3, 0.5))
+    with pytest.raises(ValueError, match="certify: a directional light needs a nonzero direction"):
+        shadowcert.certify(vertices, triangles, (0, 0, 0, 0))
+    with pytest.raises(ValueError, match="certify: a light is four numbers"):
+        shadowcert.certify(vertices, triangles, (1, 2, 3))
+    with pytest.raises(ValueError, match="unknown method 'magic'"):
+        shadowcert.certify(vertices, triangles, (1, 5, 2, 1), method="magic")
+    with pytest.raises(ValueError, match="exact_image: lights must be"):
+        shadowcert.exact_image(vertices, triangles, [[1, 2, 3]], eye=[3, 4, 5], target=[0, 0, 0], size=(8, 8))
+    with pytest.raises(ValueError, match="exact_image"):  # eye == target: a degenerate camera
+        shadowcert.exact_image(vertices, triangles, [1, 5, 2, 1], eye=[0, 0, 0], target=[0, 0, 0], size=(8, 8))
+    with pytest.raises(ValueError, match="image sides"):
+        shadowcert.exact_image(vertices, triangles, [1, 5, 2, 1], eye=[3, 4, 5], target=[0, 0, 0], size=(0, 8))
