@@ -14,6 +14,11 @@ def read_soup(path: str) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.uint32
     Raises ValueError with the reader's message on bad input."""
     ...
 
+def read_scene(path: str) -> dict[str, Any]:
+    """A scene (.json) or a mesh file as `shadowcert certify` reads it: vertices, triangles, casts
+    (uint8 per triangle), caster_vertices, caster_triangles, lights (k, 4) and camera (a dict)."""
+    ...
+
 def certify(
     vertices: ArrayLike,
     triangles: ArrayLike,

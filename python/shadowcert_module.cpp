@@ -26,10 +26,12 @@
 #include "exact/count_certificate.h"
 #include "exact/edge_multiplicity.h"
 #include "exact/shadow_volume_chain.h"
+#include "io/scene_input.h"
 #include "io/soup_file.h"
 #include "reference/exact_image.h"
 #include "scene/canonical_soup.h"
 #include "scene/edge_table.h"
+#include "scene/merged_soup.h"
 
 namespace py = pybind11;
 
@@ -99,12 +101,18 @@ Light light_from(const std::vector<double>& values, const char* function) {
 
 // ---- read_soup ----
 
+py::tuple soup_to_numpy(Soup&& soup);
+
 py::tuple read_soup_py(const std::string& path) {
   Soup soup;
   {
     py::gil_scoped_release release;
     soup = read_soup(path);
   }
+  return soup_to_numpy(std::move(soup));
+}
+
+py::tuple soup_to_numpy(Soup&& soup) {
   std::vector<double> v;
   v.reserve(3 * soup.vertices.size());
   for (const Vec3& p : soup.vertices) v.insert(v.end(), p.begin(), p.end());
@@ -114,6 +122,43 @@ py::tuple read_soup_py(const std::string& path) {
   const auto n = static_cast<py::ssize_t>(soup.vertices.size());
   const auto m = static_cast<py::ssize_t>(soup.triangles.size());
   return py::make_tuple(to_numpy(std::move(v), {n, 3}), to_numpy(std::move(t), {m, 3}));
+}
+
+// ---- read_scene: a scene file (or a mesh, as certify reads it: io/scene_input.h) ----
+
+py::dict read_scene_py(const std::string& path) {
+  Scene scene;
+  Soup all, casters;
+  std::vector<std::uint8_t> casts;
+  {
+    py::gil_scoped_release release;
+    scene = load_scene_or_mesh(path);
+    all = merged_soup(scene);
+    casters = merged_casters(scene);
+    casts = casting_triangles(scene);
+  }
+  py::dict out;
+  const py::tuple soup = soup_to_numpy(std::move(all));
+  out["vertices"] = soup[0];
+  out["triangles"] = soup[1];
+  const auto m = static_cast<py::ssize_t>(casts.size());
+  out["casts"] = to_numpy(std::move(casts), {m});
+  const py::tuple caster_soup = soup_to_numpy(std::move(casters));
+  out["caster_vertices"] = caster_soup[0];
+  out["caster_triangles"] = caster_soup[1];
+  std::vector<double> lights;
+  for (const Light& l : scene.lights) lights.insert(lights.end(), l.position.begin(), l.position.end());
+  const auto k = static_cast<py::ssize_t>(scene.lights.size());
+  out["lights"] = to_numpy(std::move(lights), {k, 4});
+  py::dict camera;
+  camera["eye"] = scene.camera.eye;
+  camera["target"] = scene.camera.target;
+  camera["up"] = scene.camera.up;
+  camera["fov_y"] = scene.camera.fov_y_degrees;
+  camera["near"] = scene.camera.near_plane;
+  camera["size"] = std::vector<std::uint32_t>{scene.camera.width, scene.camera.height};
+  out["camera"] = camera;
+  return out;
 }
 
 // ---- certify: the same stages and the same JSON as `shadowcert certify --json` (cli/certify_command.cpp) ----
@@ -372,6 +417,14 @@ PYBIND11_MODULE(shadowcert, m) {
         "Reads a mesh file (.obj .off .ply .stl; polygons fan-triangulated) as the CLI does.\n"
         "Returns vertices, float64 of shape (n, 3), and triangles, uint32 of shape (m, 3).\n"
         "Raises ValueError with the reader's message (FILE:LINE: ...) on bad input.");
+  m.def("read_scene", &read_scene_py, py::arg("path"),
+        "read_scene(path) -> dict\n\n"
+        "Reads a scene (.json, docs/scene-format.md) or a mesh file as `shadowcert certify` does (a\n"
+        "mesh gets core/scene.h's default light and camera). Returns a dict: vertices float64 (n, 3)\n"
+        "and triangles uint32 (m, 3) of every mesh, casts uint8 (m,) (0: the mesh only receives,\n"
+        "exact_image's casts=), caster_vertices and caster_triangles (the casting meshes alone,\n"
+        "what certify takes), lights float64 (k, 4) and camera (a dict exact_image takes).\n"
+        "Raises ValueError with the reader's message on bad input.");
   m.def("certify", &certify_py, py::arg("vertices"), py::arg("triangles"), py::arg("light"),
         py::arg("method") = "all", py::arg("precision") = "float", py::arg("samples") = 2000,
         py::arg("seed") = 1, py::arg("points") = py::none(),

@@ -217,3 +217,50 @@ def test_bad_lights_methods_and_cameras_raise_value_error():
         shadowcert.exact_image(vertices, triangles, [1, 5, 2, 1], eye=[0, 0, 0], target=[0, 0, 0], size=(8, 8))
     with pytest.raises(ValueError, match="image sides"):
         shadowcert.exact_image(vertices, triangles, [1, 5, 2, 1], eye=[3, 4, 5], target=[0, 0, 0], size=(0, 8))
+
+
+SCENES = [SOURCE / "data" / "scenes" / "default.json", SOURCE / "data" / "scenes" / "noncasting_floor.json"]
+
+
+@pytest.mark.parametrize("scene_file", SCENES, ids=lambda p: p.name)
+def test_certify_of_a_scene_equals_the_cli(scene_file, tmp_path):
+    scene = shadowcert.read_scene(str(scene_file))
+    light = scene["lights"][0]
+    expected = cli_certify(scene_file, light, tmp_path, "--samples", "400")
+    got = shadowcert.certify(scene["caster_vertices"], scene["caster_triangles"], light, samples=400)
+    assert without_timings(got) == without_timings(expected)
+    assert got["triangles"] == int(scene["casts"].sum())
+
+
+def test_read_scene_and_receiving_meshes_are_never_counted():
+    scene = shadowcert.read_scene(str(SOURCE / "data" / "scenes" / "noncasting_floor.json"))
+    vertices, triangles, casts = scene["vertices"], scene["triangles"], scene["casts"]
+    assert casts.dtype == np.uint8 and casts.shape == (triangles.shape[0],)
+    assert 0 < casts.sum() < casts.size  # the floor and the pane only receive
+    assert scene["lights"].shape[1] == 4 and scene["camera"]["size"][0] > 0
+    camera = dict(scene["camera"], size=[64, 48])
+    receiving = shadowcert.exact_image(vertices, triangles, scene["lights"], camera, casts=casts)
+    everything = shadowcert.exact_image(vertices, triangles, scene["lights"], camera)
+    assert np.array_equal(receiving["hit_triangles"], everything["hit_triangles"])  # every mesh is seen
+    both = (receiving["counts"] < shadowcert.UNDEFINED_COUNT) & (everything["counts"] < shadowcert.UNDEFINED_COUNT)
+    assert both.sum() > 1000
+    assert np.all(receiving["counts"][both] <= everything["counts"][both])
+    assert np.any(receiving["counts"][both] < everything["counts"][both])
+    with pytest.raises(ValueError, match="exact_image"):
+        shadowcert.exact_image(vertices, triangles, scene["lights"], camera, casts=casts[:-1])
+
+
+def test_the_walk_through_of_docs_python_md_runs(tmp_path):
+    """docs/python.md's example, as written, with matplotlib drawing to a file."""
+    matplotlib = pytest.importorskip("matplotlib")
+    matplotlib.use("Agg")
+    import re
+    code = re.findall(r"```python\n(.*?)```", (SOURCE / "docs" / "python.md").read_text(), re.S)[0]
+    code = code.replace("plt.show()", f"plt.savefig({str(tmp_path / 'walk.png')!r})")
+    cwd = os.getcwd()
+    os.chdir(SOURCE)
+    try:
+        exec(compile(code, "docs/python.md", "exec"), {})
+    finally:
+        os.chdir(cwd)
+    assert (tmp_path / "walk.png").stat().st_size > 1000
