@@ -264,3 +264,37 @@ def test_the_walk_through_of_docs_python_md_runs(tmp_path):
     finally:
         os.chdir(cwd)
     assert (tmp_path / "walk.png").stat().st_size > 1000
+
+
+ODD_INPUTS = [
+    ("None", None, None, "vertices must be an \\(n, 3\\) array"),
+    ("scalars", 1.0, 2, "vertices must be an \\(n, 3\\) array"),
+    ("3-d", np.zeros((2, 3, 3)), np.zeros((1, 3), np.uint32), "vertices must be an \\(n, 3\\) array"),
+    ("objects", np.array([[object()] * 3]), np.zeros((1, 3), np.uint32), "vertices must be a float array"),
+    ("bool triangles", np.zeros((3, 3)), np.zeros((1, 3), bool), "triangles must be an integer array"),
+    ("ragged", [[0, 0, 0], [1, 0]], [[0, 1, 2]], None),
+]
+
+
+@pytest.mark.parametrize("name,vertices,triangles,message", ODD_INPUTS, ids=[o[0] for o in ODD_INPUTS])
+def test_odd_inputs_raise_value_error_never_crash(name, vertices, triangles, message):
+    with pytest.raises(ValueError, match=message):
+        shadowcert.certify(vertices, triangles, (1, 5, 2, 1))
+    with pytest.raises(ValueError, match=message):
+        shadowcert.exact_image(vertices, triangles, [1, 5, 2, 1], eye=[3, 4, 5], target=[0, 0, 0], size=(8, 8))
+
+
+def test_empty_and_strided_inputs():
+    empty_v, empty_t = np.zeros((0, 3)), np.zeros((0, 3), np.uint32)
+    with pytest.raises(ValueError, match="certify: no casting triangle to certify"):
+        shadowcert.certify(empty_v, empty_t, (1, 5, 2, 1))
+    nothing = shadowcert.exact_image(empty_v, empty_t, [1, 5, 2, 1], eye=[3, 4, 5], target=[0, 0, 0], size=(8, 6))
+    assert nothing["counts"].shape == (1, 6, 8) and np.all(nothing["counts"] == shadowcert.NO_HIT)
+    # Fortran order, a strided view and a wider integer type give the same answers as the plain arrays.
+    vertices, triangles = shadowcert.read_soup(str(CUBE))
+    plain = shadowcert.certify(vertices, triangles, (1, 5, 2, 1), method="exact", samples=50)
+    wide = np.zeros((vertices.shape[0], 6))
+    wide[:, ::2] = vertices
+    odd = shadowcert.certify(wide[:, ::2], np.asfortranarray(triangles.astype(np.uint64)), (1, 5, 2, 1),
+                             method="exact", samples=50)
+    assert without_timings(plain) == without_timings(odd)
