@@ -245,12 +245,16 @@ std::vector<MultiplicityMethod> chosen_methods(const std::string& name) {
   }
 }
 
-std::vector<Vec3> points_from(const std::optional<py::array>& points) {
+std::vector<Vec3> points_from(const py::object& points_object) {
   std::vector<Vec3> out;
-  if (!points) return out;
-  if (points->ndim() != 2 || points->shape(1) != 3)
-    value_error("certify: points must be an (k, 3) array, got shape " + std::string(py::str(points->attr("shape"))));
-  const auto p = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(*points);
+  if (points_object.is_none()) return out;
+  const py::array points = py::module_::import("numpy").attr("asarray")(points_object);
+  if (points.ndim() != 2 || points.shape(1) != 3)
+    value_error("certify: points must be a (k, 3) array, got shape " + std::string(py::str(points.attr("shape"))));
+  const char kind = points.dtype().kind();
+  if (kind != 'f' && kind != 'i' && kind != 'u')
+    value_error("certify: points must be a float array, got dtype " + std::string(py::str(points.dtype())));
+  const auto p = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(points);
   for (py::ssize_t i = 0; i < p.shape(0); ++i) {
     const Vec3 q{p.at(i, 0), p.at(i, 1), p.at(i, 2)};
     for (double x : q)
@@ -262,7 +266,7 @@ std::vector<Vec3> points_from(const std::optional<py::array>& points) {
 
 py::object certify_py(const py::object& vertices, const py::object& triangles, const std::vector<double>& light_values,
                       const std::string& method, const std::string& precision_name, std::uint64_t samples,
-                      std::uint64_t seed, const std::optional<py::array>& points) {
+                      std::uint64_t seed, const py::object& points) {
   const auto start = Clock::now();
   const Soup input = soup_from_arrays(vertices, triangles, "certify");
   const Light light = light_from(light_values, "certify");
@@ -342,7 +346,7 @@ Camera camera_from(const py::dict& camera) {
 py::dict exact_image_py(const py::object& vertices, const py::object& triangles, const py::object& lights_object,
                         const std::optional<py::dict>& camera_dict, const std::optional<std::vector<double>>& eye,
                         const std::optional<std::vector<double>>& target, const std::optional<std::vector<std::int64_t>>& size,
-                        const std::optional<py::array>& casts, bool footprints) {
+                        const py::object& casts, bool footprints) {
   const Soup soup = soup_from_arrays(vertices, triangles, "exact_image");
   const auto light_rows = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(lights_object);
   const bool one = light_rows && light_rows.ndim() == 1 && light_rows.shape(0) == 4;
@@ -362,8 +366,9 @@ py::dict exact_image_py(const py::object& vertices, const py::object& triangles,
   const Camera camera = camera_from(given);
   ExactImageOptions options;
   options.footprints = footprints;
-  if (casts) {
-    const auto c = py::array_t<std::uint8_t, py::array::c_style | py::array::forcecast>::ensure(*casts);
+  if (!casts.is_none()) {
+    const auto c = py::array_t<std::uint8_t, py::array::c_style | py::array::forcecast>::ensure(
+        py::module_::import("numpy").attr("asarray")(casts));
     if (!c || c.ndim() != 1) value_error("exact_image: casts must be a 1-D array of one flag per triangle");
     options.casts.assign(c.data(), c.data() + c.shape(0));
   }

@@ -298,3 +298,32 @@ def test_empty_and_strided_inputs():
     odd = shadowcert.certify(wide[:, ::2], np.asfortranarray(triangles.astype(np.uint64)), (1, 5, 2, 1),
                              method="exact", samples=50)
     assert without_timings(plain) == without_timings(odd)
+
+
+def test_certify_with_user_points_equals_the_cli(tmp_path):
+    points = np.array([[0.3, 0.2, 0.1], [2.0, 3.0, 0.5], [0.375, 0.375, 0.375], [-1.0, 0.5, 4.0]])
+    points_file = tmp_path / "points.txt"
+    points_file.write_text("".join(f"{x!r} {y!r} {z!r}\n" for x, y, z in points))
+    light = (10.0, 0.5, 0.5, 1.0)
+    expected = cli_certify(CUBE, light, tmp_path, "--method", "exact", "--samples", "0", "--points", str(points_file))
+    vertices, triangles = shadowcert.read_soup(str(CUBE))
+    got = shadowcert.certify(vertices, triangles, light, method="exact", samples=0, points=points)
+    assert got["user_points"] == 4
+    assert without_timings(got) == without_timings(expected)
+    with pytest.raises(ValueError, match="certify: point 1 has a non-finite coordinate"):
+        shadowcert.certify(vertices, triangles, light, points=[[0, 0, 0], [np.nan, 0, 0]])
+
+
+def test_threads_get_the_same_images_while_the_gil_is_released():
+    from concurrent.futures import ThreadPoolExecutor
+    vertices, triangles = quad_soup()
+    lights = [[3.0, 4.0, 0.0, 1.0], [0.0, 4.0, 1.0, 1.0], [0.2, 1.0, 0.1, 0.0], [-2.0, 3.0, 2.0, 1.0]]
+
+    def image(light):
+        return shadowcert.exact_image(vertices, triangles, light, eye=[0, 6, 8], target=[0, 0, 0], size=(64, 48))
+
+    alone = [image(light) for light in lights]
+    with ThreadPoolExecutor(4) as pool:
+        together = list(pool.map(image, lights))
+    for a, b in zip(alone, together):
+        assert np.array_equal(a["counts"], b["counts"]) and np.array_equal(a["ambiguity"], b["ambiguity"])
