@@ -327,3 +327,23 @@ def test_threads_get_the_same_images_while_the_gil_is_released():
         together = list(pool.map(image, lights))
     for a, b in zip(alone, together):
         assert np.array_equal(a["counts"], b["counts"]) and np.array_equal(a["ambiguity"], b["ambiguity"])
+
+
+def test_the_stub_names_every_function_with_its_parameters():
+    """python/shadowcert.pyi (installed beside the module) against the module itself."""
+    import ast
+    import inspect
+    stub = ast.parse((SOURCE / "python" / "shadowcert.pyi").read_text())
+    stubbed = {f.name: f for f in stub.body if isinstance(f, ast.FunctionDef)}
+    public = {name for name, value in vars(shadowcert).items() if callable(value) and not name.startswith("_")}
+    assert set(stubbed) == public
+    for name, function in stubbed.items():
+        doc = getattr(shadowcert, name).__doc__
+        stub_parameters = [a.arg for a in function.args.args + function.args.kwonlyargs]
+        signature = doc.splitlines()[0]  # pybind11's: name(a: type, b: type = default, *, c: ...) -> ...
+        module_parameters = [p.split(":")[0].strip() for p in signature[signature.index("(") + 1:signature.rindex(")")].split(", ")
+                             if p.strip() and p.strip() != "*"]
+        assert stub_parameters == module_parameters, name
+        assert len(doc.splitlines()) > 3, f"{name} has no docstring of its own"
+    installed = Path(shadowcert.__file__).with_name("shadowcert.pyi")
+    assert installed.read_text() == (SOURCE / "python" / "shadowcert.pyi").read_text()
