@@ -34,9 +34,10 @@ struct PixelCase {
   std::size_t light = 0;
 };
 
-std::vector<PixelCase> pixel_cases() {
+// Every pixel named by a NAME.pixels file of tests/regressions/FOLDER.
+std::vector<PixelCase> pixel_cases(const char* folder_name) {
   std::vector<PixelCase> cases;
-  const std::filesystem::path folder = std::filesystem::path(SHADOWCERT_SOURCE_DIR) / "tests" / "regressions" / "gl";
+  const std::filesystem::path folder = std::filesystem::path(SHADOWCERT_SOURCE_DIR) / "tests" / "regressions" / folder_name;
   std::vector<std::filesystem::path> files;
   for (const auto& entry : std::filesystem::directory_iterator(folder))
     if (entry.path().extension() == ".pixels") files.push_back(entry.path());
@@ -56,8 +57,7 @@ std::vector<PixelCase> pixel_cases() {
   return cases;
 }
 
-TEST_F(GlPixelRegressionsTest, EveryRecordedPixel_EveryRobustMethodAgreesAtTheScenesSize) {
-  const std::vector<PixelCase> cases = pixel_cases();
+void expect_every_robust_method_agrees(const std::vector<PixelCase>& cases) {
   ASSERT_GE(cases.size(), 1u);
   for (const PixelCase& c : cases) {
     const Scene scene = load_scene_or_mesh(c.scene);
@@ -76,6 +76,20 @@ TEST_F(GlPixelRegressionsTest, EveryRecordedPixel_EveryRobustMethodAgreesAtTheSc
       EXPECT_EQ(run.comparison.agree, 1u);  // compared: the pixel is unambiguous
     }
   }
+}
+
+TEST_F(GlPixelRegressionsTest, EveryRecordedPixel_EveryRobustMethodAgreesAtTheScenesSize) {
+  expect_every_robust_method_agrees(pixel_cases("gl"));
+}
+
+// OPEN DEFECT (docs/campaign.md#issue-27-pertris-reversed-pairs, found 2026-12-05): the hard-soup
+// campaign at 1920x1080 (seed 2, cases 7 and 9 of 40) found one unambiguous pixel each, exact
+// count 0 (lit), that cpu, cs, gs, ts and pertri all draw in shadow; every volume closed and
+// counted right elsewhere; shrunk to the floor and 2 casting triangles, at the edge of a region of
+// ambiguous pixels. Disabled until the cause is found (tests/regressions/gl_open/); run it with
+// --gtest_also_run_disabled_tests. When it passes, move the files to tests/regressions/gl/.
+TEST_F(GlPixelRegressionsTest, DISABLED_OpenDefects_EveryRobustMethodAgreesAtTheScenesSize) {
+  expect_every_robust_method_agrees(pixel_cases("gl_open"));
 }
 
 }  // namespace
