@@ -221,15 +221,15 @@ void BM_ExactVsEmbree_Scaling(benchmark::State& state) {
   rt_options.threads = threads;
   double embree = 0.0, exact = 0.0, embree_peak = 0.0, exact_peak = 0.0;
   for (auto _ : state) {
-    double before = bench::rss_line_mib("VmRSS:");
     bench::reset_peak_rss();
+    double before = bench::rss_line_mib("VmRSS:");
     {
       const raytrace::RayTracedImage rt = raytrace::ray_traced_image(scene.soup, scene.lights, camera, rt_options);
       embree = rt.stats.seconds;
       embree_peak = bench::rss_line_mib("VmHWM:") - before;
     }
-    before = bench::rss_line_mib("VmRSS:");
     bench::reset_peak_rss();
+    before = bench::rss_line_mib("VmRSS:");
     const ExactImage image = exact_image(scene.soup, scene.lights, camera);
     exact = image.stats.seconds;
     exact_peak = bench::rss_line_mib("VmHWM:") - before;

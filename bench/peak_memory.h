@@ -2,13 +2,18 @@
 // The resident set's high-water mark of one stage of a benchmark (Linux): reset_peak_rss()
 // before it, peak_rss_mib() after it, minus the resident set before it, is what the stage itself
 // added at its peak, not what ran earlier in the process (getrusage's ru_maxrss never resets).
+#include <malloc.h>
+
 #include <fstream>
 #include <string>
 
 namespace shadowcert::bench {
 
-// Resets the peak (VmHWM) to the current resident set (/proc/self/clear_refs "5", Linux >= 4.0).
+// Resets the peak (VmHWM) to the current resident set (/proc/self/clear_refs "5", Linux >= 4.0),
+// after handing the allocator's free pages back (malloc_trim), so that a stage's peak counts the
+// pages it touches, not only those beyond what an earlier stage left cached in the heap.
 inline void reset_peak_rss() {
+  malloc_trim(0);
   std::ofstream clear("/proc/self/clear_refs");
   clear << "5";
 }
