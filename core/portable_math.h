@@ -16,7 +16,7 @@
 // are within a few units in the last place of the true values (tests/core/portable_math_test),
 // not correctly rounded: what matters here is that they are the same everywhere.
 //
-// Arguments: finite doubles. sin, cos and tan reduce |x| <= 2^20 by a three-part pi/2
+// Arguments: any double; NaN and infinities give NaN, inf or 0 as libm does (no undefined cast). sin, cos and tan reduce |x| <= 2^20 by a three-part pi/2
 // (Cody and Waite), larger |x| first by fmod with 2 pi in double (exact, so still the same
 // bits everywhere, but no longer accurate to the last place). log and log2/log10 take x > 0;
 // exp and pow overflow to inf and underflow to 0 as expected.
@@ -42,6 +42,7 @@ struct Quadrant {
 };
 
 inline Quadrant reduce(double x) {
+  if (!std::isfinite(x)) return {0, x - x};  // NaN, as libm: no cast of a NaN to an integer below
   if (std::fabs(x) > 1048576.0) x = std::fmod(x, 2.0 * kPi);  // exact in IEEE arithmetic
   const double n = std::round(x * kTwoOverPi);
   const double r = ((x - n * kHalfPi1) - n * kHalfPi2) - n * kHalfPi3;
@@ -143,6 +144,7 @@ inline double split(double x, int& e) {
 
 // e^x: x = n ln 2 + r with |r| <= ln(2)/2, e^r by its Taylor series, then 2^n exactly.
 [[nodiscard]] inline double exp(double x) {
+  if (std::isnan(x)) return x;
   if (x > 709.8) return HUGE_VAL;
   if (x < -745.2) return 0.0;
   const double n = std::round(x * detail::kInvLn2);

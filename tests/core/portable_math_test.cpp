@@ -37,6 +37,13 @@ TEST(PortableMath, SinCosTan_WithinFewUlpsOfLibm) {
   EXPECT_EQ(portable::sin(0.0), 0.0);
   EXPECT_EQ(portable::cos(0.0), 1.0);
   EXPECT_EQ(portable::tan(0.0), 0.0);
+  // Not finite: NaN as libm (and no undefined float-to-integer cast for UBSan to report).
+  EXPECT_TRUE(std::isnan(portable::sin(HUGE_VAL)));
+  EXPECT_TRUE(std::isnan(portable::cos(-HUGE_VAL)));
+  EXPECT_TRUE(std::isnan(portable::tan(NAN)));
+  EXPECT_TRUE(std::isnan(portable::exp(NAN)));
+  EXPECT_EQ(portable::exp(-HUGE_VAL), 0.0);
+  EXPECT_EQ(portable::exp(HUGE_VAL), HUGE_VAL);
   // Large arguments: reduced by fmod first, still the right value to a few 1e-13.
   EXPECT_NEAR(portable::sin(1e7), std::sin(1e7), 1e-8);
 }
