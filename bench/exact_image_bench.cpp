@@ -41,18 +41,31 @@ struct BenchScene {
   Camera camera;
 };
 
+// Milet's sphere grid of about `triangles` triangles over the floor, lit from above.
+BenchScene sphere_grid_over_floor(std::uint64_t triangles) {
+  BenchScene s;
+  s.soup = floor_quad(16.0);  // the grid spans x, z in [-12.25, 12.25], resting on y = 0
+  s.soup.normals.clear();
+  append_soup(s.soup, sphere_grid(triangles));
+  s.lights = {Light{{4.0, 30.0, 8.0, 1.0}}};
+  s.camera.eye = {0.0, 24.0, 32.0};
+  s.camera.target = {0.0, 0.0, 0.0};
+  return s;
+}
+
 const BenchScene& sphere_grid_scene() {
-  static const BenchScene scene = [] {
-    BenchScene s;
-    s.soup = floor_quad(16.0);  // the grid spans x, z in [-12.25, 12.25], resting on y = 0
-    s.soup.normals.clear();
-    append_soup(s.soup, sphere_grid(100'000));
-    s.lights = {Light{{4.0, 30.0, 8.0, 1.0}}};
-    s.camera.eye = {0.0, 24.0, 32.0};
-    s.camera.target = {0.0, 0.0, 0.0};
-    return s;
-  }();
+  static const BenchScene scene = sphere_grid_over_floor(100'000);
   return scene;
+}
+
+// Embree's robust mode with the corner rays, on every thread of the arena: the peer the exact
+// image is measured against (same rays, same threads).
+raytrace::RayTracedImageOptions robust_rt_options() {
+  raytrace::RayTracedImageOptions options;
+  options.mode = raytrace::BuildMode::robust;
+  options.corner_rays = true;
+  options.threads = static_cast<unsigned>(tbb::this_task_arena::max_concurrency());
+  return options;
 }
 
 // ogre.obj over a floor just below it, seen from the front and above, lit from above.
@@ -138,11 +151,8 @@ void exact_vs_embree(benchmark::State& state, const BenchScene& scene, const cha
   Camera camera = scene.camera;
   camera.width = static_cast<std::uint32_t>(state.range(0));
   camera.height = static_cast<std::uint32_t>(state.range(1));
-  const unsigned threads = static_cast<unsigned>(tbb::this_task_arena::max_concurrency());
-  raytrace::RayTracedImageOptions rt_options;
-  rt_options.mode = raytrace::BuildMode::robust;
-  rt_options.corner_rays = true;
-  rt_options.threads = threads;
+  const raytrace::RayTracedImageOptions rt_options = robust_rt_options();
+  const unsigned threads = rt_options.threads;
   double embree = 0.0, exact = 0.0;
   ExactImageStats stats;
   for (auto _ : state) {
@@ -202,11 +212,7 @@ const BenchScene& sphere_grid_scene_of(std::int64_t triangles) {
   auto it = scenes.find(triangles);
   if (it != scenes.end()) return it->second;
   scenes.clear();  // one grid at a time: the 4M soup alone is 300 MB
-  BenchScene s = sphere_grid_scene();
-  s.soup = floor_quad(16.0);
-  s.soup.normals.clear();
-  append_soup(s.soup, sphere_grid(static_cast<std::uint64_t>(triangles)));
-  return scenes.emplace(triangles, std::move(s)).first->second;
+  return scenes.emplace(triangles, sphere_grid_over_floor(static_cast<std::uint64_t>(triangles))).first->second;
 }
 
 void BM_ExactVsEmbree_Scaling(benchmark::State& state) {
@@ -214,11 +220,8 @@ void BM_ExactVsEmbree_Scaling(benchmark::State& state) {
   Camera camera = scene.camera;
   camera.width = static_cast<std::uint32_t>(state.range(1));
   camera.height = static_cast<std::uint32_t>(state.range(2));
-  const unsigned threads = static_cast<unsigned>(tbb::this_task_arena::max_concurrency());
-  raytrace::RayTracedImageOptions rt_options;
-  rt_options.mode = raytrace::BuildMode::robust;
-  rt_options.corner_rays = true;
-  rt_options.threads = threads;
+  const raytrace::RayTracedImageOptions rt_options = robust_rt_options();
+  const unsigned threads = rt_options.threads;
   double embree = 0.0, exact = 0.0, embree_peak = 0.0, exact_peak = 0.0;
   for (auto _ : state) {
     bench::reset_peak_rss();
