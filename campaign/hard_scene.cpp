@@ -116,9 +116,15 @@ Soup part_soup(SceneRandom& rng, HardPart part, std::uint64_t seed, std::uint64_
     case HardPart::slivers:
       s = sliver_set();
       break;
-    case HardPart::stl_torus:
-      s = unwelded(torus({0, 0, 0}, 1.0, rng.between(0.2, 0.45), 12 + rng.below32(37), 6 + rng.below32(11)));
+    case HardPart::stl_torus: {
+      // One draw per statement: a call's arguments are evaluated in an unspecified order
+      // (g++ right to left, clang left to right), and a scene must not depend on the compiler.
+      const std::uint32_t minor_segments = 6 + rng.below32(11);
+      const std::uint32_t major_segments = 12 + rng.below32(37);
+      const double tube_radius = rng.between(0.2, 0.45);
+      s = unwelded(torus({0, 0, 0}, 1.0, tube_radius, major_segments, minor_segments));
       break;
+    }
     case HardPart::uniform:
       s = campaign_soup(seed, index, slot, SoupFamily::uniform, 20 + rng.below32(81));
       break;
@@ -211,8 +217,10 @@ bool edge_on_view(SceneRandom& rng, const Scene& scene, Camera& camera) {
   // The eye into the plane, then off it by a small random share of its distance to the light.
   const Vec3 eye = camera.eye;
   const double side = dot(difference(eye, l), n);
-  const double off = portable::exp10(rng.between(portable::log10(kEdgeOnMin), portable::log10(kEdgeOnMax))) *
-                     std::sqrt(dot(difference(eye, l), difference(eye, l))) * (rng.chance(0.5) ? 1.0 : -1.0);
+  // The share, then the sign, as separate statements: the operands of * are unsequenced.
+  const double share = portable::exp10(rng.between(portable::log10(kEdgeOnMin), portable::log10(kEdgeOnMax)));
+  const double sign = rng.chance(0.5) ? 1.0 : -1.0;
+  const double off = share * std::sqrt(dot(difference(eye, l), difference(eye, l))) * sign;
   const Vec3 moved{eye[0] - (side - off) * n[0], eye[1] - (side - off) * n[1], eye[2] - (side - off) * n[2]};
   if (!(moved[1] > 0.3)) return false;
   const Vec3 view = difference(target, moved);

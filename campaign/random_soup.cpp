@@ -71,9 +71,14 @@ Soup closed_mesh(CaseRandom& rng, std::uint32_t budget) {
       const std::uint32_t major = std::max(3u, budget / (2 * minor));
       return torus({0, 0, 0}, 0.7, 0.3, major, minor);
     }
-    default:
-      return box({-rng.unit() - 0.1, -rng.unit() - 0.1, -rng.unit() - 0.1},
-                 {rng.unit() + 0.1, rng.unit() + 0.1, rng.unit() + 0.1});
+    default: {
+      // Drawn into named corners, in this order: the order in which a call's arguments are
+      // evaluated is unspecified (g++ goes right to left, clang left to right), and a case must
+      // be the same whichever compiler built it (docs/development.md#portable-math).
+      const Vec3 hi{rng.unit() + 0.1, rng.unit() + 0.1, rng.unit() + 0.1};
+      const Vec3 lo{-rng.unit() - 0.1, -rng.unit() - 0.1, -rng.unit() - 0.1};
+      return box(lo, hi);
+    }
   }
 }
 
