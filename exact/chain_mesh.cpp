@@ -132,12 +132,20 @@ void add_point_light_faces(const ShadowVolumeChain& chain, FarVertices& far, Hom
 }  // namespace
 
 HomogeneousMesh chain_mesh(const ShadowVolumeChain& chain, const Soup& canonical, const Light& light) {
+  HomogeneousMesh mesh;
+  chain_mesh(chain, canonical, light, mesh);
+  return mesh;
+}
+
+void chain_mesh(const ShadowVolumeChain& chain, const Soup& canonical, const Light& light, HomogeneousMesh& mesh) {
   if (chain.finite_vertices != canonical.vertices.size())
     throw std::invalid_argument("chain_mesh: the chain has " + std::to_string(chain.finite_vertices) +
                                 " finite vertices, the soup " + std::to_string(canonical.vertices.size()));
   if (chain.directional != light.directional())
     throw std::invalid_argument("chain_mesh: the chain was assembled for another kind of light");
-  HomogeneousMesh mesh;
+  // Emptied, not replaced: a reused mesh keeps its capacity (the reserves below are then no-ops).
+  mesh.vertices.clear();
+  mesh.triangles.clear();
   const auto& l = light.position;
   mesh.vertices.reserve(chain.directional ? canonical.vertices.size() + 1 : 2 * canonical.vertices.size());
   for (const Vec3& x : canonical.vertices) mesh.vertices.push_back(homogeneous(x[0], x[1], x[2], 1.0f));
@@ -150,11 +158,10 @@ HomogeneousMesh chain_mesh(const ShadowVolumeChain& chain, const Soup& canonical
   mesh.triangles.reserve(chain.triangles.size() + 2 * chain.quads.size());
   if (chain.directional) {
     mesh.triangles.insert(mesh.triangles.end(), chain.triangles.begin(), chain.triangles.end());
-    return mesh;
+    return;
   }
   FarVertices far(canonical, light, mesh);
   add_point_light_faces(chain, far, mesh);
-  return mesh;
 }
 
 }  // namespace shadowcert

@@ -30,5 +30,9 @@ namespace shadowcert {
 // `light`; throws std::invalid_argument("chain_mesh: ...") when the vertex counts or the
 // light's kind disagree.
 [[nodiscard]] HomogeneousMesh chain_mesh(const ShadowVolumeChain& chain, const Soup& canonical, const Light& light);
+// The same into `mesh`, emptied and refilled within its capacity (volume/volume_workspace.h
+// reuses one mesh for every light). Nothing else is allocated unless the chain has a wide far
+// edge (the split vertices' table above).
+void chain_mesh(const ShadowVolumeChain& chain, const Soup& canonical, const Light& light, HomogeneousMesh& mesh);
 
 }  // namespace shadowcert

@@ -21,14 +21,34 @@
 #include "core/homogeneous_mesh.h"
 #include "core/light.h"
 #include "core/soup.h"
+#include "exact/edge_multiplicity.h"
+#include "exact/shadow_volume_chain.h"
 #include "scene/edge_table.h"
 
 namespace shadowcert {
 
 // `canonical`: scene/canonical_soup.h's soup (any finite coordinates); `table`:
 // build_edge_table(canonical); `light`: finite, w 0 or 1, not direction (0, 0, 0). Vertex ids
-// of the result are chain_mesh's over `canonical`. Throws std::invalid_argument (from
-// exact_multiplicities, naming it) on a bad light or a table that does not fit the soup.
+// of the result are chain_mesh's over `canonical`. Throws std::invalid_argument("cpu_volume_mesh:
+// ...") on a bad light, and (from exact_multiplicities, naming it) on a light that rounds to an
+// infinite float or a table that does not fit the soup.
 [[nodiscard]] HomogeneousMesh cpu_volume_mesh(const Soup& canonical, const EdgeTable& table, const Light& light);
+
+// What one build of the cpu volume fills, kept by a caller that builds many (one per light, per
+// frame: volume/volume_workspace.h) so that each step refills arrays of the capacity it left:
+// the exact multiplicities, the chain (which the count certificate reads) and the mesh.
+struct CpuVolumeBuffers {
+  EdgeMultiplicities multiplicities;
+  ShadowVolumeChain chain;
+  HomogeneousMesh mesh;
+};
+
+// cpu_volume_mesh's steps after the soup's rounding, into `buffers` (the same code: the value
+// form above is this on float_rounded(canonical)): `rounded` is float_rounded of a canonical
+// soup, rounded once by the caller for all its lights; `table` its edge table; `light` as above,
+// rounded here. buffers.mesh is then cpu_volume_mesh(canonical, table, light), bit for bit, and
+// buffers.chain the chain it was made of. Throws std::invalid_argument("rounded_cpu_volume: ...")
+// when a coordinate of `rounded` is not a float value, and as cpu_volume_mesh otherwise.
+void rounded_cpu_volume(const Soup& rounded, const EdgeTable& table, const Light& light, CpuVolumeBuffers& buffers);
 
 }  // namespace shadowcert

@@ -63,30 +63,41 @@ void require_valid(const char* function, const Soup& canonical, const EdgeTable&
 // later entries. Walking by ascending lower vertex also keeps the positions it reads within a
 // narrow index window (the canonical order is spatial), which is what makes these loops fast.
 
-// The sign D(x, y, z) of each triangle's sorted triple, and what follows from it.
+// The sign D(x, y, z) of each triangle's sorted triple, and what follows from it. The signs
+// live in the caller's `storage` (set to zero, one per triangle), so that a caller building
+// many volumes of one soup reuses its capacity (exact_multiplicities' overload into an
+// EdgeMultiplicities keeps them in its triangle_sign, then turns them into the caps in place).
 class SortedSigns {
  public:
-  explicit SortedSigns(std::size_t triangles) : sorted_(triangles, Sign::zero) {}
+  SortedSigns(std::vector<Sign>& storage, std::size_t triangles) : sorted_(storage) {
+    sorted_.assign(triangles, Sign::zero);
+  }
 
   void set(std::uint32_t t, Sign s) { sorted_[t] = s; }
   [[nodiscard]] Sign entry(std::uint32_t u, std::uint32_t v, std::uint32_t o, std::uint32_t t) const {
     return sorted_[t] * entry_parity(u, v, o);
   }
-  // s(t) = D(a, b, c) in the triangle's own order (zero for repeated indices: no table entry).
-  [[nodiscard]] std::vector<Sign> caps(const Soup& canonical) const {
-    std::vector<Sign> caps(canonical.triangles.size(), Sign::zero);
+  // s(t) = D(a, b, c) in the triangle's own order (zero for repeated indices: no table entry),
+  // into `caps`; `caps` may be the storage itself: entry t reads and writes only entry t.
+  void caps_into(const Soup& canonical, std::vector<Sign>& caps) const {
+    if (&caps != &sorted_) caps.assign(canonical.triangles.size(), Sign::zero);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, caps.size(), kEdgeGrain),
                       [&](const tbb::blocked_range<std::size_t>& r) {
                         for (std::size_t t = r.begin(); t < r.end(); ++t) {
                           const Triangle& tri = canonical.triangles[t];
-                          if (!has_repeated_index(tri)) caps[t] = sorted_[t] * order_parity(tri[0], tri[1], tri[2]);
+                          caps[t] = has_repeated_index(tri) ? Sign::zero
+                                                            : sorted_[t] * order_parity(tri[0], tri[1], tri[2]);
                         }
                       });
+  }
+  [[nodiscard]] std::vector<Sign> caps(const Soup& canonical) const {
+    std::vector<Sign> caps;
+    caps_into(canonical, caps);
     return caps;
   }
 
  private:
-  std::vector<Sign> sorted_;
+  std::vector<Sign>& sorted_;
 };
 
 // Exact: each triangle's exact sign, evaluated once on its sorted triple; every entry and the
@@ -97,8 +108,8 @@ class SortedSigns {
 // own triangles' signs): then entries may be read in any order, by any thread.
 class ExactPlan {
  public:
-  ExactPlan(const Soup& canonical, const EdgeTable& table, const Light& light)
-      : canonical_(canonical), light_(light), signs_(canonical.triangles.size()) {
+  ExactPlan(const Soup& canonical, const EdgeTable& table, const Light& light, std::vector<Sign>& storage)
+      : canonical_(canonical), light_(light), signs_(storage, canonical.triangles.size()) {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, table.size(), kEdgeGrain),
                       [&](const tbb::blocked_range<std::size_t>& r) {
                         for (std::size_t e = r.begin(); e < r.end(); ++e) {
@@ -114,6 +125,7 @@ class ExactPlan {
     return signs_.entry(u, v, o, t);
   }
   [[nodiscard]] std::vector<Sign> caps() const { return signs_.caps(canonical_); }
+  void caps_into(std::vector<Sign>& caps) const { signs_.caps_into(canonical_, caps); }
 
  private:
   [[nodiscard]] Sign exact_sign(std::uint32_t a, std::uint32_t b, std::uint32_t c) const {
@@ -174,7 +186,7 @@ template <typename Real>
 class PecivaPlan {
  public:
   PecivaPlan(const Soup& canonical, const EdgeTable& table, const Light& light)
-      : canonical_(canonical), signs_(canonical.triangles.size()) {
+      : canonical_(canonical), signs_(storage_, canonical.triangles.size()) {
     const FloatSide<Real> side(canonical, light);
     // Per triangle: kUnset, then the first converted value, then kDisagree on a mismatch.
     constexpr std::int8_t kUnset = 2, kDisagree = 3;
@@ -200,6 +212,7 @@ class PecivaPlan {
 
  private:
   const Soup& canonical_;
+  std::vector<Sign> storage_;  // before signs_, which refers to it
   SortedSigns signs_;
 };
 
@@ -211,7 +224,7 @@ template <typename Real>
 class RefedgePlan {
  public:
   RefedgePlan(const Soup& canonical, const Light& light)
-      : canonical_(canonical), side_(canonical, light), signs_(canonical.triangles.size()) {}
+      : canonical_(canonical), side_(canonical, light), signs_(storage_, canonical.triangles.size()) {}
 
   Sign entry(std::uint32_t u, std::uint32_t v, std::uint32_t o, std::uint32_t t) {
     if (o < u) return side_(o, u, v);   // (u, v, o) is a rotation of (o, u, v): even
@@ -225,6 +238,7 @@ class RefedgePlan {
  private:
   const Soup& canonical_;
   FloatSide<Real> side_;
+  std::vector<Sign> storage_;  // before signs_, which refers to it
   SortedSigns signs_;
 };
 
@@ -234,8 +248,9 @@ class RefedgePlan {
 // constructor prepared, or (refedge) writes only its own triangle's sorted sign, at the one
 // entry of that triangle with o > v.
 template <typename Plan>
-std::vector<std::int32_t> sum_entries(const EdgeTable& table, Plan& plan) {
-  std::vector<std::int32_t> m;
+// Into `m`, whose capacity is reused (resize_huge advises only new storage).
+void sum_entries_into(const EdgeTable& table, Plan& plan, std::vector<std::int32_t>& m) {
+  m.clear();
   resize_huge(m, table.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, table.size(), kEdgeGrain),
                     [&](const tbb::blocked_range<std::size_t>& r) {
@@ -247,6 +262,12 @@ std::vector<std::int32_t> sum_entries(const EdgeTable& table, Plan& plan) {
                         m[e] = -sum;  // docs/definitions.md#counts: m = - sum D(u, v, o)
                       }
                     });
+}
+
+template <typename Plan>
+std::vector<std::int32_t> sum_entries(const EdgeTable& table, Plan& plan) {
+  std::vector<std::int32_t> m;
+  sum_entries_into(table, plan, m);
   return m;
 }
 
@@ -280,7 +301,8 @@ decltype(auto) with_plan(MultiplicityMethod method, Precision precision, const S
   const bool single = precision == Precision::float32;
   switch (method) {
     case MultiplicityMethod::exact: {
-      ExactPlan plan(canonical, table, light);
+      std::vector<Sign> storage;
+      ExactPlan plan(canonical, table, light, storage);
       return f(plan);
     }
     case MultiplicityMethod::kim: {
@@ -322,6 +344,14 @@ EdgeMultiplicities multiplicities(const char* function, MultiplicityMethod metho
 EdgeMultiplicities exact_multiplicities(const Soup& canonical, const EdgeTable& table, const Light& light) {
   return multiplicities("exact_multiplicities", MultiplicityMethod::exact, canonical, table, light,
                         Precision::float64);
+}
+
+void exact_multiplicities(const Soup& canonical, const EdgeTable& table, const Light& light, EdgeMultiplicities& out) {
+  require_valid("exact_multiplicities", canonical, table, light);
+  // The sorted signs are kept in out.triangle_sign and become the caps there, in place.
+  ExactPlan plan(canonical, table, light, out.triangle_sign);
+  sum_entries_into(table, plan, out.multiplicity);
+  plan.caps_into(out.triangle_sign);
 }
 
 EdgeMultiplicities glsign_multiplicities(const Soup& canonical, const EdgeTable& table, const Light& light) {

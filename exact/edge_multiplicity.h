@@ -37,6 +37,10 @@ struct EdgeMultiplicities {
 
 [[nodiscard]] EdgeMultiplicities exact_multiplicities(const Soup& canonical, const EdgeTable& table,
                                                       const Light& light);
+// The same into `out`, whose vectors are resized in place: a caller that computes many lights'
+// multiplicities of one soup (volume/volume_workspace.h) keeps their capacity, so after the
+// first call no array proportional to the soup is allocated again.
+void exact_multiplicities(const Soup& canonical, const EdgeTable& table, const Light& light, EdgeMultiplicities& out);
 // The exact multiplicities of the soup and the light rounded to float (every coordinate once,
 // as the GL upload rounds them): the CPU twin of the GL volume methods under their default
 // exact signs (gpu/sign_mode.h; docs/gpu.md "Exact signs"), which must equal it bit for bit.

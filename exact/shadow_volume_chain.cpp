@@ -190,15 +190,27 @@ Vec3 pushed_far(const Vec3& x, const Light& light, double far_distance) {
 
 ShadowVolumeChain assemble_chain(const Soup& canonical, const EdgeTable& table,
                                  const EdgeMultiplicities& multiplicities, const Light& light) {
-  require_consistent(canonical, table, multiplicities, light);
   ShadowVolumeChain chain;
+  assemble_chain(canonical, table, multiplicities, light, chain);
+  return chain;
+}
+
+void assemble_chain(const Soup& canonical, const EdgeTable& table, const EdgeMultiplicities& multiplicities,
+                    const Light& light, ShadowVolumeChain& chain) {
+  require_consistent(canonical, table, multiplicities, light);
+  // Emptied, not replaced: every array below is resized within the capacity it already has.
+  chain.triangles.clear();
+  chain.quads.clear();
+  chain.side_edges.clear();
+  chain.side_multiplicity.clear();
+  chain.cap_triangles.clear();
+  chain.cap_sign.clear();
   chain.finite_vertices = static_cast<std::uint32_t>(canonical.vertices.size());
   chain.directional = light.directional();
   const FarIds far{chain.finite_vertices, chain.directional};
   const SideCounts sides = count_sides(multiplicities.multiplicity);
   add_caps(canonical, multiplicities.triangle_sign, far, chain.directional ? sides.copies : 0, chain);
   add_sides(table, multiplicities.multiplicity, sides, far, chain);
-  return chain;
 }
 
 Soup chain_picture(const ShadowVolumeChain& chain, const Soup& canonical, const Light& light,

@@ -34,6 +34,11 @@ struct ShadowVolumeChain {
 // Assembles the chain of `multiplicities` (any method's). Faces expand |m| copies.
 [[nodiscard]] ShadowVolumeChain assemble_chain(const Soup& canonical, const EdgeTable& table,
                                                const EdgeMultiplicities& multiplicities, const Light& light);
+// The same into `chain`, whose arrays are emptied and refilled within their capacity: a caller
+// that assembles many lights' chains of one soup (volume/volume_workspace.h) allocates them once.
+// Only small per-chunk counters (one per 32768 triangles or edges) are allocated per call.
+void assemble_chain(const Soup& canonical, const EdgeTable& table, const EdgeMultiplicities& multiplicities,
+                    const Light& light, ShadowVolumeChain& chain);
 
 // The chain as a soup for viewing (io/soup_file.h writes it as .off .obj .ply): vertices
 // [0, n) are the canonical soup's, [n, 2n) their far points pushed to
