@@ -7,7 +7,7 @@
 #   <prefix>/lib/libshadowcert_<module>.a
 #   <prefix>/lib/cmake/shadowcert/shadowcertConfig.cmake      (find_package(shadowcert))
 #
-# The package exports shadowcert::exact and shadowcert::gpu and every module they link, public
+# The package exports shadowcert::exact, shadowcert::volume and shadowcert::gpu and every module they link, public
 # or private (static libraries: a consumer links the private ones too), computed below from
 # the link lines, so a new arrow in the top CMakeLists.txt cannot leave the export incomplete.
 # Nothing of tests/, bench/ or fuzz/ is installed. Included by the top CMakeLists.txt after
@@ -18,11 +18,11 @@ include(CMakePackageConfigHelpers)
 # A function only for its scope: none of its variables reaches tests/ or bench/.
 function(shadowcert_install_package)
 
-  set(SHADOWCERT_PACKAGE_MODULES exact gpu)  # what the package is for; the rest follows
+  set(SHADOWCERT_PACKAGE_MODULES exact volume gpu)  # what the package is for; the rest follows
   set(SHADOWCERT_PACKAGE_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/shadowcert)
   set(SHADOWCERT_PACKAGE_INCLUDE_DIR ${CMAKE_INSTALL_INCLUDEDIR}/shadowcert)  # also core/CMakeLists.txt
 
-  # ---- the exported modules: the closure of exact and gpu over their shadowcert_* links
+  # ---- the exported modules: the closure of exact, volume and gpu over their shadowcert_* links
   set(exported)
   set(pending ${SHADOWCERT_PACKAGE_MODULES})
   while(pending)
