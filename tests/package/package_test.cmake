@@ -60,7 +60,8 @@ set(package ${LIBDIR}/cmake/shadowcert)
 foreach(file ${BINDIR}/shadowcert ${DOCDIR}/README.md ${DOCDIR}/docs/development.md
              ${package}/shadowcertConfig.cmake ${package}/shadowcertConfigVersion.cmake
              ${package}/shadowcertTargets.cmake
-             ${INCLUDEDIR}/shadowcert/exact/edge_multiplicity.h ${INCLUDEDIR}/shadowcert/gpu/camera_transform.h)
+             ${INCLUDEDIR}/shadowcert/exact/edge_multiplicity.h ${INCLUDEDIR}/shadowcert/volume/volume_workspace.h
+             ${INCLUDEDIR}/shadowcert/gpu/camera_transform.h)
   if(NOT EXISTS ${prefix}/${file})
     fail("${prefix}/${file} was not installed")
   endif()
@@ -93,7 +94,7 @@ endforeach()
 message(STATUS "package test: the prefix holds shadowcert, the docs, the package files and "
                "${header_count} headers")
 
-# ---- 3. a consumer: find_package(shadowcert), link shadowcert::exact and shadowcert::gpu
+# ---- 3. a consumer: find_package(shadowcert), link shadowcert::exact, shadowcert::volume and shadowcert::gpu
 string(REPLACE "|" ";" prefix_path "${prefix};${PREFIX_PATH}")
 set(generator_args -G ${GENERATOR})
 if(MAKE_PROGRAM)

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <span>
 #include <vector>
 
 #include "core/camera.h"
@@ -17,6 +18,7 @@
 #include "gpu/png_image.h"
 #include "scene/canonical_soup.h"
 #include "scene/edge_table.h"
+#include "volume/volume_workspace.h"
 
 namespace {
 
@@ -44,6 +46,22 @@ int main() {
   check(table.size() == 3, "the edge table has three edges");
   check(m.multiplicity == std::vector<std::int32_t>{-1, 1, -1}, "exact multiplicities of (0,1), (0,2), (1,2) are -1, 1, -1");
   check(m.triangle_sign == std::vector<Sign>{Sign::positive}, "the triangle's cap sign is positive");
+
+  // volume (exact inside, no GL): the same triangle as the caller's float arrays. Its volume
+  // for a point light above it: 3 vertices and their 3 points at infinity, front and back cap
+  // and one side quad (two triangles) per edge, 8 triangles, written into the caller's buffers.
+  VolumeWorkspace workspace;
+  const std::vector<float> positions{0.0f, 0.0f, 0.0f, 1.0f, 0.0f, 0.0f, 1.0f, 1.0f, 0.0f};
+  const std::vector<std::uint32_t> indices{0, 1, 2};
+  workspace.set_soup(std::span<const float>(positions), indices);
+  const VolumeSizes sizes = workspace.build(Light{{0.5, 0.25, 3.0, 1.0}});
+  std::vector<float> volume_positions(sizes.position_floats());
+  std::vector<std::uint32_t> volume_indices(sizes.index_count());
+  const VolumeInfo info = workspace.write(volume_positions, volume_indices);
+  check(sizes.vertices == 6 && sizes.triangles == 8, "the triangle's volume has 6 vertices and 8 triangles");
+  check(info.written == sizes && info.reaches_infinity && !info.empty && volume_positions[3] == 1.0f &&
+            volume_positions[4 * 3 + 3] == 0.0f,
+        "write() wrote it: finite vertices first (w = 1), then their points at infinity (w = 0)");
 
   // gpu (glm public): the camera's target projects to the image's centre.
   const Camera camera;  // 1024 x 768, looking at the origin
