@@ -58,6 +58,8 @@ namespace shadowcert {
 
 class VolumeWorkspace {
  public:
+  // Empty: no soup. Movable (a moved-from workspace may only be assigned to or destroyed), not
+  // copyable (it holds the arrays of a soup's builds).
   VolumeWorkspace();
   ~VolumeWorkspace();
   VolumeWorkspace(VolumeWorkspace&&) noexcept;
