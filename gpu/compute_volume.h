@@ -43,6 +43,9 @@ class ComputeVolumeSoup {
   // edges can exceed (a fan edge with k opposites can have |m| = k), plus room for those
   // (compute_volume.cpp: a quarter more and 64 Ki vertices).
   [[nodiscard]] std::uint64_t worst_case_vertices() const { return worst_case_vertices_; }
+  // The vertices every build reads (vec4 floats, w = 1, one per canonical vertex); written
+  // from a host's vertex buffer by gpu/host_vertex_gather.h before a build.
+  [[nodiscard]] GLuint vertex_buffer() const { return vertices_.name(); }
 
  private:
   friend class ComputeShadowVolume;

@@ -51,15 +51,14 @@
 #include "gpu/offscreen_target.h"
 #include "gpu/shadow_map_renderer.h"
 #include "gpu/shadow_method.h"
+#include "gpu/shadow_volume_set.h"
 #include "gpu/sign_mode.h"
 #include "gpu/stencil_shadow_renderer.h"
 #include "scene/edge_table.h"
 
 namespace shadowcert::gpu {
 
-class ComputeVolumeSoup;  // gpu/compute_volume.h
-class SmoothCasterBuffers;  // gpu/smooth_silhouette_volume.h
-struct SmoothCasterArrays;
+struct SmoothCasterArrays;  // gpu/smooth_silhouette_volume.h
 
 // What the methods need of a scene. Everything is read (uploaded) during construction only,
 // except cpu_volumes, which first_volume() returns: those must outlive the renderer.
@@ -101,13 +100,6 @@ struct ShadowMethodOptions {
   double light_angle_degrees = 0.0;
   // Volume methods: count the first light's volume fragments in render() (StencilShadowFrame).
   bool count_fragments = false;
-};
-
-// A GPU-built volume needed more vertices than its buffers hold: drawing it would draw an
-// open volume, so callers report this instead of an image.
-class VolumeCapacityError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
 };
 
 class ShadowMethodRenderer {
@@ -155,11 +147,7 @@ class ShadowMethodRenderer {
   // for shadowmap (no volume).
   [[nodiscard]] HomogeneousMesh first_volume() const;
 
-  // A volume built on the GPU (cs, gs, ts, pertri behind one interface); in the .cpp.
-  class BuiltVolume;
-
  private:
-  void build_volumes(GpuStageTimer* timer);
   StencilShadowFrame draw(const OffscreenTarget& target, const Camera& camera, bool read_back, GpuStageTimer* timer);
 
   ShadowMethod method_;
@@ -168,12 +156,8 @@ class ShadowMethodRenderer {
   std::array<float, 3> light_colour_{};  // each light's share of the default light colour
   ShadedSoupMesh receivers_;
   SceneBounds bounds_;  // shadowmap: what each light's frustum is fitted to
-  std::span<const HomogeneousMesh> cpu_meshes_;  // the caller's, for first_volume()
-  std::vector<std::unique_ptr<ShadowVolumeMesh>> cpu_volumes_;
-  std::unique_ptr<ComputeVolumeSoup> gpu_soup_;
-  std::unique_ptr<SmoothCasterBuffers> smooth_casters_;
-  std::vector<std::unique_ptr<BuiltVolume>> built_volumes_;
-  std::vector<LightVolume> light_volumes_;
+  // The volume methods' volumes (shared with the host layer, gpu/host_shadow_volumes.h).
+  std::optional<ShadowVolumeSet> volumes_;
   std::optional<StencilShadowRenderer> stencil_renderer_;
   std::optional<ShadowMapRenderer> shadow_map_renderer_;
   std::vector<std::unique_ptr<SmoothieQuads>> smoothies_;  // smoothie: per light

@@ -14,15 +14,10 @@
 #include "gpu/embedded_shaders.h"
 #include "gpu/gl_error.h"
 #include "gpu/shader_compiler.h"
+#include "gpu/stencil_passes.h"
 
 namespace shadowcert::gpu {
 namespace {
-
-// Uniform locations fixed by layout(location) in shadow_scene.{vert,frag}.glsl.
-constexpr GLint kWorldToClipLocation = 0;
-constexpr GLint kColourLocation = 1;
-constexpr GLint kLightLocation = 2;
-constexpr GLint kLambertWeightLocation = 3;
 
 // Attribute locations of shadow_scene.vert.glsl.
 constexpr GLuint kPositionAttribute = 0;
@@ -35,16 +30,18 @@ struct ShadedVertex {
   std::array<float, 3> albedo;
 };
 
+static_assert(sizeof(ShadedVertex) == ShadedSoupMesh::kVertexStride &&
+              offsetof(ShadedVertex, position) == ShadedSoupMesh::kPositionOffset &&
+              offsetof(ShadedVertex, normal) == ShadedSoupMesh::kNormalOffset &&
+              offsetof(ShadedVertex, albedo) == ShadedSoupMesh::kAlbedoOffset,
+              "ShadedSoupMesh's published layout is ShadedVertex's");
+
 std::array<float, 3> face_normal(const Vec3& a, const Vec3& b, const Vec3& c) {
   // In double: only shading reads it (docs/definitions.md#inputs: no decision depends on a normal).
   const Vec3 n = cross(difference(b, a), difference(c, a));
   const double length = std::sqrt(dot(n, n));
   if (!(length > 0.0) || !std::isfinite(length)) return {0.0f, 0.0f, 0.0f};  // unlit in the shader
   return {static_cast<float>(n[0] / length), static_cast<float>(n[1] / length), static_cast<float>(n[2] / length)};
-}
-
-void set_uniform_colour(GLuint program, const std::array<float, 3>& rgb) {
-  glProgramUniform4f(program, kColourLocation, rgb[0], rgb[1], rgb[2], 1.0f);
 }
 
 }  // namespace
@@ -125,54 +122,13 @@ ShadedSoupMesh::ShadedSoupMesh(std::span<const ShadedSoupPart> parts)
 
 namespace {
 
-// The volume pass's stencil operations: z-fail counts back faces +1 and front faces -1 where
-// the depth test fails, z-pass front +1 and back -1 where it passes; `swapped` exchanges the
-// facings (IndirectVolumeDraw::reversed: each triangle counts as its own reversal).
-void set_volume_stencil_ops(StencilMethod method, bool swapped) {
-  const GLenum front = swapped ? GL_BACK : GL_FRONT;
-  const GLenum back = swapped ? GL_FRONT : GL_BACK;
-  if (method == StencilMethod::zfail) {
-    glStencilOpSeparate(back, GL_KEEP, GL_INCR_WRAP, GL_KEEP);
-    glStencilOpSeparate(front, GL_KEEP, GL_DECR_WRAP, GL_KEEP);
-  } else {
-    // z-pass. The caps are drawn as well and never count here (GL_LESS fails for them): a
-    // front cap lies on a receiver at the visible point's depth or behind it, a back cap at
-    // depth 1. A cap between the eye and the near plane (depth-clamped to 0) would count;
-    // a z-pass proven by exact/zpass_proof.h has no face there.
-    glStencilOpSeparate(front, GL_KEEP, GL_KEEP, GL_INCR_WRAP);
-    glStencilOpSeparate(back, GL_KEEP, GL_KEEP, GL_DECR_WRAP);
-  }
-}
-
-// The light's volume: its given mesh, its GPU-built triangles, or both (LightVolume), counted
-// with `method`'s stencil operations (set here).
-void draw_volume(const LightVolume& lv, StencilMethod method) {
-  set_volume_stencil_ops(method, false);
-  if (lv.volume != nullptr) {
-    glBindVertexArray(lv.volume->vertex_array());
-    glDrawElements(GL_TRIANGLES, lv.volume->index_count(), GL_UNSIGNED_INT, nullptr);
-  }
-  if (lv.indirect.vertex_array != 0 && lv.indirect.command != 0) {
-    glBindVertexArray(lv.indirect.vertex_array);
-    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, lv.indirect.command);
-    glDrawArraysIndirect(GL_TRIANGLES, nullptr);
-    if (lv.indirect.reversed) {
-      set_volume_stencil_ops(method, true);
-      // The second DrawArraysIndirectCommand: four GLuint after the first.
-      glDrawArraysIndirect(GL_TRIANGLES, reinterpret_cast<const void*>(4 * sizeof(GLuint)));
-      set_volume_stencil_ops(method, false);
-    }
-    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
-  }
-}
-
 // The fragments of the volume that pass the depth test `depth_func` against the receivers'
 // depths (the stencil test passes: GL_ALWAYS), by an occlusion query; synchronises.
 std::uint64_t samples_passed(GLenum depth_func, const LightVolume& lv, StencilMethod method) {
   const Query query = Query::create(GL_SAMPLES_PASSED);
   glDepthFunc(depth_func);
   glBeginQuery(GL_SAMPLES_PASSED, query.name());
-  draw_volume(lv, method);
+  count_volume(lv, method);
   glEndQuery(GL_SAMPLES_PASSED);
   GLuint64 samples = 0;
   glGetQueryObjectui64v(query.name(), GL_QUERY_RESULT, &samples);  // waits for the draw
@@ -181,11 +137,11 @@ std::uint64_t samples_passed(GLenum depth_func, const LightVolume& lv, StencilMe
 
 }  // namespace
 
-StencilShadowRenderer::StencilShadowRenderer() {
-  const Shader vertex = compile_shader(GL_VERTEX_SHADER, shaders::shadow_scene_vert, "shadow_scene.vert.glsl");
-  const Shader fragment = compile_shader(GL_FRAGMENT_SHADER, shaders::shadow_scene_frag, "shadow_scene.frag.glsl");
-  program_ = link_program({&vertex, &fragment}, "shadow_scene");
-}
+StencilShadowRenderer::StencilShadowRenderer() : program_(std::make_unique<ShadowSceneProgram>()) {}
+
+StencilShadowRenderer::~StencilShadowRenderer() = default;
+StencilShadowRenderer::StencilShadowRenderer(StencilShadowRenderer&&) noexcept = default;
+StencilShadowRenderer& StencilShadowRenderer::operator=(StencilShadowRenderer&&) noexcept = default;
 
 StencilShadowFrame StencilShadowRenderer::render(const OffscreenTarget& target, const ShadedSoupMesh& receivers,
                                                  const Camera& camera, std::span<const LightVolume> lights,
@@ -195,13 +151,12 @@ StencilShadowFrame StencilShadowRenderer::render(const OffscreenTarget& target, 
       throw std::invalid_argument("StencilShadowRenderer::render: light " + std::to_string(i) + " has no volume");
     }
   }
-  const GLuint program = program_.name();
-  const glm::mat4 world_to_clip(projection_matrix(camera) * view_matrix(camera));
-  glProgramUniformMatrix4fv(program, kWorldToClipLocation, 1, GL_FALSE, glm::value_ptr(world_to_clip));
+  const ShadowSceneProgram& program = *program_;
+  program.set_world_to_clip(glm::mat4(projection_matrix(camera) * view_matrix(camera)));
 
   target.bind();
   target.clear(options.background);
-  glUseProgram(program);
+  glUseProgram(program.name());
   glDisable(GL_CULL_FACE);  // soups have no orientation; volumes need both faces counted
   glDisable(GL_BLEND);
   glDisable(GL_POLYGON_OFFSET_FILL);
@@ -213,8 +168,7 @@ StencilShadowFrame StencilShadowRenderer::render(const OffscreenTarget& target, 
   glDepthMask(GL_TRUE);
   glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   glDisable(GL_STENCIL_TEST);
-  glProgramUniform1f(program, kLambertWeightLocation, 0.0f);
-  set_uniform_colour(program, options.ambient);
+  program.set_ambient(options.ambient);
   glBindVertexArray(receivers.vertex_array());
   {
     const ScopedStage stage(options.timer, RenderStage::depth);
@@ -226,16 +180,9 @@ StencilShadowFrame StencilShadowRenderer::render(const OffscreenTarget& target, 
     const LightVolume& lv = lights[i];
     // 2. Volume pass: counts only, nothing else written.
     std::optional<ScopedStage> stage(std::in_place, options.timer, RenderStage::stencil);
-    glStencilMask(0xFF);
-    glClear(GL_STENCIL_BUFFER_BIT);
-    glEnable(GL_STENCIL_TEST);
-    glStencilFunc(GL_ALWAYS, 0, 0xFF);
     const StencilMethod method = lv.stencil.value_or(options.method);
-    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-    glDepthMask(GL_FALSE);
-    glDepthFunc(GL_LESS);  // a cap at the visible point's own depth fails: "behind" it
-    glEnable(GL_DEPTH_CLAMP);  // w = 0 caps reach depth 1 exactly; rounding must not clip them
-    draw_volume(lv, method);
+    begin_volume_pass();
+    count_volume(lv, method);
     stage.reset();
     if (i == 0 && options.count_fragments) {
       // Nothing written: all fragments (depth test always passes), then those whose count
@@ -247,7 +194,7 @@ StencilShadowFrame StencilShadowRenderer::render(const OffscreenTarget& target, 
       glStencilMask(0xFF);
       glDepthFunc(GL_LESS);
     }
-    glDisable(GL_DEPTH_CLAMP);
+    end_volume_pass();
     if (i == 0 && options.read_back) {
       frame.first_stencil = target.read_stencil();
       frame.first_lit_mask = lit_mask(frame.first_stencil);
@@ -255,23 +202,10 @@ StencilShadowFrame StencilShadowRenderer::render(const OffscreenTarget& target, 
 
     // 3. Lit pass: this light's Lambert term where the count is 0, on the visible surface only.
     stage.emplace(options.timer, RenderStage::lit);
-    glStencilFunc(GL_EQUAL, 0, 0xFF);
-    // A pixel lit once: its count becomes 1 and the receivers' second copy (ShadedSoupMesh)
-    // fails the test. The next light clears the stencil first.
-    glStencilOpSeparate(GL_FRONT_AND_BACK, GL_KEEP, GL_KEEP, GL_INCR);
-    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    glDepthFunc(GL_EQUAL);
-    glEnable(GL_BLEND);
-    glBlendFunc(GL_ONE, GL_ONE);
-    const std::array<double, 4>& l = lv.light.position;
-    glProgramUniform4f(program, kLightLocation, static_cast<float>(l[0]), static_cast<float>(l[1]),
-                       static_cast<float>(l[2]), static_cast<float>(l[3]));
-    glProgramUniform1f(program, kLambertWeightLocation, 1.0f);
-    set_uniform_colour(program, options.light_colour);
+    begin_lit_pass(program, lv.light, options.light_colour);
     glBindVertexArray(receivers.vertex_array());
     glDrawArrays(GL_TRIANGLES, 0, receivers.vertex_count());
-    glDisable(GL_BLEND);
-    glProgramUniform1f(program, kLambertWeightLocation, 0.0f);
+    end_lit_pass(program);
     stage.reset();
   }
 

@@ -22,6 +22,7 @@
 // the volume pass, so nothing is clipped there; no polygon offset is used: every pass runs
 // the same invariant vertex shader, so a cap and the triangle it lies on get equal depths.
 #include <array>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string_view>
@@ -58,6 +59,15 @@ class ShadedSoupMesh {
   explicit ShadedSoupMesh(const Soup& soup);
 
   [[nodiscard]] GLuint vertex_array() const { return vertex_array_.name(); }
+  // The interleaved vertex buffer the vertex array reads (a host may draw it itself, e.g. as
+  // gpu/host_shadow_volumes.h's HostReceivers): per vertex kVertexStride bytes, the vec4
+  // position at kPositionOffset, the vec3 normal at kNormalOffset, the vec3 albedo at
+  // kAlbedoOffset, all GL_FLOAT.
+  [[nodiscard]] GLuint vertex_buffer() const { return vertices_.name(); }
+  static constexpr GLsizei kVertexStride = 40;
+  static constexpr GLintptr kPositionOffset = 0;
+  static constexpr GLintptr kNormalOffset = 16;
+  static constexpr GLintptr kAlbedoOffset = 28;
   // Every triangle twice, (a, b, c) then (a, c, b) (stencil_shadow_renderer.cpp says why): what
   // the stencil method's depth and lit passes draw.
   [[nodiscard]] GLsizei vertex_count() const { return vertex_count_; }
@@ -144,9 +154,14 @@ struct StencilShadowFrame {
   std::uint64_t first_stencil_updates = 0;
 };
 
+class ShadowSceneProgram;  // gpu/stencil_passes.h
+
 class StencilShadowRenderer {
  public:
   StencilShadowRenderer();  // compiles shadow_scene.{vert,frag}.glsl; throws GlError with the log
+  ~StencilShadowRenderer();
+  StencilShadowRenderer(StencilShadowRenderer&&) noexcept;
+  StencilShadowRenderer& operator=(StencilShadowRenderer&&) noexcept;
 
   // Renders into `target` (bound and cleared here), lights one after another. Throws
   // std::invalid_argument for a light without a volume, GlError on a GL error.
@@ -154,7 +169,9 @@ class StencilShadowRenderer {
                             std::span<const LightVolume> lights, const StencilShadowOptions& options = {}) const;
 
  private:
-  Program program_;
+  // The passes themselves are gpu/stencil_passes.h's, which the host layer
+  // (gpu/host_shadow_volumes.h) draws with too.
+  std::unique_ptr<ShadowSceneProgram> program_;
 };
 
 }  // namespace shadowcert::gpu
