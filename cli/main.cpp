@@ -19,6 +19,7 @@
 #include "cli/inspect_command.h"
 #include "cli/merge_command.h"
 #include "cli/render_command.h"
+#include "cli/view_command.h"
 #include "cli/soft_command.h"
 #include "cli/track_command.h"
 #include "core/input_error.h"
@@ -42,6 +43,7 @@ int main(int argc, char** argv) {
   add_merge_command(app, exit_code);
   add_edges_command(app, exit_code);
   add_bench_command(app, exit_code);
+  add_view_command(app, exit_code);
 
   try {
     app.parse(argc, argv);

@@ -23,6 +23,7 @@ PACKAGES=(
   libembree-dev                 # the float ray tracer peer `rt` (docs/ray-tracing.md)
   pybind11-dev python3-numpy python3-pytest   # `import shadowcert` (python/, docs/python.md) and its tests
   slurm-wlm munge               # the real single-node Slurm job array test (tools/slurm.sh, docs/batch-runs.md)
+  libglfw3-dev xvfb             # `shadowcert view`'s window and examples/ (GLFW), their tests under xvfb-run
 )
 
 # Only `sanitize` needs these: clang 14, its sanitizer and libFuzzer runtimes
@@ -58,7 +59,7 @@ DEMO_PACKAGES=(
   ca-certificates cmake ninja-build g++ pkg-config python3
   libcgal-dev libgmp-dev libmpfr-dev libboost-dev libtbb-dev libopenmesh-dev
   nlohmann-json3-dev libcli11-dev libfmt-dev
-  libegl-dev libepoxy-dev libpng-dev libglm-dev libgl1-mesa-dri libegl-mesa0
+  libegl-dev libepoxy-dev libpng-dev libglm-dev libgl1-mesa-dri libegl-mesa0 libglfw3-dev
   python3-matplotlib
 )
 DEMO_BUILD_DIR=${SHADOWCERT_DEMO_BUILD_DIR:-build-demo}
