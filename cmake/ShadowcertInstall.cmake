@@ -18,7 +18,7 @@ include(CMakePackageConfigHelpers)
 # A function only for its scope: none of its variables reaches tests/ or bench/.
 function(shadowcert_install_package)
 
-  set(SHADOWCERT_PACKAGE_MODULES exact volume gpu)  # what the package is for; the rest follows
+  set(SHADOWCERT_PACKAGE_MODULES exact volume gpu pipeline)  # what the package is for; the rest follows
   set(SHADOWCERT_PACKAGE_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/shadowcert)
   set(SHADOWCERT_PACKAGE_INCLUDE_DIR ${CMAKE_INSTALL_INCLUDEDIR}/shadowcert)  # also core/CMakeLists.txt
 
