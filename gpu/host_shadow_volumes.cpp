@@ -110,6 +110,8 @@ void HostShadowVolumes::read_vertices_from(const HostVertexBuffer& vertices,
   check_gl_errors(kFunction);
 }
 
+void HostShadowVolumes::set_light(std::size_t k, const Light& light) { volumes_->set_light(k, light); }
+
 void HostShadowVolumes::build() {
   const ScopedGlState keep;
   if (host_vertices_ && volumes_->canonical_vertex_count() != 0) {

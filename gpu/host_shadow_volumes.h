@@ -91,6 +91,11 @@ class HostShadowVolumes {
   // bad layout, or a canonical_id that misses a canonical vertex or exceeds their count.
   void read_vertices_from(const HostVertexBuffer& vertices, std::span<const std::uint32_t> canonical_id);
 
+  // cs, gs, ts, pertri: light k moves (the next build() follows it). Throws as
+  // ShadowVolumeSet::set_light (gpu/shadow_volume_set.h): std::invalid_argument for the
+  // methods given a volume per light, std::out_of_range.
+  void set_light(std::size_t k, const Light& light);
+
   // Queues every light's GPU build (and the gather from the host's buffer first); nothing
   // for the given volumes. Never waits.
   void build();

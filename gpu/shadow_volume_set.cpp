@@ -122,6 +122,18 @@ ShadowVolumeSet::~ShadowVolumeSet() = default;
 
 GLuint ShadowVolumeSet::canonical_vertex_buffer() const { return gpu_soup_ ? gpu_soup_->vertex_buffer() : 0; }
 
+void ShadowVolumeSet::set_light(std::size_t k, const Light& light) {
+  if (!builds_volume_on_gpu(method_))
+    throw std::invalid_argument("ShadowVolumeSet::set_light: " + std::string(shadow_method_name(method_)) +
+                                "'s volumes are given per light; build a new set for another light");
+  if (k >= lights_.size())
+    throw std::out_of_range("ShadowVolumeSet::set_light: light " + std::to_string(k) + " of " +
+                            std::to_string(lights_.size()));
+  require_defined(light, "ShadowVolumeSet::set_light");
+  lights_[k] = light;
+  light_volumes_[k].light = light;
+}
+
 void ShadowVolumeSet::build(GpuStageTimer* timer) {
   if (built_volumes_.empty()) return;
   const ScopedStage stage(timer, RenderStage::volume);

@@ -64,6 +64,12 @@ class ShadowVolumeSet {
   [[nodiscard]] GLuint canonical_vertex_buffer() const;
   [[nodiscard]] std::uint32_t canonical_vertex_count() const { return canonical_vertices_; }
 
+  // Moves light k (a moving light): the GPU-built volumes (cs, gs, ts, pertri) follow at the
+  // next build(). Throws std::invalid_argument("ShadowVolumeSet::set_light: ...") for the
+  // methods whose volume the caller builds per light (cpu and the silhouette methods: their
+  // volume would no longer be the light's) and std::out_of_range for k out of range.
+  void set_light(std::size_t k, const Light& light);
+
   // Queues every light's GPU build (cs, gs, ts, pertri, smooth-gpu) for its light, as stage
   // `volume` of `timer` when given; nothing for the given volumes. Never waits for the GPU.
   void build(GpuStageTimer* timer = nullptr);

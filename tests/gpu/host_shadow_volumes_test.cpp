@@ -394,6 +394,39 @@ TEST_F(HostShadowVolumesTest, EveryCall_RestoresTheHostsState) {
   }
 }
 
+// A moving light: set_light then build counts what a set built for that light counts.
+TEST_F(HostShadowVolumesTest, SetLight_CountsAsASetBuiltForThatLight) {
+  Scene scene = bundled_scene("default.json");
+  const auto d = prepare_drawn_method_scene(scene, ShadowMethod::cs, StencilChoice::zfail);
+  HostShadowVolumes moving(ShadowMethod::cs, d->method_scene(), d->host_options());
+  Light moved = d->scene.lights.front();
+  moved.position[0] += 1.5;
+  moved.position[2] -= 0.5;
+  moving.set_light(0, moved);
+  std::vector<Light> lights = d->scene.lights;
+  lights.front() = moved;
+  gpu::ShadowMethodScene fresh_scene = d->method_scene();
+  fresh_scene.lights = lights;
+  HostShadowVolumes fresh(ShadowMethod::cs, fresh_scene, d->host_options());
+  const Host host(*d);
+  const OffscreenTarget target(kWidth, kHeight);
+  const glm::mat4 clip = world_to_clip(d->scene.camera);
+  GrayImage counts[2];
+  HostShadowVolumes* sets[2] = {&moving, &fresh};
+  for (int i = 0; i < 2; ++i) {
+    host.draw_depth(target.framebuffer(), clip);
+    sets[i]->build();
+    sets[i]->draw_stencil(clip, 0);
+    counts[i] = target.read_stencil();
+  }
+  EXPECT_EQ(counts[0].pixels, counts[1].pixels);
+  host.draw_depth(target.framebuffer(), clip);
+  HostShadowVolumes unmoved(ShadowMethod::cs, d->method_scene(), d->host_options());
+  unmoved.build();
+  unmoved.draw_stencil(clip, 0);
+  EXPECT_NE(target.read_stencil().pixels, counts[0].pixels);  // the light did move the shadow
+}
+
 TEST_F(HostShadowVolumesTest, Misuse_ThrowsNamingTheFunction) {
   const Scene scene = bundled_scene("default.json");
   const auto cpu = prepare_drawn_method_scene(scene, ShadowMethod::cpu, StencilChoice::zfail);
@@ -406,6 +439,7 @@ TEST_F(HostShadowVolumesTest, Misuse_ThrowsNamingTheFunction) {
     EXPECT_NE(std::string(e.what()).find("HostShadowVolumes::read_vertices_from"), std::string::npos) << e.what();
   }
   EXPECT_THROW(shadows.draw_stencil(glm::mat4(1.0f), 5), std::out_of_range);
+  EXPECT_THROW(shadows.set_light(0, cpu->scene.lights.front()), std::invalid_argument);  // cpu's chain is the light's
   const auto cs = prepare_drawn_method_scene(scene, ShadowMethod::cs, StencilChoice::zfail);
   HostShadowVolumes built(ShadowMethod::cs, cs->method_scene(), cs->host_options());
   EXPECT_THROW(built.read_vertices_from({buffer.name(), 4, 0, GL_DOUBLE, 3}, cs->inputs.canonical.canonical_id),
