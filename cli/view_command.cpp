@@ -127,6 +127,13 @@ class Viewer {
     frame_->present();
   }
 
+  // Whether what the frame shows is complete: no overlay asked for, or its verdicts drawn.
+  [[nodiscard]] bool settled() const { return !overlay_on_ || overlay_.has_value(); }
+  // The overlay's verdict counts, when it is drawn.
+  [[nodiscard]] std::optional<PixelComparison> verdicts() const {
+    return overlay_on_ && overlay_ ? std::optional(comparison_) : std::nullopt;
+  }
+
   // The window's back buffer (the frame just drawn), row 0 at the top.
   [[nodiscard]] gpu::RgbaImage read_colour() const { return frame_->read_colour(); }
 
@@ -315,7 +322,8 @@ int run_view(const ViewOptions& options) {
   while (glfwWindowShouldClose(window) == GLFW_FALSE) {
     viewer.draw();
     ++frame;
-    if (!options.screenshot.empty() && frame == options.frames) {
+    // With the overlay, the frame to write is the first from frame N on that shows it.
+    if (!options.screenshot.empty() && frame >= options.frames && viewer.settled()) {
       const gpu::RgbaImage shot = viewer.read_colour();
       create_parent_directories(options.screenshot);
       gpu::write_png(options.screenshot, shot);
@@ -332,11 +340,14 @@ int run_view(const ViewOptions& options) {
       ++timed;
     }
     glfwSetWindowTitle(window, viewer.title(frame_ms).c_str());
-    if (options.screenshot.empty() && options.frames != 0 && frame >= options.frames) break;
+    if (options.screenshot.empty() && options.frames != 0 && frame >= options.frames && viewer.settled()) break;
   }
   // A frame's wall time, draw to swap (llvmpipe renders on the CPU, and its swap waits for
   // the frame): docs/engine-integration.md's per-frame cost.
   if (timed != 0) std::printf("view: %.2f ms/frame (mean of frames 2 to %zu)\n", timed_ms / double(timed), timed + 1);
+  if (const auto v = viewer.verdicts())
+    std::printf("view: exact overlay, first light: %llu hard errors, %llu ambiguous pixels\n",
+                static_cast<unsigned long long>(v->hard_errors), static_cast<unsigned long long>(v->ambiguous));
   return kExitOk;
 }
 
@@ -356,7 +367,9 @@ void add_view_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--stencil", options->stencil, "zfail (default), zpass or auto (z-pass where proven, per light)")
       ->check(CLI::IsMember({"auto", "zpass", "zfail"}));
   cmd->add_option("--size", options->size, "Window and image size WxH (default: the scene camera's)");
-  cmd->add_option("--screenshot", options->screenshot, "Write frame N (--frames) of the window as PNG, then exit");
+  cmd->add_option("--screenshot", options->screenshot,
+                  "Write frame N (--frames) of the window as PNG, then exit; with --overlay, the first frame from N on "
+                  "that shows the exact image's overlay");
   cmd->add_option("--frames", options->frames, "Draw N frames, then exit (0: until the window closes)");
   cmd->add_flag("--overlay", options->overlay, "Start with the exact image's overlay on");
   cmd->callback([options, &exit_code] { exit_code = run_view(*options); });

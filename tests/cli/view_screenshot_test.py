@@ -8,6 +8,7 @@ Usage: view_screenshot_test.py SHADOWCERT SOURCE_DIR WORK_DIR
 Needs xvfb-run (Debian's xvfb); without it the test says so and skips (exit 77), unless
 SHADOWCERT_REQUIRE_GL=1, which turns that into a failure."""
 import os
+import re
 import shutil
 import struct
 import subprocess
@@ -90,6 +91,26 @@ def main():
             print("%s %s %s: %d differing pixels" % ("ok" if n == 0 else "FAILED", scene, method, n))
             failures += n != 0
     default = os.path.join(source, "data", "scenes", "default.json")
+    # The overlay: no hard error (red) on a robust method; the pixels it marks ambiguous (grey)
+    # are the only ones that differ from render's frame.
+    shot = os.path.join(work, "view_overlay.png")
+    out = os.path.join(work, "render_default.json_cs.png")
+    v = subprocess.run(["xvfb-run", "-a", shadowcert, "view", default, "--method", "cs", "--size", SIZE, "--overlay",
+                        "--screenshot", shot, "--frames", "3"], capture_output=True, text=True, timeout=600)
+    counts = re.search(r"(\d+) hard errors, (\d+) ambiguous pixels", v.stdout)
+    if v.returncode != 0 or counts is None:
+        print("FAILED overlay: exit %d, %s %s" % (v.returncode, v.stdout.strip(), v.stderr.strip()))
+        failures += 1
+    else:
+        hard, ambiguous = int(counts.group(1)), int(counts.group(2))
+        a, b = read_png(shot), read_png(out)
+        red = sum(1 for ra, rb in zip(a[2], b[2]) for x in range(0, len(ra), 4)
+                  if ra[x:x + 4] != rb[x:x + 4] and ra[x] > ra[x + 1] + 100)
+        n = differing_pixels(a, b)
+        ok = hard == 0 and red == 0 and ambiguous > 0 and 0 < n <= ambiguous
+        print("%s overlay: %d hard, %d ambiguous, %d pixels differ from render, %d red" % (
+            "ok" if ok else "FAILED", hard, ambiguous, n, red))
+        failures += not ok
     # An unknown method: exit 2, naming it.
     bad = subprocess.run(["xvfb-run", "-a", shadowcert, "view", default, "--method", "nosuch", "--frames", "1"],
                          capture_output=True, text=True, timeout=120)
