@@ -208,36 +208,44 @@ bool interior(const std::vector<bool>& mask, std::size_t p) {
 
 class HostShadowVolumesTest : public GlTest {};
 
+// The host's frame (full entry, every light) and first-light counts (stencil-only entry) of
+// `method` on `name`, against ShadowMethodRenderer's.
+void expect_host_equals_render(const std::string& name, ShadowMethod method) {
+  SCOPED_TRACE(name + ", " + std::string(shadow_method_name(method)));
+  const auto d = prepare_drawn_method_scene(bundled_scene(name), method, StencilChoice::zfail);
+  const Camera& camera = d->scene.camera;
+  const OffscreenTarget offscreen(kWidth, kHeight);
+  ShadowMethodRenderer renderer(method, d->method_scene(), d->renderer_options());
+  const StencilShadowFrame expected = renderer.render(offscreen, camera);
+
+  HostShadowVolumes shadows(method, d->method_scene(), d->host_options());
+  const Buffer host_vertices = host_caster_buffer(d->casters);
+  if (builds_volume_on_gpu(method))
+    shadows.read_vertices_from({host_vertices.name(), 64, 32, GL_DOUBLE, 3}, d->inputs.canonical.canonical_id);
+  const Host host(*d);
+  const HostTarget target(GL_DEPTH24_STENCIL8, 0);
+  const OffscreenTarget resolve(kWidth, kHeight);
+  const glm::mat4 clip = world_to_clip(camera);
+  const RgbaImage colour = host_frame(*d, shadows, host, target, clip, resolve);
+  EXPECT_EQ(differing_pixels(colour, expected.colour), 0u);
+
+  // The stencil-only entry: the first light's counts, as render's.
+  host.draw_depth(resolve.framebuffer(), clip);
+  shadows.draw_stencil(clip, 0);
+  EXPECT_EQ(resolve.read_stencil().pixels, expected.first_stencil.pixels);
+  EXPECT_GT(shadowed_pixels(expected), 0u);  // the scene has shadows to compare
+}
+
 TEST_F(HostShadowVolumesTest, EveryRobustMethod_HostFrameEqualsRender_PixelForPixel) {
-  for (const std::string name : {"default.json", "sphere_over_floor.json", "closed_casters.json"}) {
-    const Scene scene = bundled_scene(name);
-    for (const ShadowMethod method : robust_volume_methods()) {
-      SCOPED_TRACE(name + ", " + std::string(shadow_method_name(method)));
-      const auto d = prepare_drawn_method_scene(scene, method, StencilChoice::zfail);
-      const Camera& camera = d->scene.camera;
-      const OffscreenTarget offscreen(kWidth, kHeight);
-      ShadowMethodRenderer renderer(method, d->method_scene(), d->renderer_options());
-      const StencilShadowFrame expected = renderer.render(offscreen, camera);
+  for (const std::string name : {"default.json", "sphere_over_floor.json", "closed_casters.json"})
+    for (const ShadowMethod method : robust_volume_methods()) expect_host_equals_render(name, method);
+}
 
-      HostShadowVolumes shadows(method, d->method_scene(), d->host_options());
-      const Buffer host_vertices = host_caster_buffer(d->casters);
-      if (builds_volume_on_gpu(method))
-        shadows.read_vertices_from({host_vertices.name(), 64, 32, GL_DOUBLE, 3}, d->inputs.canonical.canonical_id);
-      const Host host(*d);
-      const HostTarget target(GL_DEPTH24_STENCIL8, 0);
-      const OffscreenTarget resolve(kWidth, kHeight);
-      const glm::mat4 clip = world_to_clip(camera);
-      const RgbaImage colour = host_frame(*d, shadows, host, target, clip, resolve);
-      EXPECT_EQ(differing_pixels(colour, expected.colour), 0u);
-
-      // The stencil-only entry: the first light's counts, as render's.
-      host.draw_depth(resolve.framebuffer(), clip);
-      shadows.draw_stencil(clip, 0);
-      const GrayImage counts = resolve.read_stencil();
-      EXPECT_EQ(counts.pixels, expected.first_stencil.pixels);
-      EXPECT_GT(shadowed_pixels(expected), 0u);  // the scene has shadows to compare
-    }
-  }
+// The smooth-silhouette methods (given volumes from pipeline/, smooth-gpu's built on the GPU
+// as well): the host layer draws them as render does.
+TEST_F(HostShadowVolumesTest, SilhouetteMethods_HostFrameEqualsRender_PixelForPixel) {
+  for (const std::string name : {"smooth_sphere.json", "default.json"})
+    for (const ShadowMethod method : kSilhouetteMethods) expect_host_equals_render(name, method);
 }
 
 // A host's own target kinds: a finite far plane (with depth clamp), 4x MSAA, and a float
