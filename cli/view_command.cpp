@@ -116,13 +116,14 @@ class Viewer {
 
   void draw() {
     if (dirty_) rebuild();
-    shadows_->build();
-    frame_->draw(drawn_->scene.camera, *shadows_);
+    // The overlay first: it renders the comparison offscreen, which binds other framebuffers.
     if (overlay_on_ && exact_future_.valid() &&
         exact_future_.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
       exact_ = exact_future_.get();
       overlay_ = verdict_overlay(*drawn_, *exact_, &comparison_);
     }
+    shadows_->build();
+    frame_->draw(drawn_->scene.camera, *shadows_);
     if (overlay_on_ && overlay_) frame_->draw_overlay(*overlay_);
     frame_->present();
   }

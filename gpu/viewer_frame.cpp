@@ -59,10 +59,11 @@ void ViewerFrame::draw(const Camera& camera, const HostShadowVolumes& shadows) c
 }
 
 void ViewerFrame::draw_overlay(const RgbaImage& overlay) const {
-  GLint viewport[4] = {0, 0, 0, 0};
-  glGetIntegerv(GL_VIEWPORT, viewport);
-  if (static_cast<GLint>(overlay.width) != viewport[2] || static_cast<GLint>(overlay.height) != viewport[3])
+  if (overlay.width != target_.width() || overlay.height != target_.height())
     throw std::invalid_argument("ViewerFrame::draw_overlay: the overlay's size is not the frame's");
+  // Its own target, not whatever is bound: work between draw() and here (the viewer renders
+  // the exact comparison offscreen) may have bound another framebuffer.
+  target_.bind();
   Texture texture = Texture::create(GL_TEXTURE_2D);
   glTextureStorage2D(texture.name(), 1, GL_RGBA8, static_cast<GLsizei>(overlay.width),
                      static_cast<GLsizei>(overlay.height));

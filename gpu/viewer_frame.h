@@ -42,8 +42,9 @@ class ViewerFrame {
   // then every light of `shadows` lit where its count is 0, each with the offscreen
   // renderer's share of the light colour. Queues only (no wait).
   void draw(const Camera& camera, const HostShadowVolumes& shadows) const;
-  // `overlay` (the frame's size) blended over the colour by its alpha; the alpha channel of
-  // the frame is kept. Throws std::invalid_argument on another size.
+  // `overlay` (the frame's size) blended over the frame's colour by its alpha, whatever
+  // framebuffer is bound; the alpha channel of the frame is kept. Throws
+  // std::invalid_argument on another size.
   void draw_overlay(const RgbaImage& overlay) const;
   // The frame copied to the window's back buffer (framebuffer 0).
   void present() const;

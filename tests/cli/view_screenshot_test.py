@@ -92,11 +92,13 @@ def main():
             failures += n != 0
     default = os.path.join(source, "data", "scenes", "default.json")
     # The overlay: no hard error (red) on a robust method; the pixels it marks ambiguous (grey)
-    # are the only ones that differ from render's frame.
+    # are the only ones that differ from render's frame. --frames 1: the frame written is then the
+    # one that computes the overlay, whose offscreen comparison once left another framebuffer
+    # bound and lost the overlay (CI, a loaded machine, 2026-12-05).
     shot = os.path.join(work, "view_overlay.png")
     out = os.path.join(work, "render_default.json_cs.png")
     v = subprocess.run(["xvfb-run", "-a", shadowcert, "view", default, "--method", "cs", "--size", SIZE, "--overlay",
-                        "--screenshot", shot, "--frames", "3"], capture_output=True, text=True, timeout=600)
+                        "--screenshot", shot, "--frames", "1"], capture_output=True, text=True, timeout=600)
     counts = re.search(r"(\d+) hard errors, (\d+) ambiguous pixels", v.stdout)
     if v.returncode != 0 or counts is None:
         print("FAILED overlay: exit %d, %s %s" % (v.returncode, v.stdout.strip(), v.stderr.strip()))
