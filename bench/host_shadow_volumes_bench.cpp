@@ -68,12 +68,7 @@ void run(benchmark::State& state, const std::string& scene_name, gpu::ShadowMeth
   glBindVertexArray(0);
   glUseProgram(0);
   gpu::HostShadowVolumes shadows(method, d->method_scene(), d->host_options());
-  gpu::HostReceivers r;
-  const GLsizei stride = gpu::ShadedSoupMesh::kVertexStride;
-  r.position = {receivers.vertex_buffer(), gpu::ShadedSoupMesh::kPositionOffset, stride, GL_FLOAT, 4};
-  r.normal = {receivers.vertex_buffer(), gpu::ShadedSoupMesh::kNormalOffset, stride, GL_FLOAT, 3};
-  r.albedo = {receivers.vertex_buffer(), gpu::ShadedSoupMesh::kAlbedoOffset, stride, GL_FLOAT, 3};
-  r.count = receivers.vertex_count();
+  const gpu::HostReceivers r = gpu::host_receivers(receivers);
   shadows.build();
   for (int warm = 0; warm < 2; ++warm) {  // llvmpipe compiles shader variants on first use
     shadows.build();

@@ -60,6 +60,17 @@ void attach(GLuint vao, GLuint attribute, const HostVertexBuffer& v) {
 
 }  // namespace
 
+HostReceivers host_receivers(const ShadedSoupMesh& mesh) {
+  HostReceivers r;
+  const GLuint b = mesh.vertex_buffer();
+  const GLsizei stride = ShadedSoupMesh::kVertexStride;
+  r.position = {b, ShadedSoupMesh::kPositionOffset, stride, GL_FLOAT, 4};
+  r.normal = {b, ShadedSoupMesh::kNormalOffset, stride, GL_FLOAT, 3};
+  r.albedo = {b, ShadedSoupMesh::kAlbedoOffset, stride, GL_FLOAT, 3};
+  r.count = mesh.vertex_count();
+  return r;
+}
+
 HostShadowVolumes::HostShadowVolumes(ShadowMethod method, const ShadowMethodScene& casters,
                                      const HostShadowOptions& options)
     : method_(method) {

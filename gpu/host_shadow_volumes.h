@@ -60,6 +60,10 @@ struct HostReceivers {
   GLsizei count = 0;
 };
 
+// The receivers of shadowcert's own interleaved mesh (position 4, normal 3, albedo 3 floats
+// per vertex, drawn unindexed) as a host's: what the viewer, tests and benchmarks hand draw_lit.
+[[nodiscard]] HostReceivers host_receivers(const ShadedSoupMesh& mesh);
+
 struct HostShadowOptions {
   StencilMethod stencil = StencilMethod::zfail;  // every light without its own
   // Empty, or one stencil method per light (pipeline/stencil_choice.h's proofs for z-pass).

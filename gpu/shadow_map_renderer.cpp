@@ -19,16 +19,13 @@
 #include "gpu/embedded_shaders.h"
 #include "gpu/gl_error.h"
 #include "gpu/shader_compiler.h"
+#include "gpu/shadow_scene_uniforms.h"
 
 namespace shadowcert::gpu {
 namespace {
 
-// Uniform locations fixed by layout(location) in shadow_scene.vert.glsl,
-// shadow_map_scene.frag.glsl and shadow_map_depth.vert.glsl.
-constexpr GLint kWorldToClipLocation = 0;
-constexpr GLint kColourLocation = 1;
-constexpr GLint kLightLocation = 2;
-constexpr GLint kLambertWeightLocation = 3;
+// Uniform locations fixed by layout(location) in shadow_map_scene.frag.glsl and
+// shadow_map_depth.vert.glsl, after the lit scene pass's (gpu/shadow_scene_uniforms.h).
 constexpr GLint kLightToClipLocation = 4;
 constexpr GLint kDepthBiasLocation = 5;
 constexpr GLint kFilterModeLocation = 6;  // shadow_filter.glsl
@@ -407,7 +404,7 @@ StencilShadowFrame ShadowMapRenderer::render(const OffscreenTarget& target, cons
   const GLuint scene = scene_program_.name();
   const GLuint depth = depth_program_.name();
   const glm::mat4 world_to_clip(projection_matrix(camera) * view_matrix(camera));
-  glProgramUniformMatrix4fv(scene, kWorldToClipLocation, 1, GL_FALSE, glm::value_ptr(world_to_clip));
+  glProgramUniformMatrix4fv(scene, shadow_scene_uniforms::kWorldToClip, 1, GL_FALSE, glm::value_ptr(world_to_clip));
   glProgramUniform1f(scene, kDepthBiasLocation, options.depth_bias);
   glProgramUniform1i(scene, kFilterModeLocation, filter_mode(filter_));
   glProgramUniform1i(scene, kPcfKernelLocation, static_cast<GLint>(options.pcf_kernel));
@@ -434,8 +431,8 @@ StencilShadowFrame ShadowMapRenderer::render(const OffscreenTarget& target, cons
   glStencilMask(0xFF);
   glStencilFunc(GL_ALWAYS, kShadowedMark, 0xFF);
   glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
-  glProgramUniform1f(scene, kLambertWeightLocation, 0.0f);
-  glProgramUniform4f(scene, kColourLocation, options.ambient[0], options.ambient[1], options.ambient[2], 1.0f);
+  glProgramUniform1f(scene, shadow_scene_uniforms::kLambertWeight, 0.0f);
+  glProgramUniform4f(scene, shadow_scene_uniforms::kColour, options.ambient[0], options.ambient[1], options.ambient[2], 1.0f);
   glBindVertexArray(receivers.vertex_array());
   {
     const ScopedStage stage(options.timer, RenderStage::depth);
@@ -549,10 +546,10 @@ StencilShadowFrame ShadowMapRenderer::render(const OffscreenTarget& target, cons
     glEnable(GL_BLEND);
     glBlendFunc(GL_ONE, GL_ONE);
     const std::array<double, 4>& l = lights[i].position;
-    glProgramUniform4f(scene, kLightLocation, static_cast<float>(l[0]), static_cast<float>(l[1]),
+    glProgramUniform4f(scene, shadow_scene_uniforms::kLight, static_cast<float>(l[0]), static_cast<float>(l[1]),
                        static_cast<float>(l[2]), static_cast<float>(l[3]));
-    glProgramUniform1f(scene, kLambertWeightLocation, 1.0f);
-    glProgramUniform4f(scene, kColourLocation, options.light_colour[0], options.light_colour[1],
+    glProgramUniform1f(scene, shadow_scene_uniforms::kLambertWeight, 1.0f);
+    glProgramUniform4f(scene, shadow_scene_uniforms::kColour, options.light_colour[0], options.light_colour[1],
                        options.light_colour[2], 1.0f);
     glBindVertexArray(receivers.vertex_array());  // the smoothie map bound its own
     glDrawArrays(GL_TRIANGLES, 0, receivers.single_order_vertex_count());

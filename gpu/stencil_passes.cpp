@@ -4,15 +4,10 @@
 
 #include "gpu/embedded_shaders.h"
 #include "gpu/shader_compiler.h"
+#include "gpu/shadow_scene_uniforms.h"
 
 namespace shadowcert::gpu {
 namespace {
-
-// Uniform locations fixed by layout(location) in shadow_scene.{vert,frag}.glsl.
-constexpr GLint kWorldToClipLocation = 0;
-constexpr GLint kColourLocation = 1;
-constexpr GLint kLightLocation = 2;
-constexpr GLint kLambertWeightLocation = 3;
 
 // The volume pass's stencil operations: z-fail counts back faces +1 and front faces -1 where
 // the depth test fails, z-pass front +1 and back -1 where it passes; `swapped` exchanges the
@@ -42,20 +37,20 @@ ShadowSceneProgram::ShadowSceneProgram() {
 }
 
 void ShadowSceneProgram::set_world_to_clip(const glm::mat4& world_to_clip) const {
-  glProgramUniformMatrix4fv(program_.name(), kWorldToClipLocation, 1, GL_FALSE, glm::value_ptr(world_to_clip));
+  glProgramUniformMatrix4fv(program_.name(), shadow_scene_uniforms::kWorldToClip, 1, GL_FALSE, glm::value_ptr(world_to_clip));
 }
 
 void ShadowSceneProgram::set_ambient(const std::array<float, 3>& rgb) const {
-  glProgramUniform1f(program_.name(), kLambertWeightLocation, 0.0f);
-  glProgramUniform4f(program_.name(), kColourLocation, rgb[0], rgb[1], rgb[2], 1.0f);
+  glProgramUniform1f(program_.name(), shadow_scene_uniforms::kLambertWeight, 0.0f);
+  glProgramUniform4f(program_.name(), shadow_scene_uniforms::kColour, rgb[0], rgb[1], rgb[2], 1.0f);
 }
 
 void ShadowSceneProgram::set_lit(const Light& light, const std::array<float, 3>& rgb) const {
   const std::array<double, 4>& l = light.position;
-  glProgramUniform4f(program_.name(), kLightLocation, static_cast<float>(l[0]), static_cast<float>(l[1]),
+  glProgramUniform4f(program_.name(), shadow_scene_uniforms::kLight, static_cast<float>(l[0]), static_cast<float>(l[1]),
                      static_cast<float>(l[2]), static_cast<float>(l[3]));
-  glProgramUniform1f(program_.name(), kLambertWeightLocation, 1.0f);
-  glProgramUniform4f(program_.name(), kColourLocation, rgb[0], rgb[1], rgb[2], 1.0f);
+  glProgramUniform1f(program_.name(), shadow_scene_uniforms::kLambertWeight, 1.0f);
+  glProgramUniform4f(program_.name(), shadow_scene_uniforms::kColour, rgb[0], rgb[1], rgb[2], 1.0f);
 }
 
 void begin_volume_pass() {
@@ -108,7 +103,7 @@ void begin_lit_pass(const ShadowSceneProgram& program, const Light& light, const
 
 void end_lit_pass(const ShadowSceneProgram& program) {
   glDisable(GL_BLEND);
-  glProgramUniform1f(program.name(), kLambertWeightLocation, 0.0f);
+  glProgramUniform1f(program.name(), shadow_scene_uniforms::kLambertWeight, 0.0f);
 }
 
 }  // namespace shadowcert::gpu

@@ -48,12 +48,7 @@ void ViewerFrame::draw(const Camera& camera, const HostShadowVolumes& shadows) c
   // Each light's share of the light colour, as ShadowMethodRenderer gives it.
   std::array<float, 3> colour = defaults.light_colour;
   for (float& c : colour) c /= static_cast<float>(shadows.light_count());
-  HostReceivers r;
-  const GLuint b = receivers_.vertex_buffer();
-  r.position = {b, ShadedSoupMesh::kPositionOffset, ShadedSoupMesh::kVertexStride, GL_FLOAT, 4};
-  r.normal = {b, ShadedSoupMesh::kNormalOffset, ShadedSoupMesh::kVertexStride, GL_FLOAT, 3};
-  r.albedo = {b, ShadedSoupMesh::kAlbedoOffset, ShadedSoupMesh::kVertexStride, GL_FLOAT, 3};
-  r.count = receivers_.vertex_count();
+  const HostReceivers r = host_receivers(receivers_);
   for (std::size_t k = 0; k < shadows.light_count(); ++k) shadows.draw_lit(world_to_clip, k, r, colour);
   check_gl_errors("ViewerFrame::draw");
 }

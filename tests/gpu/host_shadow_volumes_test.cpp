@@ -117,16 +117,7 @@ class Host {
     glBindVertexArray(0);
     glUseProgram(0);
   }
-  [[nodiscard]] HostReceivers receivers() const {
-    HostReceivers r;
-    const GLuint b = receivers_.vertex_buffer();
-    const GLsizei s = ShadedSoupMesh::kVertexStride;
-    r.position = {b, ShadedSoupMesh::kPositionOffset, s, GL_FLOAT, 4};
-    r.normal = {b, ShadedSoupMesh::kNormalOffset, s, GL_FLOAT, 3};
-    r.albedo = {b, ShadedSoupMesh::kAlbedoOffset, s, GL_FLOAT, 3};
-    r.count = receivers_.vertex_count();
-    return r;
-  }
+  [[nodiscard]] HostReceivers receivers() const { return host_receivers(receivers_); }
 
  private:
   ShadedSoupMesh receivers_;

@@ -102,12 +102,7 @@ int run() {
     if (gpu::builds_volume_on_gpu(method))
       shadows.read_vertices_from({buffer.name(), 0, 0, GL_FLOAT, 3}, d->inputs.canonical.canonical_id);
     shadows.build();
-    gpu::HostReceivers r;
-    const GLsizei stride = gpu::ShadedSoupMesh::kVertexStride;
-    r.position = {receivers.vertex_buffer(), gpu::ShadedSoupMesh::kPositionOffset, stride, GL_FLOAT, 4};
-    r.normal = {receivers.vertex_buffer(), gpu::ShadedSoupMesh::kNormalOffset, stride, GL_FLOAT, 3};
-    r.albedo = {receivers.vertex_buffer(), gpu::ShadedSoupMesh::kAlbedoOffset, stride, GL_FLOAT, 3};
-    r.count = receivers.vertex_count();
+    const gpu::HostReceivers r = gpu::host_receivers(receivers);
     shadows.draw_lit(clip, 0, r, {0.85f, 0.85f, 0.85f});
     const gpu::RgbaImage colour = target.read_colour();
     const bool equal = colour.pixels == expected.pixels;
