@@ -151,9 +151,14 @@ void HostShadowVolumes::build() {
     compute_pass::dispatch(volumes_->canonical_vertex_count());
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);  // the builds read the gathered vertices
   }
-  // The capture passes of gs and ts use the default transform feedback object's bindings.
+  // The capture passes of gs and ts use the default transform feedback object's bindings. The
+  // outer snapshot holds those of the host's bound object only: a second one, taken with the
+  // default object bound, gives the default object's ranges back too (it is the host's as well).
   glBindTransformFeedback(GL_TRANSFORM_FEEDBACK, 0);
-  volumes_->build();
+  {
+    const ScopedGlState keep_default_feedback;
+    volumes_->build();
+  }
   check_gl_errors("HostShadowVolumes::build");
 }
 

@@ -306,6 +306,10 @@ void set_host_state(GLuint program, GLuint vao, GLuint buffer, GLuint feedback) 
   glBindBuffer(GL_DRAW_INDIRECT_BUFFER, buffer);
   glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 2, buffer, 256, 512);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, buffer);
+  // A range on the default transform feedback object too (gs and ts capture through it),
+  // then the host's own object bound with a buffer of its own.
+  glBindTransformFeedback(GL_TRANSFORM_FEEDBACK, 0);
+  glBindBufferRange(GL_TRANSFORM_FEEDBACK_BUFFER, 0, buffer, 1024, 256);
   glBindTransformFeedback(GL_TRANSFORM_FEEDBACK, feedback);
   glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, buffer);
   glPatchParameteri(GL_PATCH_VERTICES, 4);
@@ -386,6 +390,11 @@ TEST_F(HostShadowVolumesTest, EveryCall_RestoresTheHostsState) {
     glGetIntegerv(GL_TRANSFORM_FEEDBACK_BINDING, &value);
     EXPECT_EQ(static_cast<GLuint>(value), feedback);
     glBindTransformFeedback(GL_TRANSFORM_FEEDBACK, 0);
+    glGetIntegeri_v(GL_TRANSFORM_FEEDBACK_BUFFER_BINDING, 0, &value);
+    EXPECT_EQ(static_cast<GLuint>(value), scratch.name()) << "the default transform feedback object's binding 0";
+    glGetInteger64i_v(GL_TRANSFORM_FEEDBACK_BUFFER_START, 0, &range);
+    EXPECT_EQ(range, 1024);
+    glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
     glDeleteTransformFeedbacks(1, &feedback);
     glUseProgram(0);
     glBindVertexArray(0);
