@@ -28,9 +28,6 @@ gpu::ShadowMethodOptions DrawnMethodScene::renderer_options() const {
 
 std::unique_ptr<DrawnMethodScene> prepare_drawn_method_scene(const Scene& world, gpu::ShadowMethod method,
                                                             StencilChoice stencil, const SilhouetteOptions& silhouette) {
-  if (!gpu::draws_volume(method))
-    throw std::invalid_argument("prepare_drawn_method_scene: " + std::string(gpu::shadow_method_name(method)) +
-                                " draws no volume");
   if (world.lights.empty()) throw std::invalid_argument("prepare_drawn_method_scene: the scene has no light");
   auto d = std::make_unique<DrawnMethodScene>();
   d->method = method;
@@ -49,6 +46,10 @@ std::unique_ptr<DrawnMethodScene> prepare_drawn_method_scene(const Scene& world,
     d->inputs.cpu_volumes = v.per_light;
     d->inputs.smooth_casters = v.gpu_casters;
   }
+  // smoothie: every light's smoothies, once, with the default width and space (as render).
+  if (method == gpu::ShadowMethod::smoothie)
+    add_smoothies(d->inputs, d->scene.lights, gpu::soup_bounds(d->merged), SceneSmoothieOptions{});
+  if (!gpu::draws_volume(method)) return d;  // the shadow maps count nothing: no stencil method
   // As render: the proof is about the exact chain, so a smooth-silhouette volume is counted with z-fail.
   d->light_stencil = stencil_methods(
       choose_stencil(silhouette_method ? StencilChoice::zfail : stencil, d->inputs, d->scene.lights, d->scene.camera));

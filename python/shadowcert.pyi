@@ -1,4 +1,4 @@
-"""Exact shadow-volume certification and the exact shadow image (docs/python.md)."""
+"""Exact shadow-volume certification, the exact shadow image and the GL methods against it (docs/python.md)."""
 from typing import Any, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
@@ -48,4 +48,31 @@ def exact_image(
     """The exact image for each light: counts uint32 (k, h, w), lit uint8 (k, h, w), ambiguity
     uint8 (k, h, w), hit_triangles uint32 (h, w), view_ambiguity uint8 (h, w), seconds float.
     Raises ValueError on bad input."""
+    ...
+
+def render(
+    scene: str,
+    method: str = "cpu",
+    *,
+    size: Optional[Tuple[int, int]] = None,
+    stencil: str = "zfail",
+    device: Optional[int] = None,
+) -> dict[str, Any]:
+    """One frame of a GL method, headless through EGL, as `shadowcert render --method M` draws it:
+    image uint8 (h, w, 4), lit uint8 (h, w), counts uint8 (h, w) or None (the shadow maps),
+    stencil (per light), method, renderer. Raises ValueError on a bad file or argument,
+    RuntimeError when no GL 4.5 context can be made."""
+    ...
+
+def diff(
+    scene: str,
+    methods: Sequence[str] = ("cpu", "cs", "gs", "ts", "pertri"),
+    *,
+    size: Optional[Tuple[int, int]] = None,
+    stencil: str = "zfail",
+    device: Optional[int] = None,
+) -> dict[str, dict[str, Any]]:
+    """Each GL method against the exact image, as `shadowcert diff --json` compares them: by
+    method name, robust, hard_errors, ambiguous, agree, coverage_errors, lit_errors,
+    count_errors, closed, failed and per_light. Raises as render does."""
     ...

@@ -26,8 +26,15 @@
 #include "exact/count_certificate.h"
 #include "exact/edge_multiplicity.h"
 #include "exact/shadow_volume_chain.h"
+#include "gpu/egl_context.h"
+#include "gpu/offscreen_target.h"
+#include "gpu/shadow_method.h"
+#include "gpu/shadow_method_renderer.h"
 #include "io/scene_input.h"
 #include "io/soup_file.h"
+#include "pipeline/drawn_method_scene.h"
+#include "pipeline/scene_comparison.h"
+#include "pipeline/stencil_choice.h"
 #include "reference/exact_image.h"
 #include "scene/canonical_soup.h"
 #include "scene/edge_table.h"
@@ -399,6 +406,135 @@ py::dict exact_image_py(const py::object& vertices, const py::object& triangles,
   return out;
 }
 
+// ---- render and diff: the GL methods, headless (EGL), as the CLI draws them ----
+
+gpu::ShadowMethod gl_method(const std::string& name, const char* function) {
+  const std::optional<gpu::ShadowMethod> m = gpu::parse_shadow_method(name);
+  if (!m) {
+    std::string all;
+    for (const gpu::ShadowMethodTraits& t : gpu::kShadowMethodTable) all += (all.empty() ? "" : ", ") + std::string(t.name);
+    value_error(std::string(function) + ": unknown GL method '" + name + "' (" + all + ")");
+  }
+  return *m;
+}
+
+StencilChoice stencil_choice(const std::string& name, const char* function) {
+  if (name == "zfail") return StencilChoice::zfail;
+  if (name == "zpass") return StencilChoice::zpass;
+  if (name == "auto") return StencilChoice::automatic;
+  value_error(std::string(function) + ": stencil must be 'zfail', 'zpass' or 'auto', got '" + name + "'");
+}
+
+// The scene file at `path` (a scene or a mesh, as the CLI reads it), `size` (width, height)
+// replacing its camera's when given.
+Scene scene_for_gl(const std::string& path, const std::optional<std::array<std::uint32_t, 2>>& size,
+                   const char* function) {
+  Scene scene = load_scene_or_mesh(path);
+  if (size) {
+    if ((*size)[0] == 0 || (*size)[1] == 0) value_error(std::string(function) + ": size must be two positive integers");
+    scene.camera.width = (*size)[0];
+    scene.camera.height = (*size)[1];
+  }
+  if (scene.lights.empty()) throw InputError(path, "the scene has no light");
+  return scene;
+}
+
+template <int Channels>
+py::array_t<std::uint8_t> image_to_numpy(gpu::Image<Channels>&& image) {
+  const auto h = static_cast<py::ssize_t>(image.height), w = static_cast<py::ssize_t>(image.width);
+  if constexpr (Channels == 1) return to_numpy(std::move(image.pixels), {h, w});
+  else
+  return to_numpy(std::move(image.pixels), {h, w, static_cast<py::ssize_t>(Channels)});
+}
+
+py::dict render_py(const std::string& path, const std::string& method_name,
+                   const std::optional<std::array<std::uint32_t, 2>>& size, const std::string& stencil_name,
+                   const std::optional<int>& device) {
+  const gpu::ShadowMethod method = gl_method(method_name, "render");
+  const StencilChoice stencil = stencil_choice(stencil_name, "render");
+  gpu::StencilShadowFrame frame;
+  std::vector<gpu::StencilMethod> stencils;
+  std::string renderer_name;
+  {
+    py::gil_scoped_release release;
+    const Scene scene = scene_for_gl(path, size, "render");
+    // The context first: what follows uploads to it. Made current on this thread, released on return.
+    const gpu::EglContext context(gpu::EglContextOptions{device, false});
+    renderer_name = context.renderer();
+    const auto d = prepare_drawn_method_scene(scene, method, stencil);
+    gpu::ShadowMethodRenderer renderer(method, d->method_scene(), d->renderer_options());
+    const gpu::OffscreenTarget target(d->scene.camera.width, d->scene.camera.height);
+    frame = renderer.render(target, d->scene.camera);
+    renderer.check_capacity();  // a GPU-built volume that overflowed: an error, not an open volume's image
+    stencils = d->light_stencil;
+  }
+  py::dict out;
+  const bool counts = gpu::draws_volume(method);
+  out["image"] = image_to_numpy(std::move(frame.colour));
+  out["lit"] = image_to_numpy(std::move(frame.first_lit_mask));
+  out["counts"] = counts ? py::object(image_to_numpy(std::move(frame.first_stencil))) : py::none();
+  py::list names;
+  for (const gpu::StencilMethod s : stencils) names.append(s == gpu::StencilMethod::zpass ? "zpass" : "zfail");
+  out["stencil"] = names;
+  out["method"] = std::string(gpu::shadow_method_name(method));
+  out["renderer"] = renderer_name;
+  return out;
+}
+
+py::dict comparison_dict(const PixelComparison& c) {
+  py::dict d;
+  d["hard_errors"] = c.hard_errors;
+  d["ambiguous"] = c.ambiguous;
+  d["agree"] = c.agree;
+  d["coverage_errors"] = c.coverage_errors;
+  d["lit_errors"] = c.lit_errors;
+  d["count_errors"] = c.count_errors;
+  return d;
+}
+
+py::dict diff_py(const std::string& path, const std::vector<std::string>& method_names,
+                 const std::optional<std::array<std::uint32_t, 2>>& size, const std::string& stencil_name,
+                 const std::optional<int>& device) {
+  if (method_names.empty()) value_error("diff: no method");
+  std::vector<gpu::ShadowMethod> methods;
+  for (const std::string& name : method_names) methods.push_back(gl_method(name, "diff"));
+  SceneComparisonOptions options;
+  const StencilChoice stencil = stencil_choice(stencil_name, "diff");
+  options.stencil_auto = stencil == StencilChoice::automatic;
+  options.method_options.stencil = stencil == StencilChoice::zpass ? gpu::StencilMethod::zpass : gpu::StencilMethod::zfail;
+  SceneComparison comparison;
+  {
+    py::gil_scoped_release release;
+    const Scene scene = scene_for_gl(path, size, "diff");
+    const gpu::EglContext context(gpu::EglContextOptions{device, false});
+    comparison = compare_scene(scene, methods, options);
+  }
+  py::dict out;
+  for (const MethodRun& run : comparison.runs) {
+    py::dict m;
+    m["robust"] = run.held_robust;
+    m["hard_errors"] = run.sum(&PixelComparison::hard_errors);
+    m["ambiguous"] = run.sum(&PixelComparison::ambiguous);
+    m["agree"] = run.sum(&PixelComparison::agree);
+    m["coverage_errors"] = run.sum(&PixelComparison::coverage_errors);
+    m["lit_errors"] = run.sum(&PixelComparison::lit_errors);
+    m["count_errors"] = run.sum(&PixelComparison::count_errors);
+    const std::optional<bool> closed = run.closed();
+    m["closed"] = closed ? py::object(py::bool_(*closed)) : py::none();
+    m["failed"] = run.failed();
+    py::list per_light;
+    for (const LightRun& l : run.lights) {
+      py::dict lj = comparison_dict(l.comparison);
+      lj["closed"] = l.closure ? py::object(py::bool_(l.closure->closed)) : py::none();
+      if (!l.capacity_error.empty()) lj["capacity_error"] = l.capacity_error;
+      per_light.append(lj);
+    }
+    m["per_light"] = per_light;
+    out[py::str(std::string(gpu::shadow_method_name(run.method)))] = m;
+  }
+  return out;
+}
+
 }  // namespace
 }  // namespace shadowcert::python
 
@@ -450,4 +586,25 @@ PYBIND11_MODULE(shadowcert, m) {
         "Returns a dict of numpy arrays, rows top first: counts uint32 (k, h, w) (NO_HIT, UNDEFINED_COUNT),\n"
         "lit uint8 (k, h, w) (255 lit), ambiguity uint8 (k, h, w) (reason bits), hit_triangles\n"
         "uint32 (h, w), view_ambiguity uint8 (h, w), and seconds. Raises ValueError on bad input.");
+  m.def("render", &render_py, py::arg("scene"), py::arg("method") = "cpu", py::kw_only(),
+        py::arg("size") = py::none(), py::arg("stencil") = "zfail", py::arg("device") = py::none(),
+        "render(scene, method='cpu', *, size=None, stencil='zfail', device=None) -> dict\n\n"
+        "One frame of a GL method (cpu, cs, gs, ts, pertri, shadowmap, discrete, accurate, smooth,\n"
+        "smooth-gpu, pcf, pcss, smoothie) of the scene or mesh file `scene`, drawn headless through\n"
+        "EGL exactly as `shadowcert render --method M` draws it with its default options (the same\n"
+        "pixels). size: (width, height) for the camera's; stencil: zfail, zpass or auto (volume\n"
+        "methods); device: an EGL device index (`shadowcert devices`), None to choose.\n"
+        "Returns a dict, rows top first: image uint8 (h, w, 4) (alpha 0 where no receiver), lit\n"
+        "uint8 (h, w) (the first light: 255 lit), counts uint8 (h, w) (the first light's stencil\n"
+        "counts modulo 256; None for the shadow-map methods), stencil (each light's z-pass or\n"
+        "z-fail), method and renderer (GL_RENDERER). Raises ValueError on a bad file or argument,\n"
+        "RuntimeError with the driver's message when no GL 4.5 context can be made.");
+  m.def("diff", &diff_py, py::arg("scene"),
+        py::arg("methods") = std::vector<std::string>{"cpu", "cs", "gs", "ts", "pertri"}, py::kw_only(),
+        py::arg("size") = py::none(), py::arg("stencil") = "zfail", py::arg("device") = py::none(),
+        "diff(scene, methods=['cpu','cs','gs','ts','pertri'], *, size=None, stencil='zfail', device=None) -> dict\n\n"
+        "Each GL method's frame against the exact image, as `shadowcert diff --json` compares them\n"
+        "(docs/diff.md): a dict by method name of robust, hard_errors, ambiguous, agree,\n"
+        "coverage_errors, lit_errors, count_errors, closed (None for the shadow maps), failed and\n"
+        "per_light (the same figures per light). Raises as render does.");
 }

@@ -129,3 +129,36 @@ if(NOT EXISTS ${host} AND CONFIG)
 endif()
 step("run the host" ${host})
 message(STATUS "${step_output}")
+
+# ---- 4. `import shadowcert` from the prefix (when the build has the module: -DPYTHON= the
+# interpreter, -DPYTHON_DIR= the module's folder under the prefix): the installed module and stub
+# load with nothing of the build tree on the path, and the module works (a tetrahedron certified,
+# one frame of cs rendered headless).
+if(PYTHON AND PYTHON_DIR)
+  set(module_dir ${prefix}/${PYTHON_DIR})
+  foreach(file shadowcert.pyi)
+    if(NOT EXISTS ${module_dir}/${file})
+      fail("${module_dir}/${file} was not installed")
+    endif()
+  endforeach()
+  file(GLOB modules ${module_dir}/shadowcert*.so)
+  if(NOT modules)
+    fail("no shadowcert*.so in ${module_dir}")
+  endif()
+  set(check [=[
+import sys, shadowcert
+prefix = sys.argv[1]
+assert shadowcert.__file__.startswith(prefix), shadowcert.__file__
+vertices = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]]
+triangles = [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]]
+report = shadowcert.certify(vertices, triangles, [0.2, 0.2, 5.0, 1.0], method="exact")
+assert report["methods"]["exact"]["closed"] and report["methods"]["exact"]["count_failures"] == 0, report
+frame = shadowcert.render(sys.argv[2], "cs", size=(64, 48))
+assert frame["image"].shape == (48, 64, 4) and (frame["lit"] == 0).any()
+print("import shadowcert from", shadowcert.__file__, "ok")
+]=])
+  step("import shadowcert from the prefix"
+       ${CMAKE_COMMAND} -E env PYTHONPATH=${module_dir} PYTHONNOUSERSITE=1
+       ${PYTHON} -c "${check}" ${prefix} ${SCENE})
+  message(STATUS "${step_output}")
+endif()

@@ -341,9 +341,121 @@ def test_the_stub_names_every_function_with_its_parameters():
         doc = getattr(shadowcert, name).__doc__
         stub_parameters = [a.arg for a in function.args.args + function.args.kwonlyargs]
         signature = doc.splitlines()[0]  # pybind11's: name(a: type, b: type = default, *, c: ...) -> ...
-        module_parameters = [p.split(":")[0].strip() for p in signature[signature.index("(") + 1:signature.rindex(")")].split(", ")
-                             if p.strip() and p.strip() != "*"]
+        inside, parts, depth, word = signature[signature.index("(") + 1:signature.rindex(")")], [], 0, ""
+        for ch in inside:  # split at the commas outside brackets (a default may be a list)
+            depth += ch in "([{"
+            depth -= ch in ")]}"
+            if ch == "," and depth == 0:
+                parts.append(word)
+                word = ""
+            else:
+                word += ch
+        parts.append(word)
+        module_parameters = [p.split(":")[0].strip() for p in parts if p.strip() and p.strip() != "*"]
         assert stub_parameters == module_parameters, name
         assert len(doc.splitlines()) > 3, f"{name} has no docstring of its own"
     installed = Path(shadowcert.__file__).with_name("shadowcert.pyi")
     assert installed.read_text() == (SOURCE / "python" / "shadowcert.pyi").read_text()
+
+
+# ---- render and diff: the GL methods (headless EGL; CI has Mesa's llvmpipe) ----
+
+SCENES = SOURCE / "data" / "scenes"
+
+
+def read_png_rgba(path):
+    """An 8-bit RGBA PNG as a (h, w, 4) uint8 array (what `shadowcert render --out` writes)."""
+    import struct
+    import zlib
+    data = Path(path).read_bytes()
+    pos, idat = 8, b""
+    while pos < len(data):
+        length, kind = struct.unpack(">I4s", data[pos:pos + 8])
+        chunk = data[pos + 8:pos + 8 + length]
+        pos += 12 + length
+        if kind == b"IHDR":
+            width, height, depth, colour = struct.unpack(">IIBB", chunk[:10])
+            assert depth == 8 and colour == 6, f"{path}: not 8-bit RGBA"
+        elif kind == b"IDAT":
+            idat += chunk
+    raw = np.frombuffer(zlib.decompress(idat), dtype=np.uint8).reshape(height, 1 + 4 * width)
+    out = np.zeros((height, 4 * width), dtype=np.int32)
+    previous = np.zeros(4 * width, dtype=np.int32)
+    for y in range(height):
+        kind, line = raw[y, 0], raw[y, 1:].astype(np.int32)
+        row = np.zeros(4 * width, dtype=np.int32)
+        for x in range(4 * width):
+            a = row[x - 4] if x >= 4 else 0
+            b = previous[x]
+            c = previous[x - 4] if x >= 4 else 0
+            if kind == 0:
+                p = 0
+            elif kind == 1:
+                p = a
+            elif kind == 2:
+                p = b
+            elif kind == 3:
+                p = (a + b) // 2
+            else:
+                pa, pb, pc = abs(b - c), abs(a - c), abs(a + b - 2 * c)
+                p = a if pa <= pb and pa <= pc else b if pb <= pc else c
+            row[x] = (line[x] + p) & 255
+        out[y], previous = row, row
+    return out.reshape(height, width, 4).astype(np.uint8)
+
+
+@pytest.mark.parametrize("method", ["cpu", "cs", "pertri", "smooth", "pcf", "smoothie"])
+def test_render_equals_the_cli_pixel_for_pixel(method, tmp_path):
+    if not CLI:
+        pytest.fail("SHADOWCERT_CLI is not set (ctest sets it to build/cli/shadowcert)")
+    scene = SCENES / "sphere_over_floor.json"
+    out = tmp_path / "cli.png"
+    run = subprocess.run([CLI, "render", str(scene), "--method", method, "--size", "96x72", "--out", str(out)],
+                         capture_output=True, text=True, timeout=300)
+    assert run.returncode == 0, run.stdout + run.stderr
+    frame = shadowcert.render(str(scene), method, size=(96, 72))
+    assert frame["image"].shape == (72, 96, 4) and frame["image"].dtype == np.uint8
+    differing = int(np.count_nonzero(np.any(frame["image"] != read_png_rgba(out), axis=2)))
+    assert differing == 0, f"{method}: {differing} pixels differ from shadowcert render"
+    assert frame["method"] == method
+    if method in ("pcf", "smoothie"):
+        assert frame["counts"] is None and frame["stencil"] == []
+    else:
+        # The lit mask is the count's zero set, and some receiver pixels are shadowed.
+        assert np.array_equal(frame["lit"] == 255, frame["counts"] == 0)
+        assert 0 < np.count_nonzero(frame["lit"] == 0) < frame["lit"].size
+
+
+def test_diff_equals_the_clis_json(tmp_path):
+    if not CLI:
+        pytest.fail("SHADOWCERT_CLI is not set (ctest sets it to build/cli/shadowcert)")
+    scene = SCENES / "default.json"
+    out = tmp_path / "diff.json"
+    run = subprocess.run([CLI, "diff", str(scene), "--methods", "cpu,pertri,shadowmap", "--size", "80x60",
+                          "--json", str(out)], capture_output=True, text=True, timeout=600)
+    assert run.returncode in (0, 1), run.stdout + run.stderr
+    cli = json.loads(out.read_text())["methods"]
+    ours = shadowcert.diff(str(scene), ["cpu", "pertri", "shadowmap"], size=(80, 60))
+    assert list(ours) == ["cpu", "pertri", "shadowmap"]
+    figures = ["robust", "hard_errors", "ambiguous", "agree", "coverage_errors", "lit_errors", "count_errors",
+               "closed", "failed"]
+    for name, run_figures in ours.items():
+        assert {k: run_figures[k] for k in figures} == {k: cli[name][k] for k in figures}, name
+    # The robust methods: no hard error, a closed volume, most pixels compared.
+    for name in ("cpu", "pertri"):
+        assert ours[name]["hard_errors"] == 0 and ours[name]["closed"] is True
+        assert ours[name]["agree"] > ours[name]["ambiguous"]
+
+
+def test_render_and_diff_bad_arguments_raise_value_error(tmp_path):
+    scene = str(SCENES / "default.json")
+    with pytest.raises(ValueError, match="unknown GL method 'nosuch'"):
+        shadowcert.render(scene, "nosuch")
+    with pytest.raises(ValueError, match="stencil must be"):
+        shadowcert.render(scene, "cpu", stencil="both")
+    with pytest.raises(ValueError, match="size must be"):
+        shadowcert.render(scene, "cpu", size=(0, 10))
+    with pytest.raises(ValueError, match="missing.json"):
+        shadowcert.render(str(tmp_path / "missing.json"))
+    with pytest.raises(ValueError, match="no method"):
+        shadowcert.diff(scene, [])
