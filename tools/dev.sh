@@ -22,6 +22,7 @@ PACKAGES=(
   python3-matplotlib chromium   # shadowcert bench's plots (tools/bench_plots.py), its report's browser test
   libembree-dev                 # the float ray tracer peer `rt` (docs/ray-tracing.md)
   pybind11-dev python3-numpy python3-pytest   # `import shadowcert` (python/, docs/python.md) and its tests
+  python3-open3d                # its test: Open3D meshes as input (tests/python)
   slurm-wlm munge               # the real single-node Slurm job array test (tools/slurm.sh, docs/batch-runs.md)
   libglfw3-dev xvfb             # `shadowcert view`'s window and examples/ (GLFW), their tests under xvfb-run
 )

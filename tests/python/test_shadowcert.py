@@ -459,3 +459,44 @@ def test_render_and_diff_bad_arguments_raise_value_error(tmp_path):
         shadowcert.render(str(tmp_path / "missing.json"))
     with pytest.raises(ValueError, match="no method"):
         shadowcert.diff(scene, [])
+
+
+# ---- Open3D meshes as input (python3-open3d; tools/dev.sh installs it, so a missing one fails) ----
+
+def test_open3d_meshes_certify_as_their_arrays_do():
+    import open3d as o3d
+    light = [0.3, 4.0, 0.2, 1.0]
+    for mesh in (o3d.geometry.TriangleMesh.create_box(1.0, 2.0, 0.5),
+                 o3d.geometry.TriangleMesh.create_sphere(0.8, 12),
+                 o3d.geometry.TriangleMesh.create_torus(1.0, 0.3, 16, 8)):
+        vertices, triangles = mesh.vertices, mesh.triangles  # Open3D's Vector3dVector and Vector3iVector
+        report = shadowcert.certify(np.asarray(vertices), np.asarray(triangles), light, method="exact")
+        plain = shadowcert.certify(np.asarray(vertices).tolist(), np.asarray(triangles).tolist(), light,
+                                   method="exact")
+        assert without_timings(report) == without_timings(plain)
+        exact = report["methods"]["exact"]
+        # Open3D's primitives are closed, so the chain is: no unbalanced edge, every count right.
+        assert exact["closed"] and exact["unbalanced_edges"] == 0 and exact["count_failures"] == 0, exact
+        assert report["triangles"] == len(triangles)
+    # Open3D's vectors themselves (no np.asarray) are accepted as arrays too.
+    box = o3d.geometry.TriangleMesh.create_box()
+    direct = shadowcert.certify(box.vertices, box.triangles, light, method="exact")
+    assert without_timings(direct) == without_timings(
+        shadowcert.certify(np.asarray(box.vertices), np.asarray(box.triangles), light, method="exact"))
+
+
+def test_open3d_mesh_exact_image_shadows_its_floor():
+    import open3d as o3d
+    box = o3d.geometry.TriangleMesh.create_box(0.5, 0.5, 0.5)
+    box.translate((-0.25, 0.5, -0.25))
+    floor = o3d.geometry.TriangleMesh.create_box(4.0, 0.01, 4.0)
+    floor.translate((-2.0, -0.01, -2.0))
+    both = box + floor
+    image = shadowcert.exact_image(np.asarray(both.vertices), np.asarray(both.triangles), [0.0, 5.0, 0.0, 1.0],
+                                   eye=[0.0, 4.0, 4.0], target=[0.0, 0.0, 0.0], size=[64, 48])
+    counts = image["counts"][0]
+    hit = image["hit_triangles"]
+    floor_pixels = (hit != shadowcert.NO_HIT) & (hit >= len(box.triangles))
+    # Under the box, the floor counts 2 (the box's top and bottom); elsewhere it is lit.
+    assert np.any(floor_pixels & (counts == 2)) and np.any(floor_pixels & (counts == 0))
+    assert not np.any(floor_pixels & (counts == 1))
