@@ -17,6 +17,7 @@
 #include "cli/wall_clock.h"
 #include "exact/volume_closure.h"
 #include "gpu/egl_context.h"
+#include "pipeline/method_certificate.h"
 #include "pipeline/silhouette_volumes.h"
 #include "io/output_file.h"
 #include "io/scene_input.h"
@@ -151,89 +152,23 @@ std::filesystem::path volume_path(const std::string& base, MultiplicityMethod me
   return p.parent_path() / (p.stem().string() + "_" + std::string(method_name(method)) + p.extension().string());
 }
 
-struct MethodReport {
-  std::string name;
-  ClosureCertificate closure;
-  CountCertificate counts;
-  std::uint64_t silhouette_edges = 0;
-  std::int32_t max_multiplicity = 0;
-  std::map<std::int32_t, std::uint64_t> histogram;  // |m| -> edges, m != 0
-  std::uint64_t zero_facing_triangles = 0;
-  double multiplicity_seconds = 0, chain_seconds = 0, closure_seconds = 0;
-  [[nodiscard]] double seconds() const {
-    return multiplicity_seconds + chain_seconds + closure_seconds + counts.seconds;
-  }
-  [[nodiscard]] bool passed() const { return closure.closed && counts.failures == 0; }
-};
-
-MethodReport certify_method(MultiplicityMethod method, Precision precision, const Soup& soup, const EdgeTable& table,
-                            const Light& light, const CountSampling& sampling, const CertifyOptions& options,
-                            bool several_methods) {
-  MethodReport report;
-  report.name = std::string(method_name(method));
-  auto start = Clock::now();
-  const EdgeMultiplicities m = edge_multiplicities(method, soup, table, light, precision);
-  report.multiplicity_seconds = seconds_since(start);
-
-  for (std::int32_t value : m.multiplicity) {
-    if (value == 0) continue;
-    const std::int32_t magnitude = value < 0 ? -value : value;
-    ++report.silhouette_edges;
-    ++report.histogram[magnitude];
-    report.max_multiplicity = std::max(report.max_multiplicity, magnitude);
-  }
-  for (Sign s : m.triangle_sign)
-    if (s == Sign::zero) ++report.zero_facing_triangles;
-
-  start = Clock::now();
-  const ShadowVolumeChain chain = assemble_chain(soup, table, m, light);
-  report.chain_seconds = seconds_since(start);
-  start = Clock::now();
-  report.closure = certify_closure(chain);
-  report.closure_seconds = seconds_since(start);
-  report.counts = certify_counts(soup, light, chain, sampling);
-
+// One method's certificates (pipeline/method_certificate.h); with --volume-out, its chain drawn
+// to a file as well.
+MethodCertificate certify_and_draw(MultiplicityMethod method, Precision precision, const Soup& soup,
+                                   const EdgeTable& table, const Light& light, const CountSampling& sampling,
+                                   const CertifyOptions& options, bool several_methods) {
+  ShadowVolumeChain chain;
+  MethodCertificate c = certify_method(method, precision, soup, table, light, sampling, &chain);
   if (!options.volume_out.empty()) {
     const std::filesystem::path file = volume_path(options.volume_out, method, several_methods);
     create_parent_directories(file);
     write_soup(file, chain_picture(chain, soup, light,
                                kFarDistanceInDiagonals * std::max(scene_diagonal(soup), 1.0)));
   }
-  return report;
+  return c;
 }
 
-nlohmann::json to_json(const MethodReport& r) {
-  nlohmann::json histogram = nlohmann::json::object();
-  for (const auto& [magnitude, edges] : r.histogram) histogram[std::to_string(magnitude)] = edges;
-  nlohmann::json failures = nlohmann::json::array();
-  for (const CountFailure& f : r.counts.first_failures)
-    failures.push_back({{"point", f.point}, {"expected", f.expected}, {"crossed", f.crossed}});
-  nlohmann::json unbalanced = nlohmann::json::array();
-  for (std::size_t i = 0; i < r.closure.unbalanced.size() && i < 16; ++i) {
-    const UnbalancedEdge& e = r.closure.unbalanced[i];
-    unbalanced.push_back({{"from", e.from}, {"to", e.to}, {"excess", e.excess}});
-  }
-  return {{"closed", r.closure.closed},
-          {"unbalanced_edges", r.closure.unbalanced.size()},
-          {"first_unbalanced", unbalanced},
-          {"count_checks", r.counts.checks},
-          {"count_failures", r.counts.failures},
-          {"count_redrawn", r.counts.redrawn},
-          {"count_skipped", r.counts.skipped},
-          {"first_count_failures", failures},
-          {"silhouette_edges", r.silhouette_edges},
-          {"max_multiplicity", r.max_multiplicity},
-          {"multiplicity_histogram", histogram},
-          {"zero_facing_triangles", r.zero_facing_triangles},
-          {"seconds", r.seconds()},
-          {"stage_seconds",
-           {{"multiplicities", r.multiplicity_seconds},
-            {"chain", r.chain_seconds},
-            {"closure", r.closure_seconds},
-            {"counts", r.counts.seconds}}}};
-}
-
-void print_report(const MethodReport& r) {
+void print_report(const MethodCertificate& r) {
   fmt::print("{}\n", r.name);
   fmt::print("  closed                 {}", r.closure.closed ? "yes" : "NO");
   if (!r.closure.closed) fmt::print(" ({} unbalanced edges)", r.closure.unbalanced.size());
@@ -328,10 +263,10 @@ int run_certify(const CertifyOptions& options) {
   nlohmann::json json_methods = nlohmann::json::object();
   bool exact_failed = false;
   for (MultiplicityMethod method : methods) {
-    const MethodReport report = certify_method(method, precision, canonical.soup, table, light, sampling, options,
-                                               methods.size() > 1);
+    const MethodCertificate report = certify_and_draw(method, precision, canonical.soup, table, light, sampling,
+                                                      options, methods.size() > 1);
     print_report(report);
-    json_methods[report.name] = to_json(report);
+    json_methods[report.name] = method_certificate_json(report);
     if (method == MultiplicityMethod::exact && !report.passed()) exact_failed = true;
   }
 

@@ -33,6 +33,7 @@
 #include "io/scene_input.h"
 #include "io/soup_file.h"
 #include "pipeline/drawn_method_scene.h"
+#include "pipeline/method_certificate.h"
 #include "pipeline/scene_comparison.h"
 #include "pipeline/stencil_choice.h"
 #include "reference/exact_image.h"
@@ -168,78 +169,7 @@ py::dict read_scene_py(const std::string& path) {
   return out;
 }
 
-// ---- certify: the same stages and the same JSON as `shadowcert certify --json` (cli/certify_command.cpp) ----
-
-struct MethodReport {
-  std::string name;
-  ClosureCertificate closure;
-  CountCertificate counts;
-  std::uint64_t silhouette_edges = 0;
-  std::int32_t max_multiplicity = 0;
-  std::map<std::int32_t, std::uint64_t> histogram;
-  std::uint64_t zero_facing_triangles = 0;
-  double multiplicity_seconds = 0, chain_seconds = 0, closure_seconds = 0;
-  [[nodiscard]] double seconds() const {
-    return multiplicity_seconds + chain_seconds + closure_seconds + counts.seconds;
-  }
-};
-
-MethodReport certify_method(MultiplicityMethod method, Precision precision, const Soup& soup, const EdgeTable& table,
-                            const Light& light, const CountSampling& sampling) {
-  MethodReport report;
-  report.name = std::string(method_name(method));
-  auto start = Clock::now();
-  const EdgeMultiplicities m = edge_multiplicities(method, soup, table, light, precision);
-  report.multiplicity_seconds = seconds_since(start);
-  for (std::int32_t value : m.multiplicity) {
-    if (value == 0) continue;
-    const std::int32_t magnitude = value < 0 ? -value : value;
-    ++report.silhouette_edges;
-    ++report.histogram[magnitude];
-    report.max_multiplicity = std::max(report.max_multiplicity, magnitude);
-  }
-  for (Sign s : m.triangle_sign)
-    if (s == Sign::zero) ++report.zero_facing_triangles;
-  start = Clock::now();
-  const ShadowVolumeChain chain = assemble_chain(soup, table, m, light);
-  report.chain_seconds = seconds_since(start);
-  start = Clock::now();
-  report.closure = certify_closure(chain);
-  report.closure_seconds = seconds_since(start);
-  report.counts = certify_counts(soup, light, chain, sampling);
-  return report;
-}
-
-nlohmann::json to_json(const MethodReport& r) {
-  nlohmann::json histogram = nlohmann::json::object();
-  for (const auto& [magnitude, edges] : r.histogram) histogram[std::to_string(magnitude)] = edges;
-  nlohmann::json failures = nlohmann::json::array();
-  for (const CountFailure& f : r.counts.first_failures)
-    failures.push_back({{"point", f.point}, {"expected", f.expected}, {"crossed", f.crossed}});
-  nlohmann::json unbalanced = nlohmann::json::array();
-  for (std::size_t i = 0; i < r.closure.unbalanced.size() && i < 16; ++i) {
-    const UnbalancedEdge& e = r.closure.unbalanced[i];
-    unbalanced.push_back({{"from", e.from}, {"to", e.to}, {"excess", e.excess}});
-  }
-  return {{"closed", r.closure.closed},
-          {"unbalanced_edges", r.closure.unbalanced.size()},
-          {"first_unbalanced", unbalanced},
-          {"count_checks", r.counts.checks},
-          {"count_failures", r.counts.failures},
-          {"count_redrawn", r.counts.redrawn},
-          {"count_skipped", r.counts.skipped},
-          {"first_count_failures", failures},
-          {"silhouette_edges", r.silhouette_edges},
-          {"max_multiplicity", r.max_multiplicity},
-          {"multiplicity_histogram", histogram},
-          {"zero_facing_triangles", r.zero_facing_triangles},
-          {"seconds", r.seconds()},
-          {"stage_seconds",
-           {{"multiplicities", r.multiplicity_seconds},
-            {"chain", r.chain_seconds},
-            {"closure", r.closure_seconds},
-            {"counts", r.counts.seconds}}}};
-}
+// ---- certify: the same stages and the same JSON as `shadowcert certify --json` (pipeline/method_certificate.h) ----
 
 std::vector<MultiplicityMethod> chosen_methods(const std::string& name) {
   if (name == "all")
@@ -300,8 +230,8 @@ py::object certify_py(const py::object& vertices, const py::object& triangles, c
     const double table_seconds = seconds_since(stage);
     nlohmann::json json_methods = nlohmann::json::object();
     for (MultiplicityMethod m : methods) {
-      const MethodReport report = certify_method(m, precision, canonical.soup, table, light, sampling);
-      json_methods[report.name] = to_json(report);
+      const MethodCertificate c = certify_method(m, precision, canonical.soup, table, light, sampling);
+      json_methods[c.name] = method_certificate_json(c);
     }
     const nlohmann::json report = {
         {"input", nullptr},
