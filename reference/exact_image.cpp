@@ -645,6 +645,98 @@ bool band_meets_volume(const ImageGeometry& g, std::size_t light, const DepthBan
   return meets;
 }
 
+// A rasteriser snaps vertices to a subpixel grid (8 bits: 1/256 px on llvmpipe and NVIDIA): a
+// face whose projected edge passes within that of a pixel centre may or may not cover it. Part
+// of the diff's GL model (used only with ExactImageOptions::depth_band), as the depth band is.
+constexpr double kSubpixelSnap = 1.0 / 256.0;
+
+// Where a plane lies over the snap pyramid around a centre ray, against P's depth band.
+enum class PlaneSide { in_front, behind, reaches };
+
+// The points of ray `ray` at view depths `near_depth` and `far_depth` (doubles: they bound
+// the band, as depth_band's end points do).
+std::array<Vec3, 2> at_depths(const PixelRay& ray, const CameraFrame& frame, double near_depth, double far_depth) {
+  const double per_t = dot(ray.direction, frame.forward);
+  std::array<Vec3, 2> out{};
+  for (int k = 0; k < 3; ++k) {
+    out[0][k] = ray.origin[k] + near_depth / per_t * ray.direction[k];
+    out[1][k] = ray.origin[k] + far_depth / per_t * ray.direction[k];
+  }
+  return out;
+}
+
+// The side of the plane through p, q, r (homogeneous: a side face's plane holds the light)
+// over the snap rays, each given as (eye, band's near point, band's far point): in front when
+// every ray crosses it before the band, behind when none crosses it before the band's far end
+// (or at all), else it reaches the band. Exact orientations of the given points.
+PlaneSide plane_side(const HomogeneousPoint& p, const HomogeneousPoint& q, const HomogeneousPoint& r,
+                     const HomogeneousPoint& eye, const std::array<std::array<Vec3, 2>, 5>& band_points) {
+  const Sign at_eye = orient(p, q, r, eye);
+  if (at_eye == Sign::zero) return PlaneSide::reaches;  // the plane holds the eye: seen edge-on
+  bool all_front = true, all_behind = true;
+  for (const std::array<Vec3, 2>& b : band_points) {
+    const Sign at_near = orient(p, q, r, finite_point(b[0]));
+    const Sign at_far = orient(p, q, r, finite_point(b[1]));
+    if (at_near != at_eye) all_behind = false;  // crossed before the band (or on its near end)
+    if (at_near == at_eye) all_front = false;
+    if (at_far != at_eye) all_behind = false;   // crossed before the band's far end
+  }
+  if (all_front) return PlaneSide::in_front;
+  if (all_behind) return PlaneSide::behind;
+  return PlaneSide::reaches;
+}
+
+// Whether a casting edge passes within kSubpixelSnap of pixel (i, r)'s centre (exactly: the edge
+// meets the pyramid from the eye over four rays kSubpixelSnap around the centre) where its
+// triangle's cap and its side face for `light` could count on opposite sides of P: either plane
+// reaches P's depth band over the pyramid, or one lies in front and the other behind. Such a
+// fold pair (the two faces meet on the edge) cancels when GL's rounding puts both over the
+// centre on one side of P, and moves the count by one otherwise: docs/campaign.md, the 1920x1080
+// reproducers of tests/regressions/gl_fold/. `band` is the centre's (depth_band), `hit` P's.
+bool fold_pair_at_centre(const ImageGeometry& g, std::size_t light, const CameraFrame& frame, const Backdrop& backdrop,
+                         std::uint32_t i, std::uint32_t r, const RayHit& hit, const DepthBand& band) {
+  const double cx = i + 0.5, cy = r + 0.5, s = kSubpixelSnap;
+  const std::array<std::array<double, 2>, 4> offsets{{{-s, -s}, {s, -s}, {s, s}, {-s, s}}};  // cyclic
+  std::array<PixelRay, 5> rays{};
+  std::array<detail::RayMeeting, 4> meetings{};
+  rays[4] = pixel_ray(frame, cx, cy);
+  for (std::size_t k = 0; k < 4; ++k) {
+    rays[k] = pixel_ray(frame, cx + offsets[k][0], cy + offsets[k][1]);
+    meetings[k] = detail::ray_meets_triangle(rays[k], backdrop.triangle[0], backdrop.triangle[1], backdrop.triangle[2]);
+    if (meetings[k].direction_side == Sign::zero || meetings[k].eye_side != -meetings[k].direction_side)
+      return true;  // a snap ray misses the backdrop plane (not seen for a finite scene): undecided, ambiguous
+  }
+  const auto at = [&](std::size_t k) {
+    return detail::RayParameter(rays[k], backdrop.triangle[0], backdrop.triangle[1], backdrop.triangle[2],
+                                meetings[k].direction_side);
+  };
+  const std::array<detail::RayParameter, 4> snap{at(0), at(1), at(2), at(3)};
+  // P's band in view depth (depth_band's end points measured along the forward axis).
+  const auto view_depth = [&](const Vec3& x) { return dot(difference(x, frame.eye), frame.forward); };
+  const double near_depth = view_depth(band.near), far_depth = view_depth(band.far);
+  std::array<std::array<Vec3, 2>, 5> band_points{};
+  for (std::size_t k = 0; k < 5; ++k) band_points[k] = at_depths(rays[k], frame, near_depth, far_depth);
+  const detail::FootprintPolytope pyramid(finite_point(frame.eye), snap);
+  const HomogeneousPoint eye = finite_point(frame.eye);
+  const HomogeneousPoint& l = g.lights[light];
+  bool fold = false;
+  g.tree.dilated_segment_query(pyramid.query_from(), frame.eye, pyramid.query_slack(), [&](std::uint32_t id) {
+    if (id == hit.triangle || !g.casting(id)) return true;
+    const std::array<Vec3, 3> t{g.vertex(id, 0), g.vertex(id, 1), g.vertex(id, 2)};
+    if (!pyramid.meets_an_edge_of(t[0], t[1], t[2])) return true;
+    const PlaneSide cap = plane_side(finite_point(t[0]), finite_point(t[1]), finite_point(t[2]), eye, band_points);
+    for (int e = 0; e < 3 && !fold; ++e) {
+      const Vec3& u = t[static_cast<std::size_t>(e)];
+      const Vec3& v = t[static_cast<std::size_t>((e + 1) % 3)];
+      if (!pyramid.meets(u, v)) continue;
+      const PlaneSide side = plane_side(finite_point(u), finite_point(v), l, eye, band_points);
+      fold = cap == PlaneSide::reaches || side == PlaneSide::reaches || cap != side;
+    }
+    return !fold;
+  });
+  return fold;
+}
+
 }  // namespace
 
 ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Camera& camera,
@@ -845,9 +937,12 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
             if (bits == 0 && footprints &&
                 footprint_shadow_varies(g, light, corner_hits(g, grid, hits, point_boxes.get(), i, row)))
               bits |= kFootprintCounts;
-            if (bits == 0 && footprints && options.depth_band &&
-                band_meets_volume(g, light, depth_band(g, grid.frame, grid.ray(pixel), centre, options.depth_band)))
-              bits |= kDepthBand;
+            if (bits == 0 && footprints && options.depth_band) {
+              const DepthBand band = depth_band(g, grid.frame, grid.ray(pixel), centre, options.depth_band);
+              if (band_meets_volume(g, light, band) ||
+                  (backdrop && fold_pair_at_centre(g, light, grid.frame, *backdrop, i, row, centre, band)))
+                bits |= kDepthBand;
+            }
           } else if (centre.triangle != kNoHit) {
             bits |= kZeroSign;
           }

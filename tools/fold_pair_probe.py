@@ -81,6 +81,6 @@ def run(scene_path, px, py, rho):
     return any(o[6] for o in out)
 if __name__=='__main__':
     rho=float(sys.argv[1])
-    for path,x,y in [('tests/regressions/gl_open/all_methods_1920x1080_s2_c7.json',739,657),('tests/regressions/gl_open/all_methods_1920x1080_s2_c9.json',970,748),
+    for path,x,y in [('tests/regressions/gl_fold/all_methods_1920x1080_s2_c7.json',739,657),('tests/regressions/gl_fold/all_methods_1920x1080_s2_c9.json',970,748),
                      ('tests/regressions/gl/pertri_edge_on_pair_1024x768.json',83,463),('tests/regressions/gl/pertri_edge_on_pair_1920x1080.json',1081,430)]:
         print('AMBIGUOUS' if run(path,x,y,rho) else 'decided')
