@@ -693,42 +693,165 @@ PlaneSide plane_side(const HomogeneousPoint& p, const HomogeneousPoint& q, const
 // fold pair (the two faces meet on the edge) cancels when GL's rounding puts both over the
 // centre on one side of P, and moves the count by one otherwise: docs/campaign.md, the 1920x1080
 // reproducers of tests/regressions/gl_fold/. `band` is the centre's (depth_band), `hit` P's.
+// The pixels whose centre a casting edge's projection passes within twice kSubpixelSnap of
+// (doubles, a filter: fold_pair_at_centre decides exactly): one byte per pixel, 1 where it may.
+// Light-independent: only the camera and the casting edges, each clipped to the eye's half-space
+// and marched along its projection's major axis within the image, so the cost is its length in
+// pixels. A projection that is not finite marks every pixel.
+std::vector<std::uint8_t> fold_candidates(const ImageGeometry& g, const CameraFrame& frame) {
+  const std::uint32_t w = frame.width, h = frame.height;
+  std::vector<std::uint8_t> mask(std::size_t{w} * h, 0);
+  const double reach = 2.0 * kSubpixelSnap;
+  const auto pixel_of = [&](const Vec3& x, std::array<double, 2>& out) {
+    const Vec3 d = difference(x, frame.eye);
+    const double z = dot(d, frame.forward);
+    if (!(z > 1e-300)) return false;
+    out = {(dot(d, frame.right) / (z * frame.half_width) + 1.0) * w / 2.0,
+           (1.0 - dot(d, frame.up) / (z * frame.half_height)) * h / 2.0};
+    return std::isfinite(out[0]) && std::isfinite(out[1]);
+  };
+  // Marks (column, row) when its centre lies within `reach` of segment ab.
+  const auto mark_near = [&](const std::array<double, 2>& a, const std::array<double, 2>& b, std::int64_t col,
+                             std::int64_t row) {
+    if (col < 0 || row < 0 || col >= static_cast<std::int64_t>(w) || row >= static_cast<std::int64_t>(h)) return;
+    const double cx = static_cast<double>(col) + 0.5, cy = static_cast<double>(row) + 0.5;
+    const double ex = b[0] - a[0], ey = b[1] - a[1], px = cx - a[0], py = cy - a[1];
+    const double l2 = ex * ex + ey * ey;
+    const double f = l2 > 0.0 ? std::clamp((px * ex + py * ey) / l2, 0.0, 1.0) : 0.0;
+    const double dx = px - f * ex, dy = py - f * ey;
+    if (!(std::sqrt(dx * dx + dy * dy) > reach)) mask[static_cast<std::size_t>(row) * w + static_cast<std::size_t>(col)] = 1;
+  };
+  const auto mark_segment = [&](Vec3 u, Vec3 v) {
+    // Clipped to the part in front of the eye plane (the part behind meets no pixel's pyramid;
+    // the part in front of the clip projects beyond the clipped end, off the image).
+    const double zu = dot(difference(u, frame.eye), frame.forward), zv = dot(difference(v, frame.eye), frame.forward);
+    const double clip = 1e-9 * std::max(std::abs(zu), std::abs(zv));
+    if (!(zu > clip) && !(zv > clip)) return true;
+    if (!(zu > clip) || !(zv > clip)) {
+      Vec3& behind = zu > clip ? v : u;
+      const double f = ((zu > clip ? zu : zv) - clip) / std::abs(zu - zv);
+      const Vec3& ahead = zu > clip ? u : v;
+      for (int k = 0; k < 3; ++k) behind[k] = ahead[k] + f * (behind[k] - ahead[k]);
+    }
+    std::array<double, 2> a{}, b{};
+    if (!pixel_of(u, a) || !pixel_of(v, b)) {
+      std::fill(mask.begin(), mask.end(), std::uint8_t{1});  // cannot tell: every pixel goes to the exact test
+      return false;
+    }
+    const bool by_column = std::abs(b[0] - a[0]) >= std::abs(b[1] - a[1]);
+    const int major = by_column ? 0 : 1, minor = 1 - major;
+    const std::array<double, 2>& lo = a[major] <= b[major] ? a : b;
+    const std::array<double, 2>& hi = a[major] <= b[major] ? b : a;
+    const double limit = by_column ? w : h;
+    const double first = std::max(std::floor(lo[major] - reach - 0.5), -1.0);
+    const double last = std::min(std::ceil(hi[major] + reach - 0.5), limit);
+    const double slope = hi[major] > lo[major] ? (hi[minor] - lo[minor]) / (hi[major] - lo[major]) : 0.0;
+    for (double k = first; k <= last; k += 1.0) {
+      const double centre = k + 0.5;
+      const double along = std::clamp(centre, lo[major], hi[major]);
+      const double m = lo[minor] + slope * (along - lo[major]);  // the segment's minor coordinate there
+      const double centre_row = std::floor(m - 0.5);
+      for (double j = centre_row - 1.0; j <= centre_row + 2.0; j += 1.0) {
+        const auto kk = static_cast<std::int64_t>(k), jj = static_cast<std::int64_t>(j);
+        if (by_column) mark_near(a, b, kk, jj);
+        else mark_near(a, b, jj, kk);
+      }
+    }
+    return true;
+  };
+  for (std::uint32_t t = 0; t < g.soup.triangles.size(); ++t) {
+    if (!g.casting(t)) continue;
+    for (int e = 0; e < 3; ++e)
+      if (!mark_segment(g.vertex(t, e), g.vertex(t, (e + 1) % 3))) return mask;
+  }
+  return mask;
+}
+
 bool fold_pair_at_centre(const ImageGeometry& g, std::size_t light, const CameraFrame& frame, const Backdrop& backdrop,
                          std::uint32_t i, std::uint32_t r, const RayHit& hit, const DepthBand& band) {
   const double cx = i + 0.5, cy = r + 0.5, s = kSubpixelSnap;
   const std::array<std::array<double, 2>, 4> offsets{{{-s, -s}, {s, -s}, {s, s}, {-s, s}}};  // cyclic
   std::array<PixelRay, 5> rays{};
-  std::array<detail::RayMeeting, 4> meetings{};
   rays[4] = pixel_ray(frame, cx, cy);
-  for (std::size_t k = 0; k < 4; ++k) {
-    rays[k] = pixel_ray(frame, cx + offsets[k][0], cy + offsets[k][1]);
-    meetings[k] = detail::ray_meets_triangle(rays[k], backdrop.triangle[0], backdrop.triangle[1], backdrop.triangle[2]);
-    if (meetings[k].direction_side == Sign::zero || meetings[k].eye_side != -meetings[k].direction_side)
-      return true;  // a snap ray misses the backdrop plane (not seen for a finite scene): undecided, ambiguous
-  }
-  const auto at = [&](std::size_t k) {
-    return detail::RayParameter(rays[k], backdrop.triangle[0], backdrop.triangle[1], backdrop.triangle[2],
-                                meetings[k].direction_side);
+  for (std::size_t k = 0; k < 4; ++k) rays[k] = pixel_ray(frame, cx + offsets[k][0], cy + offsets[k][1]);
+  // The query box: the segment from the eye to the centre ray's point on the backdrop plane,
+  // dilated by the snap rays' offsets there (grown by 1%: the doubles are a filter's, the
+  // pyramid below is exact), holds the pyramid.
+  const double backdrop_depth = dot(difference(backdrop.triangle[0], frame.eye), frame.forward);
+  const auto on_backdrop = [&](const PixelRay& ray) {
+    const double t = backdrop_depth / dot(ray.direction, frame.forward);
+    return Vec3{ray.origin[0] + t * ray.direction[0], ray.origin[1] + t * ray.direction[1],
+                ray.origin[2] + t * ray.direction[2]};
   };
-  const std::array<detail::RayParameter, 4> snap{at(0), at(1), at(2), at(3)};
-  // P's band in view depth (depth_band's end points measured along the forward axis).
-  const auto view_depth = [&](const Vec3& x) { return dot(difference(x, frame.eye), frame.forward); };
-  const double near_depth = view_depth(band.near), far_depth = view_depth(band.far);
+  const Vec3 from = on_backdrop(rays[4]);
+  Vec3 slack{};
+  for (std::size_t k = 0; k < 4; ++k) {
+    const Vec3 c = on_backdrop(rays[k]);
+    for (int a = 0; a < 3; ++a) slack[a] = std::max(slack[a], std::abs(c[a] - from[a]));
+  }
+  for (int a = 0; a < 3; ++a) slack[a] = slack[a] * 1.01 + 1e-9 * (std::abs(from[a]) + 1.0);
+  // A filter in doubles: an edge whose projection lies farther than twice the snap from the
+  // centre (the pyramid's half-diagonal is sqrt(2) snaps; double rounding is ~1e-10 px) cannot
+  // meet the pyramid. An edge with an end at or behind the eye plane goes to the exact test.
+  const auto pixel_of = [&](const Vec3& x, std::array<double, 2>& out) {
+    const Vec3 d = difference(x, frame.eye);
+    const double z = dot(d, frame.forward);
+    if (!(z > 1e-300)) return false;
+    out = {(dot(d, frame.right) / (z * frame.half_width) + 1.0) * frame.width / 2.0,
+           (1.0 - dot(d, frame.up) / (z * frame.half_height)) * frame.height / 2.0};
+    return true;
+  };
+  const auto may_meet = [&](const Vec3& u, const Vec3& v) {
+    std::array<double, 2> a{}, b{};
+    if (!pixel_of(u, a) || !pixel_of(v, b)) return true;
+    const double ex = b[0] - a[0], ey = b[1] - a[1], px = cx - a[0], py = cy - a[1];
+    const double l2 = ex * ex + ey * ey;
+    const double f = l2 > 0.0 ? std::clamp((px * ex + py * ey) / l2, 0.0, 1.0) : 0.0;
+    const double dx = px - f * ex, dy = py - f * ey;
+    return !(std::sqrt(dx * dx + dy * dy) > 2.0 * s);  // NaN goes to the exact test
+  };
+
+  // What the exact tests need, made once the filter lets an edge through.
+  std::optional<detail::FootprintPolytope> pyramid;
   std::array<std::array<Vec3, 2>, 5> band_points{};
-  for (std::size_t k = 0; k < 5; ++k) band_points[k] = at_depths(rays[k], frame, near_depth, far_depth);
-  const detail::FootprintPolytope pyramid(finite_point(frame.eye), snap);
+  bool undecided = false;
+  const auto prepare = [&] {
+    std::array<detail::RayMeeting, 4> meetings{};
+    for (std::size_t k = 0; k < 4; ++k) {
+      meetings[k] = detail::ray_meets_triangle(rays[k], backdrop.triangle[0], backdrop.triangle[1], backdrop.triangle[2]);
+      if (meetings[k].direction_side == Sign::zero || meetings[k].eye_side != -meetings[k].direction_side) {
+        undecided = true;  // a snap ray misses the backdrop plane (not seen for a finite scene)
+        return;
+      }
+    }
+    const auto at = [&](std::size_t k) {
+      return detail::RayParameter(rays[k], backdrop.triangle[0], backdrop.triangle[1], backdrop.triangle[2],
+                                  meetings[k].direction_side);
+    };
+    pyramid.emplace(finite_point(frame.eye), std::array<detail::RayParameter, 4>{at(0), at(1), at(2), at(3)});
+    // P's band in view depth (depth_band's end points measured along the forward axis).
+    const auto view_depth = [&](const Vec3& x) { return dot(difference(x, frame.eye), frame.forward); };
+    const double near_depth = view_depth(band.near), far_depth = view_depth(band.far);
+    for (std::size_t k = 0; k < 5; ++k) band_points[k] = at_depths(rays[k], frame, near_depth, far_depth);
+  };
   const HomogeneousPoint eye = finite_point(frame.eye);
   const HomogeneousPoint& l = g.lights[light];
   bool fold = false;
-  g.tree.dilated_segment_query(pyramid.query_from(), frame.eye, pyramid.query_slack(), [&](std::uint32_t id) {
+  g.tree.dilated_segment_query(from, frame.eye, slack, [&](std::uint32_t id) {
     if (id == hit.triangle || !g.casting(id)) return true;
     const std::array<Vec3, 3> t{g.vertex(id, 0), g.vertex(id, 1), g.vertex(id, 2)};
-    if (!pyramid.meets_an_edge_of(t[0], t[1], t[2])) return true;
+    if (!may_meet(t[0], t[1]) && !may_meet(t[1], t[2]) && !may_meet(t[2], t[0])) return true;
+    if (!pyramid && !undecided) prepare();
+    if (undecided) {
+      fold = true;  // undecided: ambiguous
+      return false;
+    }
+    if (!pyramid->meets_an_edge_of(t[0], t[1], t[2])) return true;
     const PlaneSide cap = plane_side(finite_point(t[0]), finite_point(t[1]), finite_point(t[2]), eye, band_points);
     for (int e = 0; e < 3 && !fold; ++e) {
       const Vec3& u = t[static_cast<std::size_t>(e)];
       const Vec3& v = t[static_cast<std::size_t>((e + 1) % 3)];
-      if (!pyramid.meets(u, v)) continue;
+      if (!may_meet(u, v) || !pyramid->meets(u, v)) continue;
       const PlaneSide side = plane_side(finite_point(u), finite_point(v), l, eye, band_points);
       fold = cap == PlaneSide::reaches || side == PlaneSide::reaches || cap != side;
     }
@@ -889,6 +1012,9 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
   stage = Clock::now();
   std::vector<std::uint32_t> counts(grid.size());
   std::vector<std::uint8_t> needed(grid.size());
+  // With the depth band: the pixels a casting edge passes near (fold_pair_at_centre's filter).
+  const std::vector<std::uint8_t> fold_mask =
+      footprints && options.depth_band && backdrop ? fold_candidates(g, grid.frame) : std::vector<std::uint8_t>{};
   for (std::size_t light = 0; light < lights.size(); ++light) {
     // Which rays' counts matter: every countable centre (the count image), and the corners of
     // pixels whose footprint sees one triangle that the light does not graze.
@@ -940,7 +1066,8 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
             if (bits == 0 && footprints && options.depth_band) {
               const DepthBand band = depth_band(g, grid.frame, grid.ray(pixel), centre, options.depth_band);
               if (band_meets_volume(g, light, band) ||
-                  (backdrop && fold_pair_at_centre(g, light, grid.frame, *backdrop, i, row, centre, band)))
+                  (!fold_mask.empty() && fold_mask[pixel] != 0 &&
+                   fold_pair_at_centre(g, light, grid.frame, *backdrop, i, row, centre, band)))
                 bits |= kDepthBand;
             }
           } else if (centre.triangle != kNoHit) {
