@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
-"""A probe, in doubles, of the ambiguity reason the 1920x1080 defect needs (docs/campaign.md,
-"At 1920x1080 the claim does not hold yet"); a developer's check, not the reference.
+"""A probe, in doubles, of the fold-pair clause (docs/campaign.md, "At 1920x1080: a second finding,
+and the fold-pair clause"; reference/exact_image.cpp decides it exactly); a developer's check.
 
 For the first light of a scene of OFF meshes and one pixel: every casting edge uv (of triangle t,
 not the one the centre ray hits first) whose projection passes within RHO px of the pixel centre
@@ -9,7 +9,7 @@ cap) and the plane of its side face (L, u, v) cross the rays through the centre 
 RHO px around it. The pixel is AMBIGUOUS when either face's range reaches P or the two lie on
 opposite sides of P: rounding decides whether the pair covers the centre, and then the count.
 
-  python3 tools/fold_pair_probe.py 0.00390625    # the two open defects and the pertri_edge_on_pair pixels
+  python3 tools/fold_pair_probe.py 0.00390625    # the two gl_fold pixels (ambiguous) and the pertri_edge_on_pair pixels (decided)
 """
 import json, math, sys, os
 def sub(a,b): return [x-y for x,y in zip(a,b)]
