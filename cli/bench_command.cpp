@@ -64,6 +64,7 @@ struct BenchCommandOptions {
   std::string shared_data;
   std::string from;
   bool no_plots = false;
+  unsigned threads = 0;  // --threads (0: every core)
   std::string command;  // argv, for bench.json
 };
 
@@ -137,7 +138,9 @@ nlohmann::json environment_json(const gpu::EglContext& context, bool software) {
           {"git_dirty", git_dirty},
           {"date", utc_now()},
           {"version", "shadowcert 0.1.0"},
-          {"host", {{"cpus", std::thread::hardware_concurrency()}}}};
+          {"host", {{"cpus", std::thread::hardware_concurrency()},
+                    // The TBB threads the exact image and the ray tracer ran on (--threads).
+                    {"threads", tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism)}}}};
 }
 
 nlohmann::json timing_json(const BenchRun& b, bool synchronised) {
@@ -458,6 +461,7 @@ int run_bench(const BenchCommandOptions& options) {
       throw CLI::ValidationError("--from", "rewrites the outputs of a bench.json: no SCENES or --suite with it");
     return run_from(options);
   }
+  const std::unique_ptr<tbb::global_control> thread_cap = thread_limit(options.threads);
   const auto start = std::chrono::steady_clock::now();
   const bool suite_given = !options.suite.empty();
   if (!options.scenes.empty() && suite_given && options.suite != "real")
@@ -645,6 +649,7 @@ void add_bench_command(CLI::App& app, int& exit_code) {
                   "a merge's) without rendering");
   cmd->add_flag("--no-plots", options->no_plots, "Do not run tools/bench_plots.py");
   cmd->add_option("--device", options->device, "Use EGL device N (default: a hardware device, else llvmpipe)");
+  cmd->add_option("--threads", options->threads, kThreadsHelp)->capture_default_str();
   cmd->callback([options, &exit_code, cmd] {
     std::string command = "shadowcert bench";
     for (const std::string& s : options->scenes) command += " " + s;

@@ -3,6 +3,7 @@
 #include <fmt/core.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <fstream>
 #include <iterator>
@@ -303,6 +304,59 @@ Table stage_table(const json& scene, bool synchronised) {
   return t;
 }
 
+// The exact image against the ray tracer, scene by scene in order of triangles (docs/diff.md's
+// scaling table, from the run's own scenes): the exact image's seconds beside each ray-traced
+// run's BVH build plus one image's rays, and their ratio. None without a ray-traced run.
+std::optional<Table> exact_vs_ray_traced_table(const json& bench) {
+  const std::array<const char*, 2> ids{"rt-robust", "rt"};
+  struct Row {
+    double triangles;
+    std::vector<std::string> cells;
+  };
+  std::vector<Row> rows;
+  bool any = false;
+  for (const json& scene : bench.at("scenes")) {
+    const std::optional<double> exact = number_at(scene, {"exact_seconds"});
+    if (!exact || !scene.at("skipped").is_null()) continue;
+    const json& size = scene.at("size");
+    Row row{number_at(scene, {"triangles"}).value_or(0.0),
+            {scene_key(scene), count_text(number_at(scene, {"triangles"})),
+             size.is_array() ? fmt::format("{}x{}", size.at(0).get<int>(), size.at(1).get<int>()) : "-",
+             fmt::format("{:.3f}", *exact)}};
+    bool has_run = false;
+    for (const char* id : ids) {
+      const auto run = std::find_if(scene.at("runs").begin(), scene.at("runs").end(),
+                                    [&](const json& r) { return r.at("id") == id; });
+      if (run == scene.at("runs").end()) {
+        row.cells.insert(row.cells.end(), {"-", "-"});
+        continue;
+      }
+      const double seconds = (number_at(*run, {"time", "build_ms"}).value_or(0.0) + frame_ms(*run)) / 1000.0;
+      row.cells.push_back(fmt::format("{:.3f}", seconds));
+      row.cells.push_back(seconds > 0.0 ? fmt::format("{:.1f}", *exact / seconds) : "-");
+      has_run = true;
+    }
+    if (!has_run) continue;
+    any = true;
+    rows.push_back(std::move(row));
+  }
+  if (!any) return std::nullopt;
+  std::stable_sort(rows.begin(), rows.end(), [](const Row& a, const Row& b) { return a.triangles < b.triangles; });
+  Table t;
+  t.title = "The exact image against Embree, by triangles";
+  t.note = "Seconds on the TBB threads under `host` (--threads). Exact: the whole exact image once (its tree, the "
+           "centre and corner rays' hits, the footprints, every count exact). Embree (rt-robust, rt): its BVH build "
+           "plus one image's rays (the centre rays and a shadow ray per hit and light), medians over the frames. "
+           "Embree answers less per pixel, so the ratio is what certainty costs here; bench/exact_image_bench's "
+           "ExactVsEmbree times both on the same rays, corners included (docs/diff.md#scaling-100k-1m-and-4m-triangles).";
+  t.header = {"scene", "triangles", "image", "exact s", "rt-robust s", "exact / rt-robust", "rt s", "exact / rt"};
+  for (Row& r : rows) {
+    t.rows.push_back(std::move(r.cells));
+    t.failed.push_back(false);
+  }
+  return t;
+}
+
 // Edge maps (issue 14): precision, recall and F1 of every edges run.
 std::optional<Table> edges_table(const json& bench) {
   Table t;
@@ -377,7 +431,10 @@ std::vector<std::pair<std::string, std::string>> facts(const json& bench) {
           {"build", text(env.at("build_type")) + ", " + text(env.at("version"))},
           {"commit", commit},
           {"date", text(env.at("date"))},
-          {"host", fmt::format("{} CPUs", number_at(env, {"host", "cpus"}).value_or(0.0))},
+          {"host", fmt::format("{} CPUs{}", number_at(env, {"host", "cpus"}).value_or(0.0),
+                               number_at(env, {"host", "threads"})
+                                   ? fmt::format(", {} TBB threads", *number_at(env, {"host", "threads"}))
+                                   : std::string())},
           {"seconds", fmt::format("{:.1f} s", number_at(bench, {"seconds"}).value_or(0.0))}};
 }
 
@@ -606,6 +663,7 @@ std::string bench_markdown(const json& bench) {
         "pixels against the analytic shadow (docs/bench.md).\n\n";
   if (const std::optional<Table> t = failures_table(bench)) md += markdown_table(*t, "##");
   md += markdown_table(summary_table(bench), "##");
+  if (const std::optional<Table> t = exact_vs_ray_traced_table(bench)) md += markdown_table(*t, "##");
   for (const Table& t : analytic_tables(bench, true)) md += markdown_table(t, "##");
   for (const Table& t : analytic_tables(bench, false)) md += markdown_table(t, "##");
   for (const json& scene : bench.at("scenes"))
@@ -639,6 +697,7 @@ std::string bench_report_html(const json& bench, const fs::path& dir, const std:
   html += plots_html(dir, plots_note);
   if (const std::optional<Table> t = failures_table(bench)) html += html_table(*t, "h2");
   html += html_table(summary_table(bench), "h2");
+  if (const std::optional<Table> t = exact_vs_ray_traced_table(bench)) html += html_table(*t, "h2");
   for (const Table& t : analytic_tables(bench, true)) html += html_table(t, "h2");
   for (const Table& t : analytic_tables(bench, false)) html += html_table(t, "h2");
   if (const std::optional<Table> t = edges_table(bench)) html += html_table(*t, "h2");

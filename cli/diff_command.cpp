@@ -55,6 +55,7 @@ struct DiffOptions {
   std::string out;
   std::string json_file;
   std::string report;
+  unsigned threads = 0;  // --threads: the exact image's, the soft reference's and the ray tracer's; 0: every core
   std::optional<int> device;
   long long shadowmap_size = gpu::kDefaultShadowMapSize;
   SilhouetteOptions silhouette;  // --epsilon, --crease-angle
@@ -381,6 +382,7 @@ SceneComparisonOptions comparison_options_of(const DiffRequest& request, const D
     comparison_options.soft = soft;
   }
   comparison_options.ray_traced = request.methods.ray_traced;
+  comparison_options.ray_traced_threads = options.threads;
   // A progress bar only on a terminal: logs and pipes get no carriage returns.
   comparison_options.progress = isatty(fileno(stderr)) != 0;
   return comparison_options;
@@ -483,6 +485,8 @@ nlohmann::json diff_summary(const DiffResult& result) {
       {"device", result.context ? result.context->device() : std::string()},
       {"lights", light_count},
       {"triangles", result.triangles},
+      // The TBB threads the exact image and the ray tracer ran on (--threads).
+      {"threads", tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism)},
       {"exact_seconds", exact.stats.seconds},
       {"exact",
        {{"tree_seconds", exact.stats.tree_seconds},
@@ -666,6 +670,7 @@ void print_diff(const DiffResult& result) {
 
 int run_diff(const DiffOptions& options) {
   const DiffRequest request = validate_diff(options);                       // 1. the options
+  const std::unique_ptr<tbb::global_control> thread_cap = thread_limit(options.threads);
   const DiffScene d = load_diff_scene(options);                             // 2. the scene
   // A GL context only where something draws with GL: `--methods rt` runs on any machine.
   std::optional<gpu::EglContext> context;
@@ -749,6 +754,7 @@ void add_diff_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--samples", options->samples, "--soft: sample lights on the disk, a perfect square (64 = 8 x 8)")
       ->capture_default_str();
   cmd->add_option("--device", options->device, "Use EGL device N (default: a hardware device, else llvmpipe)");
+  cmd->add_option("--threads", options->threads, kThreadsHelp)->capture_default_str();
   cmd->callback([options, &exit_code] { exit_code = run_diff(*options); });
 }
 

@@ -94,4 +94,12 @@ MethodSelection method_selection_option(const std::string& list, const std::stri
   }
 }
 
+std::unique_ptr<tbb::global_control> thread_limit(unsigned threads, const std::string& option) {
+  constexpr unsigned kMaxThreads = 4096;
+  if (threads > kMaxThreads)
+    throw CLI::ValidationError(option, "at most " + std::to_string(kMaxThreads) + " threads, got " + std::to_string(threads));
+  if (threads == 0) return nullptr;
+  return std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, threads);
+}
+
 }  // namespace shadowcert::cli

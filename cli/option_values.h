@@ -5,8 +5,11 @@
 // diff --methods, fuzz --gl-methods), read from pipeline/method_registry.h, and the stencil choice
 // (--stencil and its aliases --zpass and --zfail).
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
+
+#include <tbb/global_control.h>
 
 #include "core/camera.h"
 #include "gpu/shadow_method_renderer.h"
@@ -60,5 +63,14 @@ struct ShardOption {
 // The same list with the ray-traced methods too (rt, rt-robust: pipeline/method_registry.h's
 // parse_method_selection); "all" stays the in_all GL methods.
 [[nodiscard]] MethodSelection method_selection_option(const std::string& list, const std::string& option);
+
+// `--threads N` (diff, render, bench; fuzz has its own): the worker threads of everything the
+// command runs on the CPU through TBB (the exact image, the soft reference, Embree's builds and
+// rays), so that the exact image and the ray tracer are timed on the same threads. 0: every core.
+inline constexpr const char* kThreadsHelp =
+    "Worker threads of the exact image, the soft reference and the ray tracer (TBB; 0: every core)";
+// The limit for `threads` (held for the command's run), or none for 0. Throws
+// CLI::ValidationError naming `option` for more than 4096 (a typo, not a machine).
+[[nodiscard]] std::unique_ptr<tbb::global_control> thread_limit(unsigned threads, const std::string& option = "--threads");
 
 }  // namespace shadowcert::cli

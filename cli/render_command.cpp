@@ -46,6 +46,7 @@ struct RenderOptions {
   std::string method = "cpu";
   bool method_given = false;  // --method on the command line (--pcf and --pcss then must agree)
   std::string sign = "exact";  // --sign exact|float (gpu/sign_mode.h)
+  unsigned threads = 0;        // --threads: the ray tracer's (rt, rt-robust); 0: every core
   std::string stencil;  // --stencil auto|zpass|zfail; empty: not given (the aliases, else zfail)
   bool zpass = false;
   bool zfail = false;
@@ -451,7 +452,7 @@ int run_ray_traced_render(const RenderOptions& options, const RayTracedEntry& en
   const std::size_t triangles = merged_soup(scene).triangles.size();
   if (triangles == 0) throw InputError(options.input, "no triangle to render");
   // World space, as the exact image: a user's ray tracer takes the scene as it is.
-  const raytrace::RayTracedImage image = ray_traced_scene_image(scene, entry.method);
+  const raytrace::RayTracedImage image = ray_traced_scene_image(scene, entry.method, options.threads);
   const gpu::StencilShadowFrame frame = ray_traced_frame(scene, image, 0);
   for (const std::string& file : {options.out, options.mask}) create_parent_directories(file);
   if (!options.light_image.empty())
@@ -494,6 +495,9 @@ int run_ray_traced_render(const RenderOptions& options, const RayTracedEntry& en
 
 int run_render(const RenderOptions& options) {
   if (const RayTracedEntry* entry = find_ray_traced_method(options.method)) return run_ray_traced_render(options, *entry);
+  if (options.threads != 0)
+    throw CLI::ValidationError("--threads", "only the ray-traced methods (rt, rt-robust) run on CPU threads; " +
+                                                options.method + " renders with GL");
   const auto start = Clock::now();
   const ValidatedRenderOptions v = validate(options);                 // 1. the options
   const DrawnScene d = load_drawn_scene(options);                     // 2. the scene
@@ -605,6 +609,8 @@ void add_render_command(CLI::App& app, int& exit_code) {
                   "between in a penumbra, 0 where no surface) and FILE.pfm beside it (32-bit floats, -1 where no "
                   "surface); every method");
   cmd->add_option("--device", options->device, "Use EGL device N (default: a hardware device, else llvmpipe)");
+  cmd->add_option("--threads", options->threads, "rt, rt-robust: the ray tracer's threads (TBB; 0: every core)")
+      ->capture_default_str();
   CLI::Option* method_option = cmd->get_option("--method");
   cmd->callback([options, method_option, &exit_code] {
     options->method_given = method_option->count() > 0;

@@ -4,9 +4,13 @@
 // fails on them; bench runs them with their time and error; fuzz --gl-methods refuses them.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "cli_run.h"
 
@@ -92,7 +96,7 @@ TEST(CliDiffRayTraced, RtAloneWithSoft_NoGlContextAndItsSoftError) {
 TEST(CliBenchRayTraced, HardSceneAndDefault_RunsWithTimeAndError) {
   const fs::path dir = empty_temp_dir("ray_traced_cli_test", "bench");
   const RunResult r = run_cli("bench " + kDefaultScene + " " + kTinyScale +
-                              " --size 48x36 --frames 2 --methods rt,rt-robust,shadowmap/512 --no-plots --out " +
+                              " --size 48x36 --frames 2 --methods rt,rt-robust,shadowmap/512 --threads 1 --no-plots --out " +
                               dir.string());
   SHADOWCERT_SKIP_WITHOUT_GL(r);
   ASSERT_EQ(r.exit_code, 0) << r.output;
@@ -113,6 +117,61 @@ TEST(CliBenchRayTraced, HardSceneAndDefault_RunsWithTimeAndError) {
     }
   }
   EXPECT_NE(read_text(dir / "bench.md").find("| rt-robust |"), std::string::npos);
+  EXPECT_EQ(j["environment"]["host"]["threads"], 1);  // --threads 1: the exact image's and Embree's
+}
+
+// The report's scaling table: one row per scene in order of triangles, the exact image's seconds
+// beside each ray tracer's build plus rays, and the ratio of the two as bench.json has them.
+TEST(CliBenchRayTraced, Report_ExactAgainstEmbreeByTriangles) {
+  const fs::path dir = empty_temp_dir("ray_traced_cli_test", "bench_scaling");
+  const std::string lamp = kSource + "/data/scenes/lamp_in_room.json";  // more triangles than default.json
+  const RunResult r = run_cli("bench " + lamp + " " + kDefaultScene +
+                              " --size 48x36 --frames 1 --methods rt-robust,rt --no-plots --out " + dir.string());
+  SHADOWCERT_SKIP_WITHOUT_GL(r);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const nlohmann::json j = read_json(dir / "bench.json");
+  const std::string md = read_text(dir / "bench.md");
+  const std::size_t table = md.find("## The exact image against Embree, by triangles");
+  ASSERT_NE(table, std::string::npos) << md;
+  ASSERT_EQ(j["scenes"].size(), 2u);
+  std::vector<std::pair<double, std::size_t>> at;  // (triangles, the row's place in the table)
+  for (const nlohmann::json& scene : j["scenes"]) {
+    const double exact = scene["exact_seconds"].get<double>();
+    std::string row = "| " + scene["suite"].get<std::string>() + "/" + scene["name"].get<std::string>() + " |";
+    const std::size_t place = md.find(row, table);
+    ASSERT_NE(place, std::string::npos) << row << "\n" << md.substr(table);
+    at.emplace_back(scene["triangles"].get<double>(), place);
+    for (const nlohmann::json& run : scene["runs"]) {
+      const double seconds = (run["time"]["build_ms"].get<double>() + run["time"]["frame_ms"]["median"].get<double>()) / 1000.0;
+      ASSERT_GT(seconds, 0.0);
+      char ratio[64];
+      std::snprintf(ratio, sizeof ratio, "| %.1f |", exact / seconds);
+      const std::size_t end = md.find('\n', place);
+      EXPECT_NE(md.substr(place, end - place).find(ratio), std::string::npos)
+          << run["id"] << ": " << ratio << " in " << md.substr(place, end - place);
+    }
+  }
+  std::sort(at.begin(), at.end());
+  EXPECT_LT(at[0].second, at[1].second) << "rows in order of triangles";
+  EXPECT_LT(at[0].first, at[1].first);
+}
+
+// --threads: the exact image's and Embree's threads, in diff's JSON; a GL render refuses it, and
+// a number no machine has is an error naming the option.
+TEST(CliDiffRayTraced, Threads_RecordedAndCheckedByName) {
+  const fs::path json = temp_dir("ray_traced_cli_test") / "diff_threads.json";
+  RunResult r = run_cli("diff " + kDefaultScene + " --size 32x24 --methods rt --threads 1 --json " + json.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(read_json(json)["threads"], 1);
+  r = run_cli("diff " + kDefaultScene + " --size 32x24 --methods rt --threads 100000");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("--threads"), std::string::npos) << r.output;
+  r = run_cli("render " + kDefaultScene + " --method cpu --size 32x24 --threads 2");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("--threads"), std::string::npos) << r.output;
+  r = run_cli("render " + kDefaultScene + " --method rt --size 32x24 --threads 1 --out " +
+              (temp_dir("ray_traced_cli_test") / "rt_threads.png").string());
+  EXPECT_EQ(r.exit_code, 0) << r.output;
 }
 
 TEST(CliFuzzRayTraced, GlMethodsRt_ExitTwoSayingItIsNoGlMethod) {
