@@ -267,6 +267,7 @@ nlohmann::json scene_json(std::size_t index, const BenchSceneSpec& spec, const B
   nlohmann::json j{{"index", index},          {"suite", spec.suite},  {"name", spec.name},
                    {"input", spec.input},     {"skipped", nullptr},   {"triangles", nullptr},
                    {"lights", nullptr},       {"size", nullptr},      {"exact_seconds", nullptr},
+                   {"exact_image_seconds", nullptr},
                    {"soft_reference", nullptr}, {"analytic", nullptr}, {"edge_truth_seconds", nullptr},
                    {"seconds", 0.0},          {"failure", failure},
                    {"images", nlohmann::json::object()},            {"runs", nlohmann::json::array()}};
@@ -278,6 +279,7 @@ nlohmann::json scene_json(std::size_t index, const BenchSceneSpec& spec, const B
   j["lights"] = r->lights;
   j["size"] = {r->width, r->height};
   j["exact_seconds"] = r->exact_seconds;
+  j["exact_image_seconds"] = r->exact_image_seconds;
   if (r->soft_radius)
     j["soft_reference"] = {{"radius", *r->soft_radius},
                            {"angle_degrees", r->soft_angle_degrees},

@@ -432,6 +432,7 @@ void bench_scene_into(BenchSceneResult& result, const Scene& scene, const BenchS
   double rounded_seconds = 0.0;
   const ExactImage exact = reference_image(scene, false, &rounded_seconds);
   result.exact_seconds = exact.stats.seconds + rounded_seconds;
+  result.exact_image_seconds = exact.stats.seconds;
   const auto any_of_family = [&](BenchFamily f) {
     return std::any_of(variants.begin(), variants.end(), [&](const BenchVariant& v) { return v.family == f; });
   };

@@ -176,6 +176,7 @@ struct BenchSceneResult {
   std::size_t lights = 0;
   std::uint32_t width = 0, height = 0;
   double exact_seconds = 0.0;  // the exact image and its float-rounded twin
+  double exact_image_seconds = 0.0;  // the exact image alone (what a ray tracer's time compares with)
   std::optional<double> soft_radius;  // with a soft reference
   double soft_angle_degrees = 0.0;    // its directional lights' angular radius
   double soft_seconds = 0.0;
