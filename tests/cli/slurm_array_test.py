@@ -49,7 +49,7 @@ WAIT_SECONDS = 600
 # Keys that are not figures of the run (tests/cli/shard_merge_test.cpp's figures() and
 # bench_command_test.cpp's kNotFigures): times and rates, the thread count, the moment, the
 # tree's state, the command line, the merge's list of its shards, where reproducers went.
-NOT_FIGURES = {"seconds", "cases_per_second", "shrink_seconds", "exact_seconds", "edge_truth_seconds", "time",
+NOT_FIGURES = {"seconds", "cases_per_second", "shrink_seconds", "exact_seconds", "exact_image_seconds", "edge_truth_seconds", "time",
                "date", "git_commit", "git_dirty", "command", "threads", "shards"}
 
 
