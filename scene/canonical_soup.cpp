@@ -2,6 +2,7 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 #include <tbb/parallel_reduce.h>
 
 #include <algorithm>
@@ -93,7 +94,9 @@ struct YzRecord {
 
 std::vector<char> sort_runs_and_mark_groups(const std::vector<Vec3>& vertices, HugePageBuffer<XRecord>& records) {
   const std::size_t n = records.size();
-  std::vector<char> new_group(n, 1);
+  std::vector<char> new_group;
+  resize_huge(new_group, n);
+  std::fill(new_group.begin(), new_group.end(), char{1});
   const auto run_begins = [&](std::size_t i) { return i == 0 || records[i].x_key != records[i - 1].x_key; };
   tbb::parallel_for(std::size_t{0}, chunk_count(n), [&](std::size_t c) {
     std::vector<YzRecord> run;
@@ -170,9 +173,12 @@ CanonicalSoup canonical_soup(const Soup& soup) {
   for (std::size_t& g : first_group) groups += std::exchange(g, groups);
 
   CanonicalSoup out;
-  resize_huge(out.canonical_id, n);
-  resize_huge(out.soup.vertices, groups);
-  if (has_normals) out.soup.normals.resize(groups);
+  // Each resize zero-fills (and first touches) its storage on one thread: side by side.
+  tbb::parallel_invoke([&] { resize_huge(out.canonical_id, n); }, [&] { resize_huge(out.soup.vertices, groups); },
+                       [&] {
+                         if (has_normals) resize_huge(out.soup.normals, groups);
+                       },
+                       [&] { resize_huge(out.soup.triangles, soup.triangles.size()); });
   tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t c) {
     std::size_t group = first_group[c];  // the next group's number
     for (std::size_t i = c * kGrain; i < std::min(n, (c + 1) * kGrain); ++i) {
@@ -186,7 +192,6 @@ CanonicalSoup canonical_soup(const Soup& soup) {
     }
   });
 
-  resize_huge(out.soup.triangles, soup.triangles.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, soup.triangles.size(), kGrain),
                     [&](const tbb::blocked_range<std::size_t>& r) {
                       for (std::size_t t = r.begin(); t < r.end(); ++t) {

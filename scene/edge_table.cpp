@@ -3,6 +3,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 #include <tbb/parallel_reduce.h>
 
 #include <algorithm>
@@ -203,10 +204,11 @@ EdgeTable build_edge_table(const Soup& canonical) {
   for (std::size_t b = 1; b <= bucket_count; ++b) edge_start[b] += edge_start[b - 1];
 
   EdgeTable table;
-  resize_huge(table.opposite_vertex, uses.size());
-  resize_huge(table.opposite_triangle, uses.size());
-  resize_huge(table.edges, edge_start.back());
-  resize_huge(table.first_opposite, edge_start.back() + 1);
+  // Each resize zero-fills (and first touches) its storage on one thread: side by side.
+  tbb::parallel_invoke([&] { resize_huge(table.opposite_vertex, uses.size()); },
+                       [&] { resize_huge(table.opposite_triangle, uses.size()); },
+                       [&] { resize_huge(table.edges, edge_start.back()); },
+                       [&] { resize_huge(table.first_opposite, edge_start.back() + 1); });
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, bucket_count, 1), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t b = r.begin(); b < r.end(); ++b) {
       std::uint32_t edge = edge_start[b];
