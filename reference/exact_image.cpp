@@ -17,6 +17,7 @@
 #include "reference/exact_image.h"
 
 #include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 
@@ -32,6 +33,7 @@
 #include <string>
 
 #include "core/box.h"
+#include "core/huge_page_advice.h"
 #include "core/pixel_ray.h"
 #include "exact/box_tree.h"
 #include "exact/edge_multiplicity.h"
@@ -280,6 +282,267 @@ std::uint32_t count_at(const ImageGeometry& g, std::size_t light, const PixelRay
     g.tree.dilated_segment_query(from, target, slack, classify);
   }
   return touched ? kUndefinedCount : n;
+}
+
+// ---- Counts for many point lights at once (the soft reference's samples) -------------------
+// With footprints off and several point lights, each centre hit P is counted for every light in
+// one pass: one box-tree query whose dilation holds every segment P -> L (the beam), P's side of
+// each candidate's plane once for all lights, and each edge's sign orient(P, L, p, q) for every
+// light from one plane through P, p and q (EdgePlaneFilter). Every verdict is the exact one
+// count_at gives light by light (docs/definitions.md#counts): the beam's candidates include each
+// light's, and a candidate that no segment crosses or touches changes no count.
+
+// The signs orient(P, L, p, q) = det[L - P, p - P, q - P] = (L - P) . n(P), n(P) = (p - P) x
+// (q - P), of one edge pq for the point lights L with |L_i - m_i| <= W_i, where P lies in the box
+// [lo, hi] and m is its middle: a semi-static filter in round-to-nearest doubles. With
+// P = m + e, |e_i| <= r_i: n(P) = n(m) + e x (p - q), so
+//   (L - P) . n(P) = (L - m) . n(m) + e . ((p - q) x (L - m)) - e . n(m),
+// and the computed v = fl(fl(L - m) . fl(n(m))) is within
+//   B = sum W_i (5u |n_i| + 2 E_i) + sum r_i (|n_i| + E_i) + sum r_i (|d_j| W_k + |d_k| W_j)
+// of it (cyclic i, j, k; u = 2^-53; E_i >= 4.1u (|a_j b_k| + |a_k b_j|), a = fl(p - m),
+// b = fl(q - m), bounds n_i's rounding; d = fl(p - q)), as in exact/light_orientation_filter.h.
+// B is formed from rounded values, so it is taken times (1 + 2^-20), plus an absolute 2^-800
+// for underflow (every magnitude is kept within 2^200, so no product overflows and no
+// underflowed operation errs by more than 2^-1074 times 2^400). |v| > B decides the sign;
+// otherwise the caller asks HitPoint::orient_with.
+//
+// For all the lights at once (they lie in the box c +- half): v ranges over
+// (c - m) . n +- sum half_i |n_i|; computing that rounds by no more than another B (its terms
+// are those of B's first sum), so a range beyond 2B decides every light's sign together.
+class EdgePlaneFilter {
+ public:
+  // `m` and `r`: P's box middle and a bound on |P - m| per axis; `W`: a bound on |L - m| per
+  // axis over the lights this filter serves.
+  EdgePlaneFilter(const Vec3& m, const Vec3& r, const Vec3& W, const Vec3& p, const Vec3& q) : m_(m) {
+    constexpr double u = 0x1p-53, kTame = 0x1p200;
+    const Vec3 a = difference(p, m), b = difference(q, m), d = difference(p, q);
+    double bound = 0.0;
+    bool tame = true;
+    for (int i = 0; i < 3; ++i) {
+      const int j = (i + 1) % 3, k = (i + 2) % 3;
+      n_[i] = a[j] * b[k] - a[k] * b[j];
+      const double e = 8.2 * u * (std::fabs(a[j] * b[k]) + std::fabs(a[k] * b[j]));
+      bound += W[i] * (5.0 * u * std::fabs(n_[i]) + 2.0 * e) + r[i] * (std::fabs(n_[i]) + e) +
+               r[i] * (std::fabs(d[j]) * W[k] + std::fabs(d[k]) * W[j]);
+      for (const double x : {a[i], b[i], d[i], W[i], r[i]}) tame = tame && std::fabs(x) <= kTame;
+    }
+    bound_ = bound * (1.0 + 0x1p-20) + 0x1p-800;
+    usable_ = tame && std::isfinite(bound_);
+  }
+
+  // The sign for light L (|L - m| <= W), or nullopt where the filter cannot decide.
+  [[nodiscard]] std::optional<Sign> sign(const HomogeneousPoint& light) const {
+    if (!usable_) return std::nullopt;
+    const double v = (light[0] - m_[0]) * n_[0] + (light[1] - m_[1]) * n_[1] + (light[2] - m_[2]) * n_[2];
+    if (v > bound_) return Sign::positive;
+    if (v < -bound_) return Sign::negative;
+    return std::nullopt;
+  }
+
+  // The sign shared by every light in the box centre +- half (within W of m), or nullopt.
+  [[nodiscard]] std::optional<Sign> common_sign(const Vec3& centre, const Vec3& half) const {
+    if (!usable_) return std::nullopt;
+    const double v = (centre[0] - m_[0]) * n_[0] + (centre[1] - m_[1]) * n_[1] + (centre[2] - m_[2]) * n_[2];
+    const double spread = half[0] * std::fabs(n_[0]) + half[1] * std::fabs(n_[1]) + half[2] * std::fabs(n_[2]);
+    if (v - spread > 2.0 * bound_) return Sign::positive;
+    if (v + spread < -2.0 * bound_) return Sign::negative;
+    return std::nullopt;
+  }
+
+ private:
+  Vec3 m_;
+  Vec3 n_{};
+  double bound_ = 0.0;
+  bool usable_ = false;
+};
+
+// The fewest lights counted together: one light is counted as with footprints.
+inline constexpr std::size_t kBeamMinLights = 2;
+
+// What the beam counts share across pixels: the point lights' box, and each triangle's s(t)
+// for every light in one row (sides[t * lights + k]) with a summary per triangle (the sign all
+// lights share, or kMixedSides).
+struct BeamLights {
+  static constexpr std::int8_t kMixedSides = 2;
+  std::vector<Sign> sides;
+  std::vector<std::int8_t> summary;
+  std::size_t count = 0;
+  Vec3 lo{}, hi{};  // the lights' bounding box
+
+  explicit BeamLights(const ImageGeometry& g) : count(g.lights.size()) {
+    for (std::size_t k = 0; k < count; ++k)
+      for (int a = 0; a < 3; ++a) {
+        lo[a] = k == 0 ? g.lights[k][a] : std::min(lo[a], g.lights[k][a]);
+        hi[a] = k == 0 ? g.lights[k][a] : std::max(hi[a], g.lights[k][a]);
+      }
+    const std::size_t triangles = g.soup.triangles.size();
+    sides.resize(triangles * count);
+    summary.resize(triangles);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, triangles, 4096), [&](const auto& r) {
+      for (std::size_t t = r.begin(); t != r.end(); ++t) {
+        bool alike = true;
+        for (std::size_t k = 0; k < count; ++k) {
+          sides[t * count + k] = g.light_sides[k][t];
+          alike = alike && sides[t * count + k] == sides[t * count];
+        }
+        summary[t] = alike ? static_cast<std::int8_t>(sides[t * count]) : kMixedSides;
+      }
+    });
+  }
+};
+
+// Per-thread scratch of beam_counts.
+struct BeamScratch {
+  std::vector<std::uint32_t> candidates;
+  std::vector<std::uint32_t> seen;  // per triangle: the generation that collected it
+  std::uint32_t generation = 0;
+  std::vector<std::uint32_t> n;
+  std::vector<std::uint8_t> touched;
+  std::vector<std::uint8_t> alone;  // lights counted by count_at (P within rounding of the light)
+};
+
+// The beam's query is cut at these fractions of the way from P to the lights: the segments
+// from P spread by at most the lights' half-size times the fraction reached, so each piece is
+// dilated only by its own far end's spread (a cone, not a cylinder of the lights' width).
+inline constexpr std::array<double, 8> kBeamCuts{0.0, 1.0 / 64, 1.0 / 32, 1.0 / 16, 1.0 / 8, 1.0 / 4, 1.0 / 2, 1.0};
+
+// n(P) for every light of `beam` at the countable hit `hit` of centre ray `pixel` (count_at's
+// answers), into counts[k][pixel] for light k.
+void beam_counts(const ImageGeometry& g, const BeamLights& beam, const PixelRay& ray, const RayHit& hit,
+                 const PointBox& box, BeamScratch& scratch, std::span<std::uint32_t* const> counts, std::size_t pixel) {
+  const std::size_t lights = beam.count;
+  const std::uint32_t h = hit.triangle;
+  const detail::HitPoint p(detail::RayParameter(ray, g.vertex(h, 0), g.vertex(h, 1), g.vertex(h, 2), hit.direction_side,
+                                                detail::RayParameter::Unenclosed{}),
+                           box);
+  scratch.n.assign(lights, 0);
+  scratch.touched.assign(lights, 0);
+  scratch.alone.assign(lights, 0);
+  // A light within P's box may be P itself (count_at's empty segment): counted alone (where the
+  // lights' box meets P's box at all).
+  bool near = true;
+  for (int a = 0; a < 3; ++a) near = near && beam.lo[a] <= p.hi()[a] && p.lo()[a] <= beam.hi[a];
+  std::size_t beam_lights = lights;
+  bool any_alone = false;
+  Vec3 lo = beam.lo, hi = beam.hi;
+  if (near) {
+    beam_lights = 0;
+    for (std::size_t k = 0; k < lights; ++k) {
+      const HomogeneousPoint& l = g.lights[k];
+      bool inside = true;
+      for (int a = 0; a < 3; ++a) inside = inside && l[a] >= p.lo()[a] && l[a] <= p.hi()[a];
+      if (inside) {
+        scratch.alone[k] = 1;
+        any_alone = true;
+        counts[k][pixel] = count_at(g, k, ray, hit, box);
+        continue;
+      }
+      for (int a = 0; a < 3; ++a) {
+        lo[a] = beam_lights > 0 ? std::min(lo[a], l[a]) : l[a];
+        hi[a] = beam_lights > 0 ? std::max(hi[a], l[a]) : l[a];
+      }
+      ++beam_lights;
+    }
+  }
+  if (beam_lights == 0) return;
+  // From P's box middle (m) to the lights' box middle (to): at parameter t a segment from a
+  // point of P's box to a light lies within (1 - t) p_half + t l_half of from + t (to - from),
+  // axis by axis. Each piece [t0, t1] of it is dilated by p_half + t1 l_half, plus the rounding
+  // of its end points (a few ulps of the coordinates).
+  Vec3 m{}, to{}, p_half{}, l_half{}, r{}, W{};
+  for (int a = 0; a < 3; ++a) {
+    const double plo = p.lo()[a], phi = p.hi()[a];
+    m[a] = std::clamp(plo / 2 + phi / 2, plo, phi);
+    to[a] = std::clamp(lo[a] / 2 + hi[a] / 2, lo[a], hi[a]);
+    p_half[a] = std::max(phi - m[a], m[a] - plo) * (1.0 + 0x1p-50);
+    l_half[a] = std::max(hi[a] - to[a], to[a] - lo[a]) * (1.0 + 0x1p-50);
+    r[a] = (phi - plo) * (1.0 + 0x1p-50) + 0x1p-1000;  // |P - m| <= hi - lo: m lies in the box
+    W[a] = std::max(std::fabs(hi[a] - m[a]), std::fabs(lo[a] - m[a])) * (1.0 + 0x1p-50);
+  }
+  if (scratch.seen.size() != g.soup.triangles.size()) scratch.seen.assign(g.soup.triangles.size(), 0);
+  if (++scratch.generation == 0) {
+    std::fill(scratch.seen.begin(), scratch.seen.end(), 0u);
+    scratch.generation = 1;
+  }
+  scratch.candidates.clear();
+  const auto collect = [&](std::uint32_t id) {
+    if (scratch.seen[id] == scratch.generation) return true;
+    scratch.seen[id] = scratch.generation;
+    if (id != h && g.casting(id) && beam.summary[id] != 0) scratch.candidates.push_back(id);
+    return true;
+  };
+  const auto at = [&](double t) {
+    return Vec3{m[0] + t * (to[0] - m[0]), m[1] + t * (to[1] - m[1]), m[2] + t * (to[2] - m[2])};
+  };
+  for (std::size_t piece = 0; piece + 1 < kBeamCuts.size(); ++piece) {
+    const double t1 = kBeamCuts[piece + 1];
+    const Vec3 from = at(kBeamCuts[piece]), end = at(t1);
+    Vec3 slack{};
+    for (int a = 0; a < 3; ++a)
+      slack[a] = std::nextafter((p_half[a] + t1 * l_half[a]) * (1.0 + 0x1p-50) +
+                                    0x1p-50 * (std::fabs(m[a]) + std::fabs(to[a])) + 0x1p-1000,
+                                std::numeric_limits<double>::infinity());
+    g.tree.dilated_segment_query(from, end, slack, collect);  // from == end: the box around it
+  }
+
+  for (const std::uint32_t id : scratch.candidates) {
+    const Sign* sides = beam.sides.data() + std::size_t{id} * lights;
+    const std::int8_t summary = beam.summary[id];
+    const Vec3 &a = g.vertex(id, 0), &b = g.vertex(id, 1), &c = g.vertex(id, 2);
+    const Sign start = p.side(a, b, c);
+    // count_at's tests for light k: s(t) != 0 and P strictly on its other side (start != s).
+    if (start == Sign::zero || summary == static_cast<std::int8_t>(start)) continue;
+    const std::array<std::pair<const Vec3*, const Vec3*>, 3> edges{{{&a, &b}, {&b, &c}, {&c, &a}}};
+    std::array<std::optional<EdgePlaneFilter>, 3> filters;
+    // Each edge's sign times -start for all lights at once where the filter knows it: one
+    // certainly negative edge puts every segment outside the triangle.
+    std::array<std::optional<Sign>, 3> common;
+    bool all_outside = false, all_inside = true;
+    for (std::size_t e = 0; e < 3 && !all_outside; ++e) {
+      filters[e].emplace(m, r, W, *edges[e].first, *edges[e].second);
+      if (const std::optional<Sign> o = filters[e]->common_sign(to, l_half)) common[e] = *o * -start;
+      all_outside = common[e] == Sign::negative;
+      all_inside = all_inside && common[e] == Sign::positive;
+    }
+    if (all_outside) continue;
+    // Light k's segment can cross only where s(t) = -start (nonzero, P on the other side).
+    const Sign crossing_side = -start;
+    if (all_inside) {  // every edge certainly positive: every such segment crosses
+      for (std::size_t k = 0; k < lights; ++k)
+        scratch.n[k] += static_cast<std::uint32_t>(sides[k] == crossing_side && scratch.alone[k] == 0);
+      continue;
+    }
+    std::array<std::size_t, 3> open{};  // the edges the filter could not decide for all lights
+    std::size_t opens = 0;
+    for (std::size_t e = 0; e < 3; ++e)
+      if (!common[e]) open[opens++] = e;
+    for (std::size_t k = 0; k < lights; ++k) {
+      if (sides[k] != crossing_side || (any_alone && scratch.alone[k] != 0)) continue;
+      const HomogeneousPoint& l = g.lights[k];
+      bool on_boundary = false, outside = false;
+      for (std::size_t i = 0; i < opens && !outside; ++i) {
+        const std::size_t e = open[i];
+        const std::optional<Sign> f = filters[e]->sign(l);
+        switch ((f ? *f : p.orient_with(l, *edges[e].first, *edges[e].second)) * crossing_side) {
+          case Sign::positive:
+            break;
+          case Sign::zero:
+            on_boundary = true;
+            break;
+          case Sign::negative:
+            outside = true;
+            break;
+        }
+      }
+      if (outside) continue;
+      if (on_boundary)
+        scratch.touched[k] = 1;
+      else
+        ++scratch.n[k];
+    }
+  }
+  for (std::size_t k = 0; k < lights; ++k)
+    if (scratch.alone[k] == 0) counts[k][pixel] = scratch.touched[k] != 0 ? kUndefinedCount : scratch.n[k];
 }
 
 // Progress of one stage, reported about once per percent, one report at a time.
@@ -1015,7 +1278,57 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
   // With the depth band: the pixels a casting edge passes near (fold_pair_at_centre's filter).
   const std::vector<std::uint8_t> fold_mask =
       footprints && options.depth_band && backdrop ? fold_candidates(g, grid.frame) : std::vector<std::uint8_t>{};
-  for (std::size_t light = 0; light < lights.size(); ++light) {
+  // Several point lights and no footprints (the soft reference): every light's centre counts in
+  // one pass (beam_counts), one count array per light.
+  const bool beam = !footprints && lights.size() >= kBeamMinLights &&
+                    std::all_of(g.lights.begin(), g.lights.end(), [](const HomogeneousPoint& l) { return l[3] != 0.0; });
+  // One count array per light, each the light's out.counts in the end (no copy).
+  std::vector<std::vector<std::uint32_t>> beam_counts_of(beam ? lights.size() : 0);
+  if (beam) {
+    const BeamLights beam_lights(g);
+    std::vector<std::uint32_t*> rows(lights.size());
+    for (std::size_t k = 0; k < lights.size(); ++k) {
+      resize_huge(beam_counts_of[k], grid.centres());
+      rows[k] = beam_counts_of[k].data();
+    }
+    std::vector<std::size_t> work;
+    for (std::size_t k = 0; k < grid.centres(); ++k)
+      if (countable(hits[k])) work.push_back(k);
+    Progress progress(options, kAllLightsCounts, work.size() * lights.size());
+    tbb::enumerable_thread_specific<BeamScratch> scratch;
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, work.size(), 64), [&](const auto& r) {
+      BeamScratch& local = scratch.local();
+      for (std::size_t w = r.begin(); w != r.end(); ++w)
+        beam_counts(g, beam_lights, grid.ray(work[w]), hits[work[w]], point_boxes[work[w]], local, rows, work[w]);
+      progress.advance(r.size() * lights.size());
+    });
+    image.stats.counts += work.size() * lights.size();
+  }
+  for (std::size_t light = 0; light < lights.size() && beam; ++light) {
+    ExactLightImage out;
+    out.counts = std::move(beam_counts_of[light]);  // each countable centre's count, set above
+    resize_huge(out.lit, grid.centres());
+    resize_huge(out.ambiguity, grid.centres());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, grid.centres(), 4096), [&](const auto& r) {
+      for (std::size_t pixel = r.begin(); pixel != r.end(); ++pixel) {
+        const RayHit& centre = hits[pixel];
+        std::uint8_t bits = geometric[pixel];
+        std::uint32_t n = centre.triangle == kNoHit ? kNoHit : kUndefinedCount;
+        if (countable(centre)) {
+          n = out.counts[pixel];
+          if (n == kUndefinedCount) bits |= kZeroSign;
+          if (terminator(g, light, centre)) bits |= kTerminator;
+        } else if (centre.triangle != kNoHit) {
+          bits |= kZeroSign;
+        }
+        out.counts[pixel] = n;
+        out.lit[pixel] = countable(centre) && n == 0 ? 255 : 0;
+        out.ambiguity[pixel] = bits;
+      }
+    });
+    image.lights.push_back(std::move(out));
+  }
+  for (std::size_t light = 0; light < lights.size() && !beam; ++light) {
     // Which rays' counts matter: every countable centre (the count image), and the corners of
     // pixels whose footprint sees one triangle that the light does not graze.
     std::fill(needed.begin(), needed.end(), std::uint8_t{0});

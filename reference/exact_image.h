@@ -104,10 +104,15 @@ struct ExactImage {
   ExactImageStats stats;
 };
 
+// The progress stage of the counts when every light is counted in one pass (footprints false
+// and several point lights: the soft reference's samples, counted together per hit point).
+inline constexpr std::string_view kAllLightsCounts = "counts of all lights";
+
 struct ExactImageOptions {
-  // Called as work advances with the stage ("hits", "footprints", then "counts" per light),
-  // the work done and the total of that stage: from worker threads, never two at once, about
-  // once per percent. Empty: no reports.
+  // Called as work advances with the stage ("hits", "footprints", then "counts" per light, or,
+  // where every light is counted in one pass, kAllLightsCounts once, its total the counts of
+  // all lights), the work done and the total of that stage: from worker threads, never two at
+  // once, about once per percent. Empty: no reports.
   std::function<void(std::string_view stage, std::uint64_t done, std::uint64_t total)> progress;
 
   // The depth band of a renderer whose depth test has finite precision (the diff's model of

@@ -52,12 +52,19 @@ SoftShadowImage soft_shadow_image(const Soup& soup, std::span<const Light> sampl
   // Progress: the first call's hits as they come, then the samples' counts.
   std::size_t batch_first = 0;       // the first sample of the current call
   std::size_t sample_in_batch = 0;   // samples of this call whose counts have begun
+  std::size_t batch_length = 0;      // samples in this call
   ExactImageOptions exact_options;
   exact_options.casts = options.casts;
   exact_options.footprints = false;  // only the centres' verdicts are read
   if (options.progress) {
     const std::uint64_t total = samples.size() * kSampleSteps;
     exact_options.progress = [&, total](std::string_view stage, std::uint64_t done, std::uint64_t stage_total) {
+      if (stage == kAllLightsCounts) {  // every sample of this call at once
+        const std::uint64_t within = stage_total == 0 ? batch_length * kSampleSteps
+                                                      : done * batch_length * kSampleSteps / stage_total;
+        options.progress("samples", batch_first * kSampleSteps + within, total);
+        return;
+      }
       if (stage != "counts") {
         if (batch_first == 0) options.progress(stage, done, stage_total);
         return;
@@ -72,6 +79,7 @@ SoftShadowImage soft_shadow_image(const Soup& soup, std::span<const Light> sampl
   for (; batch_first < samples.size(); batch_first += batch) {
     sample_in_batch = 0;
     const std::span<const Light> lights = samples.subspan(batch_first, std::min(batch, samples.size() - batch_first));
+    batch_length = lights.size();
     const ExactImage exact = exact_image(soup, lights, camera, exact_options);
     if (image.hit_triangles.empty()) image.hit_triangles = exact.hit_triangles;
     image.stats.exact_images += 1;

@@ -21,8 +21,11 @@
 // points are rounded to doubles once (reference/disk_light.h).
 //
 // Cost: one exact image with all the samples as its lights, centre rays only
-// (ExactImageOptions::footprints false: the first hits shared, per sample its signs and counts),
-// in batches when the per-light images would exceed SoftShadowOptions::batch_bytes.
+// (ExactImageOptions::footprints false: the first hits shared), in batches when the per-light
+// images would exceed SoftShadowOptions::batch_bytes. Its samples are counted together at each
+// hit point P (reference/exact_image.cpp, beam_counts): one box-tree query along the cone from P
+// to the samples, P's side of each candidate's plane once, and each candidate edge's plane
+// through P deciding all samples at once where a filter can; the verdicts are each sample's own.
 #include <cstdint>
 #include <functional>
 #include <span>
