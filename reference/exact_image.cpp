@@ -28,6 +28,7 @@
 #include <limits>
 #include <memory>
 #include <mutex>
+#include <numeric>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -339,6 +340,47 @@ class EdgePlaneFilter {
     return std::nullopt;
   }
 
+  // For lights k of xs, ys, zs (each within W of m): above[k] = 1 where the sign is certainly
+  // `side`, below[k] = 1 where it is certainly -side (neither: the filter cannot decide, or it
+  // is not usable). One pass over the lights the compiler vectorises.
+  void classify(std::span<const double> xs, std::span<const double> ys, std::span<const double> zs, Sign side,
+                std::uint8_t* above, std::uint8_t* below) const {
+    const std::size_t n = xs.size();
+    if (!usable_) {
+      std::fill(above, above + n, std::uint8_t{0});
+      std::fill(below, below + n, std::uint8_t{0});
+      return;
+    }
+    const double flip = side == Sign::negative ? -1.0 : 1.0;
+    const double n0 = n_[0] * flip, n1 = n_[1] * flip, n2 = n_[2] * flip, m0 = m_[0], m1 = m_[1], m2 = m_[2];
+    const double bound = bound_;
+    for (std::size_t k = 0; k < n; ++k) {
+      const double v = (xs[k] - m0) * n0 + (ys[k] - m1) * n1 + (zs[k] - m2) * n2;
+      above[k] = static_cast<std::uint8_t>(v > bound);
+      below[k] = static_cast<std::uint8_t>(v < -bound);
+    }
+  }
+
+  // common_sign times `side` for the boxes (cx[g], cy[g], cz[g]) +- (hx[g], hy[g], hz[g]):
+  // above[g] = 1 where certainly positive, below[g] = 1 where certainly negative. Vectorised.
+  void classify_boxes(const double* cx, const double* cy, const double* cz, const double* hx, const double* hy,
+                      const double* hz, std::size_t boxes, Sign side, std::uint8_t* above, std::uint8_t* below) const {
+    if (!usable_) {
+      std::fill(above, above + boxes, std::uint8_t{0});
+      std::fill(below, below + boxes, std::uint8_t{0});
+      return;
+    }
+    const double flip = side == Sign::negative ? -1.0 : 1.0;
+    const double n0 = n_[0] * flip, n1 = n_[1] * flip, n2 = n_[2] * flip, m0 = m_[0], m1 = m_[1], m2 = m_[2];
+    const double a0 = std::fabs(n_[0]), a1 = std::fabs(n_[1]), a2 = std::fabs(n_[2]), bound = 2.0 * bound_;
+    for (std::size_t g = 0; g < boxes; ++g) {
+      const double v = (cx[g] - m0) * n0 + (cy[g] - m1) * n1 + (cz[g] - m2) * n2;
+      const double spread = hx[g] * a0 + hy[g] * a1 + hz[g] * a2;
+      above[g] = static_cast<std::uint8_t>(v - spread > bound);
+      below[g] = static_cast<std::uint8_t>(v + spread < -bound);
+    }
+  }
+
   // The sign shared by every light in the box centre +- half (within W of m), or nullopt.
   [[nodiscard]] std::optional<Sign> common_sign(const Vec3& centre, const Vec3& half) const {
     if (!usable_) return std::nullopt;
@@ -358,40 +400,103 @@ class EdgePlaneFilter {
 
 // The fewest lights counted together: one light is counted as with footprints.
 inline constexpr std::size_t kBeamMinLights = 2;
+// The lights are split into groups of at most this many neighbours, which an edge's plane
+// decides together where it passes beside their box (EdgePlaneFilter::common_sign).
+inline constexpr std::size_t kBeamGroup = 8;
 
-// What the beam counts share across pixels: the point lights' box, and each triangle's s(t)
-// for every light in one row (sides[t * lights + k]) with a summary per triangle (the sign all
-// lights share, or kMixedSides).
+// What the beam counts share across pixels. The lights are held in slots, neighbours in
+// consecutive slots (a median split along the longest axis of their box, down to groups of
+// kBeamGroup); light order[slot] sits in each slot. Per slot: its coordinates, and per triangle
+// its s(t) (sides[t * lights + slot]), with a summary per triangle (the sign every light
+// shares, or kMixedSides).
 struct BeamLights {
   static constexpr std::int8_t kMixedSides = 2;
+  struct Group {
+    std::size_t first = 0, last = 0;  // slots [first, last)
+    Vec3 centre{}, half{};             // a box holding its lights
+  };
+  std::size_t count = 0;
+  std::vector<std::size_t> order;
+  std::vector<double> x, y, z;
+  std::vector<Group> groups;
+  std::array<std::vector<double>, 3> group_centre, group_half;  // the groups' boxes, axis by axis
+  Vec3 lo{}, hi{};  // every light's box
   std::vector<Sign> sides;
   std::vector<std::int8_t> summary;
-  std::size_t count = 0;
-  Vec3 lo{}, hi{};  // the lights' bounding box
 
-  explicit BeamLights(const ImageGeometry& g) : count(g.lights.size()) {
-    for (std::size_t k = 0; k < count; ++k)
+  explicit BeamLights(const ImageGeometry& g) : count(g.lights.size()), order(count) {
+    std::iota(order.begin(), order.end(), std::size_t{0});
+    split(g, 0, count);
+    for (const std::size_t k : order) {
+      x.push_back(g.lights[k][0]);
+      y.push_back(g.lights[k][1]);
+      z.push_back(g.lights[k][2]);
+    }
+    box_of(0, count, lo, hi);
+    for (const Group& group : groups)
       for (int a = 0; a < 3; ++a) {
-        lo[a] = k == 0 ? g.lights[k][a] : std::min(lo[a], g.lights[k][a]);
-        hi[a] = k == 0 ? g.lights[k][a] : std::max(hi[a], g.lights[k][a]);
+        group_centre[a].push_back(group.centre[a]);
+        group_half[a].push_back(group.half[a]);
       }
     const std::size_t triangles = g.soup.triangles.size();
     sides.resize(triangles * count);
     summary.resize(triangles);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, triangles, 4096), [&](const auto& r) {
       for (std::size_t t = r.begin(); t != r.end(); ++t) {
+        Sign* row = sides.data() + t * count;
         bool alike = true;
-        for (std::size_t k = 0; k < count; ++k) {
-          sides[t * count + k] = g.light_sides[k][t];
-          alike = alike && sides[t * count + k] == sides[t * count];
+        for (std::size_t slot = 0; slot < count; ++slot) {
+          row[slot] = g.light_sides[order[slot]][t];
+          alike = alike && row[slot] == row[0];
         }
-        summary[t] = alike ? static_cast<std::int8_t>(sides[t * count]) : kMixedSides;
+        summary[t] = alike ? static_cast<std::int8_t>(row[0]) : kMixedSides;
       }
     });
   }
+
+ private:
+  void box_of(std::size_t first, std::size_t last, Vec3& l, Vec3& h) const {
+    for (std::size_t slot = first; slot < last; ++slot) {
+      const Vec3 v{x[slot], y[slot], z[slot]};
+      for (int a = 0; a < 3; ++a) {
+        l[a] = slot == first ? v[a] : std::min(l[a], v[a]);
+        h[a] = slot == first ? v[a] : std::max(h[a], v[a]);
+      }
+    }
+  }
+  // Orders slots [first, last) of `order` into groups (before x, y, z are filled).
+  void split(const ImageGeometry& g, std::size_t first, std::size_t last) {
+    Vec3 l{}, h{};
+    for (std::size_t slot = first; slot < last; ++slot)
+      for (int a = 0; a < 3; ++a) {
+        const double v = g.lights[order[slot]][a];
+        l[a] = slot == first ? v : std::min(l[a], v);
+        h[a] = slot == first ? v : std::max(h[a], v);
+      }
+    if (last - first <= kBeamGroup) {
+      Group group{first, last, {}, {}};
+      for (int a = 0; a < 3; ++a) {
+        group.centre[a] = std::clamp(l[a] / 2 + h[a] / 2, l[a], h[a]);
+        group.half[a] = std::max(h[a] - group.centre[a], group.centre[a] - l[a]) * (1.0 + 0x1p-50);
+      }
+      groups.push_back(group);
+      return;
+    }
+    int axis = 0;
+    for (int a = 1; a < 3; ++a)
+      if (h[a] - l[a] > h[axis] - l[axis]) axis = a;
+    const std::size_t middle = first + (last - first) / 2;
+    std::nth_element(order.begin() + static_cast<std::ptrdiff_t>(first), order.begin() + static_cast<std::ptrdiff_t>(middle),
+                     order.begin() + static_cast<std::ptrdiff_t>(last), [&](std::size_t a, std::size_t b) {
+                       return g.lights[a][axis] < g.lights[b][axis] ||
+                              (g.lights[a][axis] == g.lights[b][axis] && a < b);
+                     });
+    split(g, first, middle);
+    split(g, middle, last);
+  }
 };
 
-// Per-thread scratch of beam_counts.
+// Per-thread scratch of beam_counts, per slot.
 struct BeamScratch {
   std::vector<std::uint32_t> candidates;
   std::vector<std::uint32_t> seen;  // per triangle: the generation that collected it
@@ -399,6 +504,8 @@ struct BeamScratch {
   std::vector<std::uint32_t> n;
   std::vector<std::uint8_t> touched;
   std::vector<std::uint8_t> alone;  // lights counted by count_at (P within rounding of the light)
+  std::array<std::array<std::uint8_t, kBeamGroup>, 3> above{}, below{};  // per open edge, a group's lights
+  std::array<std::vector<std::uint8_t>, 3> group_above, group_below;  // per edge, each group
 };
 
 // The beam's query is cut at these fractions of the way from P to the lights: the segments
@@ -427,14 +534,14 @@ void beam_counts(const ImageGeometry& g, const BeamLights& beam, const PixelRay&
   Vec3 lo = beam.lo, hi = beam.hi;
   if (near) {
     beam_lights = 0;
-    for (std::size_t k = 0; k < lights; ++k) {
-      const HomogeneousPoint& l = g.lights[k];
+    for (std::size_t slot = 0; slot < lights; ++slot) {
+      const Vec3 l{beam.x[slot], beam.y[slot], beam.z[slot]};
       bool inside = true;
       for (int a = 0; a < 3; ++a) inside = inside && l[a] >= p.lo()[a] && l[a] <= p.hi()[a];
       if (inside) {
-        scratch.alone[k] = 1;
+        scratch.alone[slot] = 1;
         any_alone = true;
-        counts[k][pixel] = count_at(g, k, ray, hit, box);
+        counts[beam.order[slot]][pixel] = count_at(g, beam.order[slot], ray, hit, box);
         continue;
       }
       for (int a = 0; a < 3; ++a) {
@@ -446,9 +553,9 @@ void beam_counts(const ImageGeometry& g, const BeamLights& beam, const PixelRay&
   }
   if (beam_lights == 0) return;
   // From P's box middle (m) to the lights' box middle (to): at parameter t a segment from a
-  // point of P's box to a light lies within (1 - t) p_half + t l_half of from + t (to - from),
-  // axis by axis. Each piece [t0, t1] of it is dilated by p_half + t1 l_half, plus the rounding
-  // of its end points (a few ulps of the coordinates).
+  // point of P's box to a light lies within (1 - t) p_half + t l_half of m + t (to - m), axis by
+  // axis. Each piece [t0, t1] of it is dilated by p_half + t1 l_half, plus the rounding of its
+  // end points (a few ulps of the coordinates).
   Vec3 m{}, to{}, p_half{}, l_half{}, r{}, W{};
   for (int a = 0; a < 3; ++a) {
     const double plo = p.lo()[a], phi = p.hi()[a];
@@ -457,7 +564,7 @@ void beam_counts(const ImageGeometry& g, const BeamLights& beam, const PixelRay&
     p_half[a] = std::max(phi - m[a], m[a] - plo) * (1.0 + 0x1p-50);
     l_half[a] = std::max(hi[a] - to[a], to[a] - lo[a]) * (1.0 + 0x1p-50);
     r[a] = (phi - plo) * (1.0 + 0x1p-50) + 0x1p-1000;  // |P - m| <= hi - lo: m lies in the box
-    W[a] = std::max(std::fabs(hi[a] - m[a]), std::fabs(lo[a] - m[a])) * (1.0 + 0x1p-50);
+    W[a] = std::max(std::fabs(beam.hi[a] - m[a]), std::fabs(beam.lo[a] - m[a])) * (1.0 + 0x1p-50);
   }
   if (scratch.seen.size() != g.soup.triangles.size()) scratch.seen.assign(g.soup.triangles.size(), 0);
   if (++scratch.generation == 0) {
@@ -492,57 +599,95 @@ void beam_counts(const ImageGeometry& g, const BeamLights& beam, const PixelRay&
     const Sign start = p.side(a, b, c);
     // count_at's tests for light k: s(t) != 0 and P strictly on its other side (start != s).
     if (start == Sign::zero || summary == static_cast<std::int8_t>(start)) continue;
+    // Light k's segment can cross only where s(t) = -start (nonzero, P on the other side);
+    // then it crosses iff each edge's sign orient(P, L, p, q) times -start is positive.
+    const Sign crossing_side = -start;
     const std::array<std::pair<const Vec3*, const Vec3*>, 3> edges{{{&a, &b}, {&b, &c}, {&c, &a}}};
     std::array<std::optional<EdgePlaneFilter>, 3> filters;
-    // Each edge's sign times -start for all lights at once where the filter knows it: one
+    // Each edge's sign for all the beam's lights at once where the filter knows it: one
     // certainly negative edge puts every segment outside the triangle.
     std::array<std::optional<Sign>, 3> common;
     bool all_outside = false, all_inside = true;
     for (std::size_t e = 0; e < 3 && !all_outside; ++e) {
       filters[e].emplace(m, r, W, *edges[e].first, *edges[e].second);
-      if (const std::optional<Sign> o = filters[e]->common_sign(to, l_half)) common[e] = *o * -start;
+      if (const std::optional<Sign> o = filters[e]->common_sign(to, l_half)) common[e] = *o * crossing_side;
       all_outside = common[e] == Sign::negative;
       all_inside = all_inside && common[e] == Sign::positive;
     }
     if (all_outside) continue;
-    // Light k's segment can cross only where s(t) = -start (nonzero, P on the other side).
-    const Sign crossing_side = -start;
-    if (all_inside) {  // every edge certainly positive: every such segment crosses
-      for (std::size_t k = 0; k < lights; ++k)
-        scratch.n[k] += static_cast<std::uint32_t>(sides[k] == crossing_side && scratch.alone[k] == 0);
+    const auto add_inside = [&](std::size_t first, std::size_t last) {
+      for (std::size_t slot = first; slot < last; ++slot)
+        scratch.n[slot] += static_cast<std::uint32_t>(sides[slot] == crossing_side && scratch.alone[slot] == 0);
+    };
+    if (all_inside) {
+      add_inside(0, lights);
       continue;
     }
-    std::array<std::size_t, 3> open{};  // the edges the filter could not decide for all lights
-    std::size_t opens = 0;
-    for (std::size_t e = 0; e < 3; ++e)
-      if (!common[e]) open[opens++] = e;
-    for (std::size_t k = 0; k < lights; ++k) {
-      if (sides[k] != crossing_side || (any_alone && scratch.alone[k] != 0)) continue;
-      const HomogeneousPoint& l = g.lights[k];
-      bool on_boundary = false, outside = false;
-      for (std::size_t i = 0; i < opens && !outside; ++i) {
-        const std::size_t e = open[i];
-        const std::optional<Sign> f = filters[e]->sign(l);
-        switch ((f ? *f : p.orient_with(l, *edges[e].first, *edges[e].second)) * crossing_side) {
-          case Sign::positive:
-            break;
-          case Sign::zero:
-            on_boundary = true;
-            break;
-          case Sign::negative:
-            outside = true;
-            break;
+    // Group by group, the edges still open: first for the group's box, then light by light.
+    for (const BeamLights::Group& group : beam.groups) {
+      std::array<std::size_t, 3> open{};
+      std::size_t opens = 0;
+      bool group_outside = false;
+      for (std::size_t e = 0; e < 3 && !group_outside; ++e) {
+        if (common[e]) continue;  // positive for every light
+        const std::optional<Sign> o = filters[e]->common_sign(group.centre, group.half);
+        if (!o) {
+          open[opens++] = e;
+          continue;
         }
+        group_outside = *o * crossing_side == Sign::negative;
       }
-      if (outside) continue;
-      if (on_boundary)
-        scratch.touched[k] = 1;
-      else
-        ++scratch.n[k];
+      if (group_outside) continue;
+      if (opens == 0) {
+        add_inside(group.first, group.last);
+        continue;
+      }
+      const std::size_t size = group.last - group.first;
+      for (std::size_t i = 0; i < opens; ++i)
+        filters[open[i]]->classify({beam.x.data() + group.first, size}, {beam.y.data() + group.first, size},
+                                   {beam.z.data() + group.first, size}, crossing_side, scratch.above[i].data(),
+                                   scratch.below[i].data());
+      for (std::size_t j = 0; j < size; ++j) {
+        const std::size_t slot = group.first + j;
+        if (sides[slot] != crossing_side || (any_alone && scratch.alone[slot] != 0)) continue;
+        bool outside = false, inside = true;
+        for (std::size_t i = 0; i < opens; ++i) {
+          outside = outside || scratch.below[i][j] != 0;
+          inside = inside && scratch.above[i][j] != 0;
+        }
+        if (outside) continue;
+        if (inside) {
+          ++scratch.n[slot];
+          continue;
+        }
+        // Some open edge undecided for this light: its exact sign (count_at's test).
+        const HomogeneousPoint& l = g.lights[beam.order[slot]];
+        bool on_boundary = false;
+        for (std::size_t i = 0; i < opens && !outside; ++i) {
+          if (scratch.above[i][j] != 0) continue;
+          const std::size_t e = open[i];
+          switch (p.orient_with(l, *edges[e].first, *edges[e].second) * crossing_side) {
+            case Sign::positive:
+              break;
+            case Sign::zero:
+              on_boundary = true;
+              break;
+            case Sign::negative:
+              outside = true;
+              break;
+          }
+        }
+        if (outside) continue;
+        if (on_boundary)
+          scratch.touched[slot] = 1;
+        else
+          ++scratch.n[slot];
+      }
     }
   }
-  for (std::size_t k = 0; k < lights; ++k)
-    if (scratch.alone[k] == 0) counts[k][pixel] = scratch.touched[k] != 0 ? kUndefinedCount : scratch.n[k];
+  for (std::size_t slot = 0; slot < lights; ++slot)
+    if (scratch.alone[slot] == 0)
+      counts[beam.order[slot]][pixel] = scratch.touched[slot] != 0 ? kUndefinedCount : scratch.n[slot];
 }
 
 // Progress of one stage, reported about once per percent, one report at a time.
