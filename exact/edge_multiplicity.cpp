@@ -70,7 +70,6 @@ void require_valid(const char* function, const Soup& canonical, const EdgeTable&
 class SortedSigns {
  public:
   SortedSigns(std::vector<Sign>& storage, std::size_t triangles) : sorted_(storage) {
-    reserve_huge(sorted_, triangles);
     sorted_.assign(triangles, Sign::zero);
   }
 
@@ -81,10 +80,7 @@ class SortedSigns {
   // s(t) = D(a, b, c) in the triangle's own order (zero for repeated indices: no table entry),
   // into `caps`; `caps` may be the storage itself: entry t reads and writes only entry t.
   void caps_into(const Soup& canonical, std::vector<Sign>& caps) const {
-    if (&caps != &sorted_) {
-      reserve_huge(caps, canonical.triangles.size());
-      caps.assign(canonical.triangles.size(), Sign::zero);
-    }
+    if (&caps != &sorted_) caps.assign(canonical.triangles.size(), Sign::zero);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, caps.size(), kEdgeGrain),
                       [&](const tbb::blocked_range<std::size_t>& r) {
                         for (std::size_t t = r.begin(); t < r.end(); ++t) {
