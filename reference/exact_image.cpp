@@ -381,6 +381,19 @@ class EdgePlaneFilter {
     }
   }
 
+  // The sign shared by every light within `radius` of `centre` (Euclidean; within W of m), or
+  // nullopt: v = (centre - m) . n ranges over +- radius |n|, whose rounding (|n|'s square root
+  // and products, a relative 8u) the factor (1 + 2^-40) covers; v's own rounding is within the
+  // second B, as in common_sign.
+  [[nodiscard]] std::optional<Sign> common_sign_ball(const Vec3& centre, double radius) const {
+    if (!usable_) return std::nullopt;
+    const double v = (centre[0] - m_[0]) * n_[0] + (centre[1] - m_[1]) * n_[1] + (centre[2] - m_[2]) * n_[2];
+    const double spread = radius * std::sqrt(n_[0] * n_[0] + n_[1] * n_[1] + n_[2] * n_[2]) * (1.0 + 0x1p-40);
+    if (v - spread > 2.0 * bound_) return Sign::positive;
+    if (v + spread < -2.0 * bound_) return Sign::negative;
+    return std::nullopt;
+  }
+
   // The sign shared by every light in the box centre +- half (within W of m), or nullopt.
   [[nodiscard]] std::optional<Sign> common_sign(const Vec3& centre, const Vec3& half) const {
     if (!usable_) return std::nullopt;
@@ -414,6 +427,7 @@ struct BeamLights {
   struct Group {
     std::size_t first = 0, last = 0;  // slots [first, last)
     Vec3 centre{}, half{};             // a box holding its lights
+    double radius = 0.0;               // and a ball around the same centre
   };
   std::size_t count = 0;
   std::vector<std::size_t> order;
@@ -421,6 +435,8 @@ struct BeamLights {
   std::vector<Group> groups;
   std::array<std::vector<double>, 3> group_centre, group_half;  // the groups' boxes, axis by axis
   Vec3 lo{}, hi{};  // every light's box
+  Vec3 ball_centre{};  // and a ball around its middle holding every light
+  double ball = 0.0;
   std::vector<Sign> sides;
   std::vector<std::int8_t> summary;
 
@@ -433,6 +449,8 @@ struct BeamLights {
       z.push_back(g.lights[k][2]);
     }
     box_of(0, count, lo, hi);
+    for (int a = 0; a < 3; ++a) ball_centre[a] = std::clamp(lo[a] / 2 + hi[a] / 2, lo[a], hi[a]);
+    ball = ball_radius(g, 0, count, ball_centre);
     for (const Group& group : groups)
       for (int a = 0; a < 3; ++a) {
         group_centre[a].push_back(group.centre[a]);
@@ -464,6 +482,17 @@ struct BeamLights {
       }
     }
   }
+  // A bound on |L - centre| over the lights of slots [first, last) (each distance's rounding,
+  // a relative 4u, covered by 1 + 2^-40).
+  double ball_radius(const ImageGeometry& g, std::size_t first, std::size_t last, const Vec3& centre) const {
+    double squared = 0.0;
+    for (std::size_t slot = first; slot < last; ++slot) {
+      const HomogeneousPoint& l = g.lights[order[slot]];
+      const Vec3 d{l[0] - centre[0], l[1] - centre[1], l[2] - centre[2]};
+      squared = std::max(squared, d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    }
+    return std::sqrt(squared) * (1.0 + 0x1p-40);
+  }
   // Orders slots [first, last) of `order` into groups (before x, y, z are filled).
   void split(const ImageGeometry& g, std::size_t first, std::size_t last) {
     Vec3 l{}, h{};
@@ -479,6 +508,7 @@ struct BeamLights {
         group.centre[a] = std::clamp(l[a] / 2 + h[a] / 2, l[a], h[a]);
         group.half[a] = std::max(h[a] - group.centre[a], group.centre[a] - l[a]) * (1.0 + 0x1p-50);
       }
+      group.radius = ball_radius(g, first, last, group.centre);
       groups.push_back(group);
       return;
     }
@@ -610,7 +640,9 @@ void beam_counts(const ImageGeometry& g, const BeamLights& beam, const PixelRay&
     bool all_outside = false, all_inside = true;
     for (std::size_t e = 0; e < 3 && !all_outside; ++e) {
       filters[e].emplace(m, r, W, *edges[e].first, *edges[e].second);
-      if (const std::optional<Sign> o = filters[e]->common_sign(to, l_half)) common[e] = *o * crossing_side;
+      std::optional<Sign> o = filters[e]->common_sign(to, l_half);
+      if (!o) o = filters[e]->common_sign_ball(beam.ball_centre, beam.ball);
+      if (o) common[e] = *o * crossing_side;
       all_outside = common[e] == Sign::negative;
       all_inside = all_inside && common[e] == Sign::positive;
     }
@@ -630,7 +662,8 @@ void beam_counts(const ImageGeometry& g, const BeamLights& beam, const PixelRay&
       bool group_outside = false;
       for (std::size_t e = 0; e < 3 && !group_outside; ++e) {
         if (common[e]) continue;  // positive for every light
-        const std::optional<Sign> o = filters[e]->common_sign(group.centre, group.half);
+        std::optional<Sign> o = filters[e]->common_sign(group.centre, group.half);
+        if (!o) o = filters[e]->common_sign_ball(group.centre, group.radius);
         if (!o) {
           open[opens++] = e;
           continue;
