@@ -28,19 +28,12 @@ constexpr FaceMeeting kTouches{Meeting::touches, Sign::zero};
 FaceMeeting classify_through_plane(const HomogeneousPoint& start, const HomogeneousPoint& end, Sign start_side,
                                    Sign end_side, const std::array<BoundaryLine, 3>& lines) {
   const Sign s = start_side != Sign::zero ? start_side : -end_side;
-  bool on_boundary = false;
-  for (const BoundaryLine& line : lines) {
-    switch (orient_unchecked(start, end, *line.p, *line.q) * -s * line.keeps) {
-      case Sign::positive:
-        break;
-      case Sign::zero:
-        on_boundary = true;
-        break;
-      case Sign::negative:
-        return kApart;  // X strictly outside one closed half-plane: outside the closed face
-    }
-  }
-  if (on_boundary || start_side == Sign::zero || end_side == Sign::zero) return kTouches;
+  const Meeting m = fold_boundary_signs([&](int k) {
+    const BoundaryLine& line = lines[static_cast<std::size_t>(k)];
+    return orient_unchecked(start, end, *line.p, *line.q) * -s * line.keeps;
+  });
+  if (m == Meeting::apart) return kApart;  // X strictly outside one closed half-plane: outside the closed face
+  if (m == Meeting::touches || start_side == Sign::zero || end_side == Sign::zero) return kTouches;
   return {Meeting::crosses, start_side};
 }
 

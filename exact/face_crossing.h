@@ -26,6 +26,28 @@ enum class Meeting : std::uint8_t {
   touches,  // anything else: a zero sign that matters; the caller re-draws (docs/definitions.md#count-certificate)
 };
 
+// The crossing rule folded over a face's three boundary lines, for a segment whose line meets
+// the face's plane in one point X: line_sign(k) is line k's sign as the rule reads it (positive:
+// X strictly on the face's side). Every line positive: X strictly inside (crosses); one negative:
+// X outside (apart), whatever the others say; otherwise a zero: X on the boundary (touches).
+// Stops at the first negative.
+template <typename LineSign>
+[[nodiscard]] Meeting fold_boundary_signs(LineSign&& line_sign) {
+  bool on_boundary = false;
+  for (int k = 0; k < 3; ++k) {
+    switch (line_sign(k)) {
+      case Sign::positive:
+        break;
+      case Sign::zero:
+        on_boundary = true;
+        break;
+      case Sign::negative:
+        return Meeting::apart;
+    }
+  }
+  return on_boundary ? Meeting::touches : Meeting::crosses;
+}
+
 struct FaceMeeting {
   Meeting meeting = Meeting::apart;
   Sign start_side = Sign::zero;  // when crosses: the side of the face's plane the start lies on

@@ -239,21 +239,18 @@ std::uint32_t count_at(const ImageGeometry& g, std::size_t light, const PixelRay
     if (start == Sign::zero || start == s) return true;
     // The segment crosses the plane in one point X; exact/face_crossing.h's rule: X strictly
     // inside iff orient(P, L, p, q) = -start for every edge pq, outside if one has +start.
-    bool on_boundary = false;
-    for (const auto& [u, v] : {std::pair{&a, &b}, std::pair{&b, &c}, std::pair{&c, &a}}) {
-      switch (p.orient_with(l, *u, *v) * -start) {
-        case Sign::positive:
-          break;
-        case Sign::zero:
-          on_boundary = true;
-          break;
-        case Sign::negative:
-          return true;
-      }
-    }
-    if (on_boundary) {
-      touched = true;
-      return false;
+    const std::array<std::pair<const Vec3*, const Vec3*>, 3> edges{{{&a, &b}, {&b, &c}, {&c, &a}}};
+    switch (detail::fold_boundary_signs([&](int k) {
+      const auto& [u, v] = edges[static_cast<std::size_t>(k)];
+      return p.orient_with(l, *u, *v) * -start;
+    })) {
+      case detail::Meeting::apart:
+        return true;
+      case detail::Meeting::touches:
+        touched = true;
+        return false;
+      case detail::Meeting::crosses:
+        break;
     }
     ++n;
     return true;
@@ -693,25 +690,17 @@ void beam_counts(const ImageGeometry& g, const BeamLights& beam, const PixelRay&
           ++scratch.n[slot];
           continue;
         }
-        // Some open edge undecided for this light: its exact sign (count_at's test).
+        // Some open edge undecided for this light: its exact sign (count_at's test); an open edge
+        // the filter put on the crossing side counts as positive.
         const HomogeneousPoint& l = g.lights[beam.order[slot]];
-        bool on_boundary = false;
-        for (std::size_t i = 0; i < opens && !outside; ++i) {
-          if (scratch.above[i][j] != 0) continue;
+        const detail::Meeting meeting = detail::fold_boundary_signs([&](int k) {
+          const auto i = static_cast<std::size_t>(k);
+          if (i >= opens || scratch.above[i][j] != 0) return Sign::positive;
           const std::size_t e = open[i];
-          switch (p.orient_with(l, *edges[e].first, *edges[e].second) * crossing_side) {
-            case Sign::positive:
-              break;
-            case Sign::zero:
-              on_boundary = true;
-              break;
-            case Sign::negative:
-              outside = true;
-              break;
-          }
-        }
-        if (outside) continue;
-        if (on_boundary)
+          return p.orient_with(l, *edges[e].first, *edges[e].second) * crossing_side;
+        });
+        if (meeting == detail::Meeting::apart) continue;
+        if (meeting == detail::Meeting::touches)
           scratch.touched[slot] = 1;
         else
           ++scratch.n[slot];
@@ -1457,8 +1446,6 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
   stage = Clock::now();
   std::vector<std::uint32_t> counts;
   std::vector<std::uint8_t> needed;
-  resize_huge(counts, grid.size());
-  resize_huge(needed, grid.size());
   // With the depth band: the pixels a casting edge passes near (fold_pair_at_centre's filter).
   const std::vector<std::uint8_t> fold_mask =
       footprints && options.depth_band && backdrop ? fold_candidates(g, grid.frame) : std::vector<std::uint8_t>{};
@@ -1466,6 +1453,10 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
   // one pass (beam_counts), one count array per light.
   const bool beam = !footprints && lights.size() >= kBeamMinLights &&
                     std::all_of(g.lights.begin(), g.lights.end(), [](const HomogeneousPoint& l) { return l[3] != 0.0; });
+  if (!beam) {  // the per-light counts' arrays, over every ray
+    resize_huge(counts, grid.size());
+    resize_huge(needed, grid.size());
+  }
   // One count array per light, each the light's out.counts in the end (no copy).
   std::vector<std::vector<std::uint32_t>> beam_counts_of(beam ? lights.size() : 0);
   if (beam) {
@@ -1488,52 +1479,32 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
     });
     image.stats.counts += work.size() * lights.size();
   }
-  for (std::size_t light = 0; light < lights.size() && beam; ++light) {
-    ExactLightImage out;
-    out.counts = std::move(beam_counts_of[light]);  // each countable centre's count, set above
-    resize_huge(out.lit, grid.centres());
-    resize_huge(out.ambiguity, grid.centres());
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, grid.centres(), 4096), [&](const auto& r) {
-      for (std::size_t pixel = r.begin(); pixel != r.end(); ++pixel) {
-        const RayHit& centre = hits[pixel];
-        std::uint8_t bits = geometric[pixel];
-        std::uint32_t n = centre.triangle == kNoHit ? kNoHit : kUndefinedCount;
-        if (countable(centre)) {
-          n = out.counts[pixel];
-          if (n == kUndefinedCount) bits |= kZeroSign;
-          if (terminator(g, light, centre)) bits |= kTerminator;
-        } else if (centre.triangle != kNoHit) {
-          bits |= kZeroSign;
+  for (std::size_t light = 0; light < lights.size(); ++light) {
+    // The centres' counts of the beam (every light counted above, centres only: no footprints).
+    const std::vector<std::uint32_t>& light_counts = beam ? beam_counts_of[light] : counts;
+    if (!beam) {
+      // Which rays' counts matter: every countable centre (the count image), and the corners of
+      // pixels whose footprint sees one triangle that the light does not graze.
+      std::fill(needed.begin(), needed.end(), std::uint8_t{0});
+      for (std::uint32_t row = 0; row < grid.height; ++row)
+        for (std::uint32_t i = 0; i < grid.width; ++i) {
+          const auto rays = grid.footprint(i, row);
+          const RayHit& centre = hits[rays[0]];
+          if (!countable(centre)) continue;
+          needed[rays[0]] = 1;
+          if (footprints && geometric[rays[0]] == 0 && !terminator(g, light, centre))
+            for (std::size_t k = 1; k < rays.size(); ++k) needed[rays[k]] = 1;
         }
-        out.counts[pixel] = n;
-        out.lit[pixel] = countable(centre) && n == 0 ? 255 : 0;
-        out.ambiguity[pixel] = bits;
-      }
-    });
-    image.lights.push_back(std::move(out));
-  }
-  for (std::size_t light = 0; light < lights.size() && !beam; ++light) {
-    // Which rays' counts matter: every countable centre (the count image), and the corners of
-    // pixels whose footprint sees one triangle that the light does not graze.
-    std::fill(needed.begin(), needed.end(), std::uint8_t{0});
-    for (std::uint32_t row = 0; row < grid.height; ++row)
-      for (std::uint32_t i = 0; i < grid.width; ++i) {
-        const auto rays = grid.footprint(i, row);
-        const RayHit& centre = hits[rays[0]];
-        if (!countable(centre)) continue;
-        needed[rays[0]] = 1;
-        if (footprints && geometric[rays[0]] == 0 && !terminator(g, light, centre))
-          for (std::size_t k = 1; k < rays.size(); ++k) needed[rays[k]] = 1;
-      }
-    std::vector<std::size_t> work;
-    for (std::size_t k = 0; k < needed.size(); ++k)
-      if (needed[k] != 0) work.push_back(k);
-    Progress progress(options, "counts", work.size());
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, work.size(), 64), [&](const auto& r) {
-      for (std::size_t k = r.begin(); k != r.end(); ++k) counts[work[k]] = count_at(g, light, grid.ray(work[k]), hits[work[k]], point_boxes[work[k]]);
-      progress.advance(r.size());
-    });
-    image.stats.counts += work.size();
+      std::vector<std::size_t> work;
+      for (std::size_t k = 0; k < needed.size(); ++k)
+        if (needed[k] != 0) work.push_back(k);
+      Progress progress(options, "counts", work.size());
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, work.size(), 64), [&](const auto& r) {
+        for (std::size_t k = r.begin(); k != r.end(); ++k) counts[work[k]] = count_at(g, light, grid.ray(work[k]), hits[work[k]], point_boxes[work[k]]);
+        progress.advance(r.size());
+      });
+      image.stats.counts += work.size();
+    }
 
     ExactLightImage out;
     resize_huge(out.counts, grid.centres());
@@ -1548,13 +1519,13 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
           std::uint8_t bits = geometric[pixel];
           std::uint32_t n = centre.triangle == kNoHit ? kNoHit : kUndefinedCount;
           if (countable(centre)) {
-            n = counts[pixel];
+            n = light_counts[pixel];
             if (n == kUndefinedCount) bits |= kZeroSign;
             if (terminator(g, light, centre)) bits |= kTerminator;
             if (bits == 0 && footprints)
               for (std::size_t k = 1; k < rays.size(); ++k) {
-                if (counts[rays[k]] == kUndefinedCount) bits |= kZeroSign;
-                else if (counts[rays[k]] != n) bits |= kFootprintCounts;
+                if (light_counts[rays[k]] == kUndefinedCount) bits |= kZeroSign;
+                else if (light_counts[rays[k]] != n) bits |= kFootprintCounts;
               }
             // The corners agree: n must still be constant between them (a shadow sliver).
             if (bits == 0 && footprints &&
@@ -1575,6 +1546,7 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
           out.ambiguity[pixel] = bits;
         }
     });
+    if (beam) beam_counts_of[light] = {};  // read: its memory back before the next light
     image.lights.push_back(std::move(out));
   }
   image.stats.count_seconds += seconds_since(stage);
