@@ -22,8 +22,8 @@
 #include "io/soup_file.h"
 #include "reference/disk_light.h"
 #include "reference/exact_image.h"
+#include "scene/framed_scene.h"
 #include "scene/merged_soup.h"
-#include "scene/procedural_mesh.h"
 #include "scene/scene_file.h"
 #include "support/mesh_data.h"
 
@@ -62,29 +62,10 @@ void add_scene_files(std::vector<Case>& cases, const std::filesystem::path& fold
   }
 }
 
-// `mesh` over a floor just below it, lit from above (exact_image_digest_test's framing).
+// `mesh` framed over a floor (scene/framed_scene.h), the floor receiving only.
 Case mesh_case(const std::string& name, const Soup& mesh) {
-  Vec3 lo = mesh.vertices.front(), hi = lo;
-  for (const Vec3& v : mesh.vertices)
-    for (int k = 0; k < 3; ++k) {
-      lo[k] = std::min(lo[k], v[k]);
-      hi[k] = std::max(hi[k], v[k]);
-    }
-  const Vec3 c{(lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, (lo[2] + hi[2]) / 2};
-  const double size = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
-  Case out;
-  out.name = name;
-  out.soup = floor_quad(1.5 * size);
-  out.soup.normals.clear();
-  for (Vec3& v : out.soup.vertices) v = {v[0] + c[0], lo[1] - 0.01 * size, v[2] + c[2]};
-  Soup m = mesh;
-  m.normals.clear();
-  append_soup(out.soup, m);
-  out.lights = {Light{{c[0] + 0.4 * size, c[1] + 2.0 * size, c[2] + 0.6 * size, 1.0}}};
-  out.camera.eye = {c[0], c[1] + 0.8 * size, c[2] + 1.6 * size};
-  out.camera.target = c;
-  out.camera = sized(out.camera);
-  return out;
+  const Scene scene = framed_mesh_scene(mesh, name, {kWidth, kHeight});
+  return {name, merged_soup(scene), scene.lights, sized(scene.camera), casting_triangles(scene)};
 }
 
 std::vector<Case> cases() {
