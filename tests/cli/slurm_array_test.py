@@ -39,7 +39,9 @@ CANCELLED = 2  # the shard cancelled mid-run and submitted again
 TASK_RESOURCES = ["--cpus-per-task=1", "--mem=1G", "--time=00:20:00"]
 # A campaign with findings (kim-float fails on some cases: reproducers shrunk, the first two by
 # case index kept) and GL cases; about 10 s of work in all on a 2-core llvmpipe machine.
-FUZZ = ["--gl", "--seed", "1", "--cases", "300", "--triangles", "30", "--methods", "exact,kim-float,refedge-float",
+# 1200 cases (400 a shard, several seconds): at 300 a shard could end before the cancel of a
+# running shard landed (a race seen on an idle machine, 2026-12-06).
+FUZZ = ["--gl", "--seed", "1", "--cases", "1200", "--triangles", "30", "--methods", "exact,kim-float,refedge-float",
         "--shrink-findings", "--max-reproducers", "2", "--gl-methods", "cs,pertri", "--gl-size", "32x24"]
 # The hard suite (21 scenes, 7 per shard) small: about 0.5 s a scene.
 BENCH = ["--suite", "hard", "--size", "64x48", "--frames", "1", "--methods", "cpu,cs/exact,pertri,shadowmap/512",
