@@ -531,6 +531,7 @@ struct BeamScratch {
   std::vector<std::uint32_t> n;
   std::vector<std::uint8_t> touched;
   std::vector<std::uint8_t> alone;  // lights counted by count_at (P within rounding of the light)
+  std::vector<std::uint32_t> result;  // beam_counts' answer per slot: n(P) or kUndefinedCount
   std::array<std::array<std::uint8_t, kBeamGroup>, 3> above{}, below{};  // per open edge, a group's lights
   std::array<std::vector<std::uint8_t>, 3> group_above, group_below;  // per edge, each group
 };
@@ -540,10 +541,10 @@ struct BeamScratch {
 // dilated only by its own far end's spread (a cone, not a cylinder of the lights' width).
 inline constexpr std::array<double, 8> kBeamCuts{0.0, 1.0 / 64, 1.0 / 32, 1.0 / 16, 1.0 / 8, 1.0 / 4, 1.0 / 2, 1.0};
 
-// n(P) for every light of `beam` at the countable hit `hit` of centre ray `pixel` (count_at's
-// answers), into counts[k][pixel] for light k.
+// n(P) for every light of `beam` at the countable hit `hit` of a centre ray (count_at's
+// answers), into scratch.result[slot] for the light in each slot.
 void beam_counts(const ImageGeometry& g, const BeamLights& beam, const PixelRay& ray, const RayHit& hit,
-                 const PointBox& box, BeamScratch& scratch, std::span<std::uint32_t* const> counts, std::size_t pixel) {
+                 const PointBox& box, BeamScratch& scratch) {
   const std::size_t lights = beam.count;
   const std::uint32_t h = hit.triangle;
   const detail::HitPoint p(detail::RayParameter(ray, g.vertex(h, 0), g.vertex(h, 1), g.vertex(h, 2), hit.direction_side,
@@ -552,6 +553,7 @@ void beam_counts(const ImageGeometry& g, const BeamLights& beam, const PixelRay&
   scratch.n.assign(lights, 0);
   scratch.touched.assign(lights, 0);
   scratch.alone.assign(lights, 0);
+  scratch.result.resize(lights);
   // A light within P's box may be P itself (count_at's empty segment): counted alone (where the
   // lights' box meets P's box at all).
   bool near = true;
@@ -568,7 +570,7 @@ void beam_counts(const ImageGeometry& g, const BeamLights& beam, const PixelRay&
       if (inside) {
         scratch.alone[slot] = 1;
         any_alone = true;
-        counts[beam.order[slot]][pixel] = count_at(g, beam.order[slot], ray, hit, box);
+        scratch.result[slot] = count_at(g, beam.order[slot], ray, hit, box);
         continue;
       }
       for (int a = 0; a < 3; ++a) {
@@ -708,8 +710,7 @@ void beam_counts(const ImageGeometry& g, const BeamLights& beam, const PixelRay&
     }
   }
   for (std::size_t slot = 0; slot < lights; ++slot)
-    if (scratch.alone[slot] == 0)
-      counts[beam.order[slot]][pixel] = scratch.touched[slot] != 0 ? kUndefinedCount : scratch.n[slot];
+    if (scratch.alone[slot] == 0) scratch.result[slot] = scratch.touched[slot] != 0 ? kUndefinedCount : scratch.n[slot];
 }
 
 // Progress of one stage, reported about once per percent, one report at a time.
@@ -1457,15 +1458,18 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
     resize_huge(counts, grid.size());
     resize_huge(needed, grid.size());
   }
-  // One count array per light, each the light's out.counts in the end (no copy).
-  std::vector<std::vector<std::uint32_t>> beam_counts_of(beam ? lights.size() : 0);
+  // Without light images, the lights' sums per pixel (ExactLightTally).
+  const bool tally = !options.light_images;
+  if (tally) {
+    image.tally.defined.assign(grid.centres(), 0);
+    image.tally.lit.assign(grid.centres(), 0);
+    image.tally.terminator.assign(grid.centres(), 0);
+  }
+  // One count array per light, each the light's out.counts in the end (no copy); none for a tally.
+  std::vector<std::vector<std::uint32_t>> beam_counts_of(beam && !tally ? lights.size() : 0);
   if (beam) {
     const BeamLights beam_lights(g);
-    std::vector<std::uint32_t*> rows(lights.size());
-    for (std::size_t k = 0; k < lights.size(); ++k) {
-      resize_huge(beam_counts_of[k], grid.centres());
-      rows[k] = beam_counts_of[k].data();
-    }
+    for (auto& counts_of_light : beam_counts_of) resize_huge(counts_of_light, grid.centres());
     std::vector<std::size_t> work;
     for (std::size_t k = 0; k < grid.centres(); ++k)
       if (countable(hits[k])) work.push_back(k);
@@ -1473,13 +1477,36 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
     tbb::enumerable_thread_specific<BeamScratch> scratch;
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, work.size(), 64), [&](const auto& r) {
       BeamScratch& local = scratch.local();
-      for (std::size_t w = r.begin(); w != r.end(); ++w)
-        beam_counts(g, beam_lights, grid.ray(work[w]), hits[work[w]], point_boxes[work[w]], local, rows, work[w]);
+      for (std::size_t w = r.begin(); w != r.end(); ++w) {
+        const std::size_t pixel = work[w];
+        const RayHit& hit = hits[pixel];
+        beam_counts(g, beam_lights, grid.ray(pixel), hit, point_boxes[pixel], local);
+        if (!tally) {
+          for (std::size_t slot = 0; slot < lights.size(); ++slot)
+            beam_counts_of[beam_lights.order[slot]][pixel] = local.result[slot];
+          continue;
+        }
+        // The per-light loop's verdicts, summed: a countable centre is defined unless its count
+        // is undefined, lit at 0, and a terminator where the light is not on the eye's side.
+        const Sign* hit_sides = beam_lights.sides.data() + std::size_t{hit.triangle} * lights.size();
+        std::uint32_t defined = 0, lit = 0;
+        bool behind = false;
+        for (std::size_t slot = 0; slot < lights.size(); ++slot) {
+          const std::uint32_t n = local.result[slot];
+          defined += n != kUndefinedCount ? 1 : 0;
+          lit += n == 0 ? 1 : 0;
+          behind = behind || hit_sides[slot] != hit.eye_side;  // terminator()
+        }
+        image.tally.defined[pixel] = defined;
+        image.tally.lit[pixel] = lit;
+        image.tally.terminator[pixel] = behind ? 1 : 0;
+      }
       progress.advance(r.size() * lights.size());
     });
     image.stats.counts += work.size() * lights.size();
   }
-  for (std::size_t light = 0; light < lights.size(); ++light) {
+  // With a tally the beam has summed every light (no light image to make).
+  for (std::size_t light = 0; light < (beam && tally ? 0 : lights.size()); ++light) {
     // The centres' counts of the beam (every light counted above, centres only: no footprints).
     const std::vector<std::uint32_t>& light_counts = beam ? beam_counts_of[light] : counts;
     if (!beam) {
@@ -1547,7 +1574,19 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
         }
     });
     if (beam) beam_counts_of[light] = {};  // read: its memory back before the next light
-    image.lights.push_back(std::move(out));
+    if (!tally) {
+      image.lights.push_back(std::move(out));
+      continue;
+    }
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, grid.centres(), 4096), [&](const auto& r) {
+      for (std::size_t p = r.begin(); p != r.end(); ++p) {
+        const std::uint32_t n = out.counts[p];
+        const bool defined = n != kNoHit && n != kUndefinedCount;
+        image.tally.defined[p] += defined ? 1 : 0;
+        image.tally.lit[p] += defined && n == 0 ? 1 : 0;
+        if ((out.ambiguity[p] & kTerminator) != 0) image.tally.terminator[p] = 1;
+      }
+    });
   }
   image.stats.count_seconds += seconds_since(stage);
   image.stats.seconds = seconds_since(start);

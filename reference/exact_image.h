@@ -77,6 +77,15 @@ struct ExactLightImage {
   std::vector<std::uint8_t> ambiguity;  // AmbiguityReason bits
 };
 
+// Over every light of one call, per pixel (ExactImageOptions::light_images false): what the soft
+// reference reads of the per-light images (reference/soft_shadow_image.h), summed as the counts
+// come, so that no per-light image is held (6 bytes per pixel and light).
+struct ExactLightTally {
+  std::vector<std::uint32_t> defined;    // lights whose count is defined: neither kNoHit nor kUndefinedCount
+  std::vector<std::uint32_t> lit;        // of those, the lights with n(P) == 0 (lit 255)
+  std::vector<std::uint8_t> terminator;  // 1 where some light's ambiguity has kTerminator, else 0
+};
+
 struct ExactImageStats {
   std::uint64_t rays = 0;    // centre and corner rays traced
   std::uint64_t counts = 0;  // n(P) evaluations, all lights (centres, and corners that decide)
@@ -100,7 +109,8 @@ struct ExactImage {
   // the footprint sees one triangle only (or, all of it, nothing). What the edge ground truth
   // reads (reference/edge_ground_truth.h), with no light at all.
   std::vector<std::uint8_t> view_ambiguity;
-  std::vector<ExactLightImage> lights;  // one per light, in the given order
+  std::vector<ExactLightImage> lights;  // one per light, in the given order (none without light_images)
+  ExactLightTally tally;                // only without ExactImageOptions::light_images
   ExactImageStats stats;
 };
 
@@ -144,6 +154,12 @@ struct ExactImageOptions {
   // the few pixels around the failing one. nullopt: every pixel. The window must lie inside the
   // image and not be empty.
   std::optional<PixelWindow> window;
+
+  // false: `lights` stays empty and `tally` sums the per-light images over the lights instead
+  // (the same verdicts), so that memory does not grow with the number of lights: the soft
+  // reference's samples. With footprints false and several point lights the per-light images
+  // are never made; otherwise each is made and summed in turn.
+  bool light_images = true;
 };
 
 // The exact image of `soup` (every triangle receives; those options.casts allows, all by

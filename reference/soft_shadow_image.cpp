@@ -20,9 +20,10 @@ using Clock = std::chrono::steady_clock;
 // a report of done 0 (exact_image's Progress), which starts the next sample.
 constexpr std::uint64_t kSampleSteps = 1024;
 
-// Samples per exact_image call: the budget over 6 bytes per pixel and sample, at least one.
-std::size_t batch_size(std::uint64_t budget, std::size_t pixels, std::size_t samples) {
-  const std::uint64_t per_sample = 6 * std::max<std::uint64_t>(1, pixels);
+// Samples per exact_image call: the budget over kBatchBytesPerSampleAndTriangle per triangle and
+// sample, at least one.
+std::size_t batch_size(std::uint64_t budget, std::size_t triangles, std::size_t samples) {
+  const std::uint64_t per_sample = kBatchBytesPerSampleAndTriangle * std::max<std::uint64_t>(1, triangles);
   return static_cast<std::size_t>(std::clamp<std::uint64_t>(budget / per_sample, 1, samples));
 }
 
@@ -56,6 +57,7 @@ SoftShadowImage soft_shadow_image(const Soup& soup, std::span<const Light> sampl
   ExactImageOptions exact_options;
   exact_options.casts = options.casts;
   exact_options.footprints = false;  // only the centres' verdicts are read
+  exact_options.light_images = false;  // and only their sums over the samples
   if (options.progress) {
     const std::uint64_t total = samples.size() * kSampleSteps;
     exact_options.progress = [&, total](std::string_view stage, std::uint64_t done, std::uint64_t stage_total) {
@@ -75,7 +77,7 @@ SoftShadowImage soft_shadow_image(const Soup& soup, std::span<const Light> sampl
     };
   }
 
-  const std::size_t batch = batch_size(options.batch_bytes, pixels, samples.size());
+  const std::size_t batch = batch_size(options.batch_bytes, soup.triangles.size(), samples.size());
   for (; batch_first < samples.size(); batch_first += batch) {
     sample_in_batch = 0;
     const std::span<const Light> lights = samples.subspan(batch_first, std::min(batch, samples.size() - batch_first));
@@ -87,14 +89,11 @@ SoftShadowImage soft_shadow_image(const Soup& soup, std::span<const Light> sampl
     image.stats.hit_seconds += exact.stats.hit_seconds;
     image.stats.count_seconds += exact.stats.count_seconds;
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pixels, 4096), [&](const auto& range) {
-      for (std::size_t p = range.begin(); p != range.end(); ++p)
-        for (const ExactLightImage& l : exact.lights) {
-          const std::uint32_t n = l.counts[p];
-          if ((l.ambiguity[p] & kTerminator) != 0) behind[p] = 1;
-          if (n == kNoHit || n == kUndefinedCount) continue;
-          image.defined_samples[p] += 1;
-          image.lit_samples[p] += n == 0 ? 1 : 0;
-        }
+      for (std::size_t p = range.begin(); p != range.end(); ++p) {
+        image.defined_samples[p] += exact.tally.defined[p];
+        image.lit_samples[p] += exact.tally.lit[p];
+        behind[p] |= exact.tally.terminator[p];
+      }
     });
   }
   // exact_image marks the terminator of every countable hit, defined or not: a sample whose

@@ -21,8 +21,9 @@
 // points are rounded to doubles once (reference/disk_light.h).
 //
 // Cost: one exact image with all the samples as its lights, centre rays only
-// (ExactImageOptions::footprints false: the first hits shared), in batches when the per-light
-// images would exceed SoftShadowOptions::batch_bytes. Its samples are counted together at each
+// (ExactImageOptions::footprints false: the first hits shared; light_images false: only each
+// pixel's sums over the samples), in batches when the samples' data would exceed
+// SoftShadowOptions::batch_bytes. Its samples are counted together at each
 // hit point P (reference/exact_image.cpp, beam_counts): one box-tree query along the cone from P
 // to the samples, P's side of each candidate's plane once, and each candidate edge's plane
 // through P deciding all samples at once where a filter can; the verdicts are each sample's own.
@@ -44,10 +45,13 @@ namespace shadowcert {
 // same convention as a renderer's light image (a negative value: no receiver there).
 inline constexpr float kNoLight = -1.0f;
 
-// The exact images of one call hold 6 bytes per pixel and sample (counts, lit, ambiguity):
-// more samples than fit in this budget are imaged in several calls, each of which traces the
-// first hits again and queries the box tree again at every hit point. 384 MiB holds 85 samples
-// at 1024x768 (the reference's 64 in one call) and 32 at 1920x1080.
+// One exact_image call holds, per sample, each triangle's side of it twice (the lights' s(t)
+// and the beam's copy in sample order; reference/exact_image.cpp): 2 bytes per triangle and
+// sample. The per-pixel memory does not grow with the samples (ExactImageOptions::light_images
+// false: each pixel's sums only). More samples than fit in this budget are imaged in several
+// calls, each of which traces the first hits again and queries the box tree again at every hit
+// point. 384 MiB holds 1,600 samples of a 124K-triangle mesh (ogre) and 48 of 4M triangles.
+inline constexpr std::uint64_t kBatchBytesPerSampleAndTriangle = 2;
 inline constexpr std::uint64_t kSoftShadowBatchBytes = std::uint64_t{384} << 20;
 
 // What the samples make of a pixel.
@@ -95,8 +99,9 @@ struct SoftShadowOptions {
   std::function<void(std::string_view stage, std::uint64_t done, std::uint64_t total)> progress;
   // Which triangles cast (ExactImageOptions::casts): one flag per soup triangle, or empty (all).
   std::vector<std::uint8_t> casts;
-  // The budget of one exact_image call's per-sample images, in bytes (at least one sample per
-  // call whatever it is): the image does not depend on it.
+  // The budget of one exact_image call's per-sample data, in bytes (kBatchBytesPerSampleAndTriangle
+  // per triangle and sample; at least one sample per call whatever it is): the image does not
+  // depend on it.
   std::uint64_t batch_bytes = kSoftShadowBatchBytes;
 };
 

@@ -5,7 +5,8 @@
 // floor and the campaign's random soups; the lights are each scene's own point lights, a jittered
 // disk of samples around the first, lights exactly at soup vertices and on an edge's line (zero
 // signs: segments that touch), and lights at a pixel's hit point rounded to doubles (the lights
-// within rounding of P, which are counted alone).
+// within rounding of P, which are counted alone). Without light images (the soft reference's
+// ExactLightTally) the per-pixel sums are those of the light images.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -138,6 +139,23 @@ std::vector<Light> lights_of(const Case& c) {
   return lights;
 }
 
+// The per-pixel sums of `image`'s light images (ExactLightTally's definition).
+ExactLightTally summed(const ExactImage& image) {
+  ExactLightTally tally;
+  const std::size_t pixels = std::size_t{image.width} * image.height;
+  tally.defined.assign(pixels, 0);
+  tally.lit.assign(pixels, 0);
+  tally.terminator.assign(pixels, 0);
+  for (const ExactLightImage& l : image.lights)
+    for (std::size_t p = 0; p < pixels; ++p) {
+      const bool defined = l.counts[p] != kNoHit && l.counts[p] != kUndefinedCount;
+      tally.defined[p] += defined ? 1 : 0;
+      tally.lit[p] += l.lit[p] != 0 ? 1 : 0;
+      tally.terminator[p] |= (l.ambiguity[p] & kTerminator) != 0 ? 1 : 0;
+    }
+  return tally;
+}
+
 TEST(ExactImageManyLights, CountedTogether_EqualsEachLightAlone) {
   std::uint64_t shadowed = 0, undefined = 0, lit = 0, compared = 0;
   for (const Case& c : cases()) {
@@ -148,6 +166,16 @@ TEST(ExactImageManyLights, CountedTogether_EqualsEachLightAlone) {
     options.casts = c.casts;
     const ExactImage together = exact_image(c.soup, lights, c.camera, options);
     ASSERT_EQ(together.lights.size(), lights.size());
+    // Without light images: their sums, made as the counts come (no image held per light).
+    ExactImageOptions sums_only = options;
+    sums_only.light_images = false;
+    const ExactImage tallied = exact_image(c.soup, lights, c.camera, sums_only);
+    EXPECT_TRUE(tallied.lights.empty());
+    EXPECT_EQ(tallied.hit_triangles, together.hit_triangles);
+    const ExactLightTally expected = summed(together);
+    EXPECT_EQ(tallied.tally.defined, expected.defined);
+    EXPECT_EQ(tallied.tally.lit, expected.lit);
+    EXPECT_EQ(tallied.tally.terminator, expected.terminator);
     for (std::size_t k = 0; k < lights.size(); ++k) {
       const ExactImage alone = exact_image(c.soup, std::span<const Light>(&lights[k], 1), c.camera, options);
       EXPECT_EQ(together.hit_triangles, alone.hit_triangles);

@@ -572,6 +572,38 @@ TEST(ExactImage, WithoutFootprints_CentreAnswersUnchanged) {
   }
 }
 
+// ExactImageOptions::light_images = false where the light images are made one at a time (the
+// footprints on): no light image kept, and per pixel the sums of the images the lights get.
+TEST(ExactImage, WithoutLightImages_TallyIsTheLightImagesSummed) {
+  const InvarianceScene s = invariance_scene();
+  ASSERT_GE(s.lights.size(), 2u);
+  const ExactImage full = exact_image(s.soup, s.lights, s.camera);
+  ExactImageOptions sums_only;
+  sums_only.light_images = false;
+  const ExactImage tallied = exact_image(s.soup, s.lights, s.camera, sums_only);
+  EXPECT_TRUE(tallied.lights.empty());
+  EXPECT_TRUE(full.tally.defined.empty());
+  EXPECT_EQ(tallied.hit_triangles, full.hit_triangles);
+  EXPECT_EQ(tallied.view_ambiguity, full.view_ambiguity);
+  std::size_t some_defined = 0, some_terminator = 0;
+  for (std::size_t p = 0; p < full.hit_triangles.size(); ++p) {
+    std::uint32_t defined = 0, lit = 0;
+    std::uint8_t terminator = 0;
+    for (const ExactLightImage& l : full.lights) {
+      defined += l.counts[p] != kNoHit && l.counts[p] != kUndefinedCount ? 1 : 0;
+      lit += l.lit[p] != 0 ? 1 : 0;
+      terminator |= (l.ambiguity[p] & kTerminator) != 0 ? 1 : 0;
+    }
+    EXPECT_EQ(tallied.tally.defined[p], defined) << "pixel " << p;
+    EXPECT_EQ(tallied.tally.lit[p], lit) << "pixel " << p;
+    EXPECT_EQ(tallied.tally.terminator[p], terminator) << "pixel " << p;
+    some_defined += defined > 0 && lit < defined ? 1 : 0;
+    some_terminator += terminator;
+  }
+  EXPECT_GT(some_defined, 10u);  // shadowed samples among them
+  EXPECT_GT(some_terminator, 10u);
+}
+
 TEST(ExactImage, Window_ImagesItsPixelsAsTheWholeImageAndMarksTheRestOutside) {
   const InvarianceScene s = invariance_scene();
   ExactImageOptions banded;

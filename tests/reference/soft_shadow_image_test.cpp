@@ -281,7 +281,7 @@ TEST(SoftShadowImage, ProgressReports_EndWithEverySample) {
   std::vector<std::string> stages;
   std::uint64_t last_done = 0, last_total = 0;
   SoftShadowOptions options;
-  options.batch_bytes = 6 * 32 * 24 * 3;  // three samples per call: three calls
+  options.batch_bytes = kBatchBytesPerSampleAndTriangle * s.soup.triangles.size() * 3;  // three samples per call: three calls
   options.progress = [&](std::string_view stage, std::uint64_t done, std::uint64_t total) {
     if (stages.empty() || stages.back() != stage) stages.emplace_back(stage);
     if (stage == "samples") {
