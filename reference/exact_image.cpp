@@ -326,6 +326,7 @@ class EdgePlaneFilter {
     }
     bound_ = bound * (1.0 + 0x1p-20) + 0x1p-800;
     usable_ = tame && std::isfinite(bound_);
+    norm_ = std::sqrt(n_[0] * n_[0] + n_[1] * n_[1] + n_[2] * n_[2]);
   }
 
   // The sign for light L (|L - m| <= W), or nullopt where the filter cannot decide.
@@ -385,7 +386,7 @@ class EdgePlaneFilter {
   [[nodiscard]] std::optional<Sign> common_sign_ball(const Vec3& centre, double radius) const {
     if (!usable_) return std::nullopt;
     const double v = (centre[0] - m_[0]) * n_[0] + (centre[1] - m_[1]) * n_[1] + (centre[2] - m_[2]) * n_[2];
-    const double spread = radius * std::sqrt(n_[0] * n_[0] + n_[1] * n_[1] + n_[2] * n_[2]) * (1.0 + 0x1p-40);
+    const double spread = radius * norm_ * (1.0 + 0x1p-40);
     if (v - spread > 2.0 * bound_) return Sign::positive;
     if (v + spread < -2.0 * bound_) return Sign::negative;
     return std::nullopt;
@@ -404,6 +405,7 @@ class EdgePlaneFilter {
  private:
   Vec3 m_;
   Vec3 n_{};
+  double norm_ = 0.0;  // |n|, rounded (common_sign_ball's factor covers it)
   double bound_ = 0.0;
   bool usable_ = false;
 };
@@ -523,78 +525,63 @@ struct BeamLights {
   }
 };
 
-// Per-thread scratch of beam_counts, per slot.
+// Per-thread scratch of the beam counts.
 struct BeamScratch {
   std::vector<std::uint32_t> candidates;
   std::vector<std::uint32_t> seen;  // per triangle: the generation that collected it
   std::uint32_t generation = 0;
-  std::vector<std::uint32_t> n;
-  std::vector<std::uint8_t> touched;
-  std::vector<std::uint8_t> alone;  // lights counted by count_at (P within rounding of the light)
-  std::vector<std::uint32_t> result;  // beam_counts' answer per slot: n(P) or kUndefinedCount
+  std::vector<std::uint32_t> n;        // per pixel (of a tile) and slot: the segments crossed so far
+  std::vector<std::uint8_t> touched;   // per pixel and slot: a segment touches a casting triangle
+  std::vector<std::uint8_t> alone;     // per slot: counted by count_at (P within rounding of the light)
+  std::vector<std::uint32_t> result;   // per pixel and slot: n(P) or kUndefinedCount
   std::array<std::array<std::uint8_t, kBeamGroup>, 3> above{}, below{};  // per open edge, a group's lights
-  std::array<std::vector<std::uint8_t>, 3> group_above, group_below;  // per edge, each group
 };
+
+// A box holding hit points (one P's enclosure, or a tile's: BeamTile) as the beam's filters
+// read it: its middle m, per axis the bounds r >= |P - m| and W >= |L - m| (every light of the
+// beam), and its half-size.
+struct BeamFrame {
+  Vec3 m{}, r{}, W{}, half{};
+};
+
+BeamFrame beam_frame(const BeamLights& beam, const Vec3& lo, const Vec3& hi) {
+  BeamFrame f;
+  for (int a = 0; a < 3; ++a) {
+    f.m[a] = std::clamp(lo[a] / 2 + hi[a] / 2, lo[a], hi[a]);
+    f.half[a] = std::max(hi[a] - f.m[a], f.m[a] - lo[a]) * (1.0 + 0x1p-50);
+    f.r[a] = (hi[a] - lo[a]) * (1.0 + 0x1p-50) + 0x1p-1000;  // |P - m| <= hi - lo: m lies in the box
+    f.W[a] = std::max(std::fabs(beam.hi[a] - f.m[a]), std::fabs(beam.lo[a] - f.m[a])) * (1.0 + 0x1p-50);
+  }
+  return f;
+}
+
+// The lights a beam query aims at: the middle and half-size of their box [lo, hi].
+struct BeamTarget {
+  Vec3 to{}, half{};
+};
+
+BeamTarget beam_target(const Vec3& lo, const Vec3& hi) {
+  BeamTarget t;
+  for (int a = 0; a < 3; ++a) {
+    t.to[a] = std::clamp(lo[a] / 2 + hi[a] / 2, lo[a], hi[a]);
+    t.half[a] = std::max(hi[a] - t.to[a], t.to[a] - lo[a]) * (1.0 + 0x1p-50);
+  }
+  return t;
+}
 
 // The beam's query is cut at these fractions of the way from P to the lights: the segments
 // from P spread by at most the lights' half-size times the fraction reached, so each piece is
 // dilated only by its own far end's spread (a cone, not a cylinder of the lights' width).
 inline constexpr std::array<double, 8> kBeamCuts{0.0, 1.0 / 64, 1.0 / 32, 1.0 / 16, 1.0 / 8, 1.0 / 4, 1.0 / 2, 1.0};
 
-// n(P) for every light of `beam` at the countable hit `hit` of a centre ray (count_at's
-// answers), into scratch.result[slot] for the light in each slot.
-void beam_counts(const ImageGeometry& g, const BeamLights& beam, const PixelRay& ray, const RayHit& hit,
-                 const PointBox& box, BeamScratch& scratch) {
-  const std::size_t lights = beam.count;
-  const std::uint32_t h = hit.triangle;
-  const detail::HitPoint p(detail::RayParameter(ray, g.vertex(h, 0), g.vertex(h, 1), g.vertex(h, 2), hit.direction_side,
-                                                detail::RayParameter::Unenclosed{}),
-                           box);
-  scratch.n.assign(lights, 0);
-  scratch.touched.assign(lights, 0);
-  scratch.alone.assign(lights, 0);
-  scratch.result.resize(lights);
-  // A light within P's box may be P itself (count_at's empty segment): counted alone (where the
-  // lights' box meets P's box at all).
-  bool near = true;
-  for (int a = 0; a < 3; ++a) near = near && beam.lo[a] <= p.hi()[a] && p.lo()[a] <= beam.hi[a];
-  std::size_t beam_lights = lights;
-  bool any_alone = false;
-  Vec3 lo = beam.lo, hi = beam.hi;
-  if (near) {
-    beam_lights = 0;
-    for (std::size_t slot = 0; slot < lights; ++slot) {
-      const Vec3 l{beam.x[slot], beam.y[slot], beam.z[slot]};
-      bool inside = true;
-      for (int a = 0; a < 3; ++a) inside = inside && l[a] >= p.lo()[a] && l[a] <= p.hi()[a];
-      if (inside) {
-        scratch.alone[slot] = 1;
-        any_alone = true;
-        scratch.result[slot] = count_at(g, beam.order[slot], ray, hit, box);
-        continue;
-      }
-      for (int a = 0; a < 3; ++a) {
-        lo[a] = beam_lights > 0 ? std::min(lo[a], l[a]) : l[a];
-        hi[a] = beam_lights > 0 ? std::max(hi[a], l[a]) : l[a];
-      }
-      ++beam_lights;
-    }
-  }
-  if (beam_lights == 0) return;
-  // From P's box middle (m) to the lights' box middle (to): at parameter t a segment from a
-  // point of P's box to a light lies within (1 - t) p_half + t l_half of m + t (to - m), axis by
-  // axis. Each piece [t0, t1] of it is dilated by p_half + t1 l_half, plus the rounding of its
-  // end points (a few ulps of the coordinates).
-  Vec3 m{}, to{}, p_half{}, l_half{}, r{}, W{};
-  for (int a = 0; a < 3; ++a) {
-    const double plo = p.lo()[a], phi = p.hi()[a];
-    m[a] = std::clamp(plo / 2 + phi / 2, plo, phi);
-    to[a] = std::clamp(lo[a] / 2 + hi[a] / 2, lo[a], hi[a]);
-    p_half[a] = std::max(phi - m[a], m[a] - plo) * (1.0 + 0x1p-50);
-    l_half[a] = std::max(hi[a] - to[a], to[a] - lo[a]) * (1.0 + 0x1p-50);
-    r[a] = (phi - plo) * (1.0 + 0x1p-50) + 0x1p-1000;  // |P - m| <= hi - lo: m lies in the box
-    W[a] = std::max(std::fabs(beam.hi[a] - m[a]), std::fabs(beam.lo[a] - m[a])) * (1.0 + 0x1p-50);
-  }
+// Into scratch.candidates: every casting triangle other than `h` (kNoHit: none excluded) with
+// lights on both sides or on its plane that a segment from a point of `frame`'s box to a light
+// of `target`'s box can meet. From the box's middle m to the lights' middle: at parameter t such
+// a segment lies within (1 - t) half + t target.half of m + t (to - m), axis by axis. Each piece
+// [t0, t1] of it is dilated by half + t1 target.half, plus the rounding of its end points (a
+// few ulps of the coordinates).
+void beam_candidates(const ImageGeometry& g, const BeamLights& beam, const BeamFrame& frame, const BeamTarget& target,
+                     std::uint32_t h, BeamScratch& scratch) {
   if (scratch.seen.size() != g.soup.triangles.size()) scratch.seen.assign(g.soup.triangles.size(), 0);
   if (++scratch.generation == 0) {
     std::fill(scratch.seen.begin(), scratch.seen.end(), 0u);
@@ -607,6 +594,7 @@ void beam_counts(const ImageGeometry& g, const BeamLights& beam, const PixelRay&
     if (id != h && g.casting(id) && beam.summary[id] != 0) scratch.candidates.push_back(id);
     return true;
   };
+  const Vec3 &m = frame.m, &to = target.to;
   const auto at = [&](double t) {
     return Vec3{m[0] + t * (to[0] - m[0]), m[1] + t * (to[1] - m[1]), m[2] + t * (to[2] - m[2])};
   };
@@ -615,102 +603,226 @@ void beam_counts(const ImageGeometry& g, const BeamLights& beam, const PixelRay&
     const Vec3 from = at(kBeamCuts[piece]), end = at(t1);
     Vec3 slack{};
     for (int a = 0; a < 3; ++a)
-      slack[a] = std::nextafter((p_half[a] + t1 * l_half[a]) * (1.0 + 0x1p-50) +
+      slack[a] = std::nextafter((frame.half[a] + t1 * target.half[a]) * (1.0 + 0x1p-50) +
                                     0x1p-50 * (std::fabs(m[a]) + std::fabs(to[a])) + 0x1p-1000,
                                 std::numeric_limits<double>::infinity());
     g.tree.dilated_segment_query(from, end, slack, collect);  // from == end: the box around it
   }
+}
 
-  for (const std::uint32_t id : scratch.candidates) {
-    const Sign* sides = beam.sides.data() + std::size_t{id} * lights;
-    const std::int8_t summary = beam.summary[id];
-    const Vec3 &a = g.vertex(id, 0), &b = g.vertex(id, 1), &c = g.vertex(id, 2);
-    const Sign start = p.side(a, b, c);
-    // count_at's tests for light k: s(t) != 0 and P strictly on its other side (start != s).
-    if (start == Sign::zero || summary == static_cast<std::int8_t>(start)) continue;
-    // Light k's segment can cross only where s(t) = -start (nonzero, P on the other side);
-    // then it crosses iff each edge's sign orient(P, L, p, q) times -start is positive.
-    const Sign crossing_side = -start;
-    const std::array<std::pair<const Vec3*, const Vec3*>, 3> edges{{{&a, &b}, {&b, &c}, {&c, &a}}};
-    std::array<std::optional<EdgePlaneFilter>, 3> filters;
-    // Each edge's sign for all the beam's lights at once where the filter knows it: one
-    // certainly negative edge puts every segment outside the triangle.
-    std::array<std::optional<Sign>, 3> common;
-    bool all_outside = false, all_inside = true;
-    for (std::size_t e = 0; e < 3 && !all_outside; ++e) {
-      filters[e].emplace(m, r, W, *edges[e].first, *edges[e].second);
-      std::optional<Sign> o = filters[e]->common_sign(to, l_half);
-      if (!o) o = filters[e]->common_sign_ball(beam.ball_centre, beam.ball);
-      if (o) common[e] = *o * crossing_side;
-      all_outside = common[e] == Sign::negative;
-      all_inside = all_inside && common[e] == Sign::positive;
-    }
-    if (all_outside) continue;
-    const auto add_inside = [&](std::size_t first, std::size_t last) {
-      for (std::size_t slot = first; slot < last; ++slot)
-        scratch.n[slot] += static_cast<std::uint32_t>(sides[slot] == crossing_side && scratch.alone[slot] == 0);
-    };
-    if (all_inside) {
-      add_inside(0, lights);
-      continue;
-    }
-    // Group by group, the edges still open: first for the group's box, then light by light.
-    for (const BeamLights::Group& group : beam.groups) {
-      std::array<std::size_t, 3> open{};
-      std::size_t opens = 0;
-      bool group_outside = false;
-      for (std::size_t e = 0; e < 3 && !group_outside; ++e) {
-        if (common[e]) continue;  // positive for every light
-        std::optional<Sign> o = filters[e]->common_sign(group.centre, group.half);
-        if (!o) o = filters[e]->common_sign_ball(group.centre, group.radius);
-        if (!o) {
-          open[opens++] = e;
-          continue;
-        }
-        group_outside = *o * crossing_side == Sign::negative;
-      }
-      if (group_outside) continue;
-      if (opens == 0) {
-        add_inside(group.first, group.last);
+// The candidate triangle `id` counted for P (frame: P's own box) and every light of the beam
+// not marked in `alone` (nullptr: none): n[slot] += 1 where light slot's open segment crosses
+// it, touched[slot] = 1 where it touches it (count_at's test, light by light).
+void count_candidate(const ImageGeometry& g, const BeamLights& beam, const detail::HitPoint& p, const BeamFrame& frame,
+                     const BeamTarget& target, std::uint32_t id, std::uint32_t* n, std::uint8_t* touched,
+                     const std::uint8_t* alone, BeamScratch& scratch) {
+  const std::size_t lights = beam.count;
+  const Sign* sides = beam.sides.data() + std::size_t{id} * lights;
+  const std::int8_t summary = beam.summary[id];
+  const Vec3 &a = g.vertex(id, 0), &b = g.vertex(id, 1), &c = g.vertex(id, 2);
+  const Sign start = p.side(a, b, c);
+  // count_at's tests for light k: s(t) != 0 and P strictly on its other side (start != s).
+  if (start == Sign::zero || summary == static_cast<std::int8_t>(start)) return;
+  // Light k's segment can cross only where s(t) = -start (nonzero, P on the other side);
+  // then it crosses iff each edge's sign orient(P, L, p, q) times -start is positive.
+  const Sign crossing_side = -start;
+  const std::array<std::pair<const Vec3*, const Vec3*>, 3> edges{{{&a, &b}, {&b, &c}, {&c, &a}}};
+  std::array<std::optional<EdgePlaneFilter>, 3> filters;
+  // Each edge's sign for all the beam's lights at once where the filter knows it: one
+  // certainly negative edge puts every segment outside the triangle.
+  std::array<std::optional<Sign>, 3> common;
+  bool all_outside = false, all_inside = true;
+  for (std::size_t e = 0; e < 3 && !all_outside; ++e) {
+    filters[e].emplace(frame.m, frame.r, frame.W, *edges[e].first, *edges[e].second);
+    std::optional<Sign> o = filters[e]->common_sign(target.to, target.half);
+    if (!o) o = filters[e]->common_sign_ball(beam.ball_centre, beam.ball);
+    if (o) common[e] = *o * crossing_side;
+    all_outside = common[e] == Sign::negative;
+    all_inside = all_inside && common[e] == Sign::positive;
+  }
+  if (all_outside) return;
+  const auto counted = [&](std::size_t slot) {
+    return sides[slot] == crossing_side && (alone == nullptr || alone[slot] == 0);
+  };
+  const auto add_inside = [&](std::size_t first, std::size_t last) {
+    for (std::size_t slot = first; slot < last; ++slot) n[slot] += counted(slot) ? 1 : 0;
+  };
+  if (all_inside) {
+    add_inside(0, lights);
+    return;
+  }
+  // Group by group, the edges still open: first for the group's box, then light by light.
+  for (const BeamLights::Group& group : beam.groups) {
+    std::array<std::size_t, 3> open{};
+    std::size_t opens = 0;
+    bool group_outside = false;
+    for (std::size_t e = 0; e < 3 && !group_outside; ++e) {
+      if (common[e]) continue;  // positive for every light
+      std::optional<Sign> o = filters[e]->common_sign(group.centre, group.half);
+      if (!o) o = filters[e]->common_sign_ball(group.centre, group.radius);
+      if (!o) {
+        open[opens++] = e;
         continue;
       }
-      const std::size_t size = group.last - group.first;
-      for (std::size_t i = 0; i < opens; ++i)
-        filters[open[i]]->classify({beam.x.data() + group.first, size}, {beam.y.data() + group.first, size},
-                                   {beam.z.data() + group.first, size}, crossing_side, scratch.above[i].data(),
-                                   scratch.below[i].data());
-      for (std::size_t j = 0; j < size; ++j) {
-        const std::size_t slot = group.first + j;
-        if (sides[slot] != crossing_side || (any_alone && scratch.alone[slot] != 0)) continue;
-        bool outside = false, inside = true;
-        for (std::size_t i = 0; i < opens; ++i) {
-          outside = outside || scratch.below[i][j] != 0;
-          inside = inside && scratch.above[i][j] != 0;
-        }
-        if (outside) continue;
-        if (inside) {
-          ++scratch.n[slot];
-          continue;
-        }
-        // Some open edge undecided for this light: its exact sign (count_at's test); an open edge
-        // the filter put on the crossing side counts as positive.
-        const HomogeneousPoint& l = g.lights[beam.order[slot]];
-        const detail::Meeting meeting = detail::fold_boundary_signs([&](int k) {
-          const auto i = static_cast<std::size_t>(k);
-          if (i >= opens || scratch.above[i][j] != 0) return Sign::positive;
-          const std::size_t e = open[i];
-          return p.orient_with(l, *edges[e].first, *edges[e].second) * crossing_side;
-        });
-        if (meeting == detail::Meeting::apart) continue;
-        if (meeting == detail::Meeting::touches)
-          scratch.touched[slot] = 1;
-        else
-          ++scratch.n[slot];
+      group_outside = *o * crossing_side == Sign::negative;
+    }
+    if (group_outside) continue;
+    if (opens == 0) {
+      add_inside(group.first, group.last);
+      continue;
+    }
+    const std::size_t size = group.last - group.first;
+    for (std::size_t i = 0; i < opens; ++i)
+      filters[open[i]]->classify({beam.x.data() + group.first, size}, {beam.y.data() + group.first, size},
+                                 {beam.z.data() + group.first, size}, crossing_side, scratch.above[i].data(),
+                                 scratch.below[i].data());
+    for (std::size_t j = 0; j < size; ++j) {
+      const std::size_t slot = group.first + j;
+      if (!counted(slot)) continue;
+      bool outside = false, inside = true;
+      for (std::size_t i = 0; i < opens; ++i) {
+        outside = outside || scratch.below[i][j] != 0;
+        inside = inside && scratch.above[i][j] != 0;
       }
+      if (outside) continue;
+      if (inside) {
+        ++n[slot];
+        continue;
+      }
+      // Some open edge undecided for this light: its exact sign (count_at's test); an open edge
+      // the filter put on the crossing side counts as positive.
+      const HomogeneousPoint& l = g.lights[beam.order[slot]];
+      const detail::Meeting meeting = detail::fold_boundary_signs([&](int k) {
+        const auto i = static_cast<std::size_t>(k);
+        if (i >= opens || scratch.above[i][j] != 0) return Sign::positive;
+        const std::size_t e = open[i];
+        return p.orient_with(l, *edges[e].first, *edges[e].second) * crossing_side;
+      });
+      if (meeting == detail::Meeting::apart) continue;
+      if (meeting == detail::Meeting::touches)
+        touched[slot] = 1;
+      else
+        ++n[slot];
     }
   }
+}
+
+// A centre ray's countable hit, as the beam counts read it.
+struct BeamPixel {
+  PixelRay ray;
+  RayHit hit;
+  PointBox box;
+};
+
+detail::HitPoint beam_hit_point(const ImageGeometry& g, const BeamPixel& pixel) {
+  const std::uint32_t h = pixel.hit.triangle;
+  return detail::HitPoint(detail::RayParameter(pixel.ray, g.vertex(h, 0), g.vertex(h, 1), g.vertex(h, 2),
+                                               pixel.hit.direction_side, detail::RayParameter::Unenclosed{}),
+                          pixel.box);
+}
+
+// Whether the beam's lights' box meets `box` (a light there may be P itself).
+bool lights_near(const BeamLights& beam, const PointBox& box) {
+  bool near = true;
+  for (int a = 0; a < 3; ++a) near = near && beam.lo[a] <= box[1][a] && box[0][a] <= beam.hi[a];
+  return near;
+}
+
+// n(P) for every light of `beam` at one countable centre hit (count_at's answers), into
+// result[slot] for the light in each slot.
+void beam_counts(const ImageGeometry& g, const BeamLights& beam, const BeamPixel& pixel, BeamScratch& scratch,
+                 std::uint32_t* result) {
+  const std::size_t lights = beam.count;
+  const detail::HitPoint p = beam_hit_point(g, pixel);
+  scratch.n.assign(lights, 0);
+  scratch.touched.assign(lights, 0);
+  scratch.alone.assign(lights, 0);
+  // A light within P's box may be P itself (count_at's empty segment): counted alone (where the
+  // lights' box meets P's box at all); the query aims at the others' box.
+  std::size_t beam_lights = lights;
+  bool any_alone = false;
+  Vec3 lo = beam.lo, hi = beam.hi;
+  if (lights_near(beam, pixel.box)) {
+    beam_lights = 0;
+    for (std::size_t slot = 0; slot < lights; ++slot) {
+      const Vec3 l{beam.x[slot], beam.y[slot], beam.z[slot]};
+      bool inside = true;
+      for (int a = 0; a < 3; ++a) inside = inside && l[a] >= p.lo()[a] && l[a] <= p.hi()[a];
+      if (inside) {
+        scratch.alone[slot] = 1;
+        any_alone = true;
+        result[slot] = count_at(g, beam.order[slot], pixel.ray, pixel.hit, pixel.box);
+        continue;
+      }
+      for (int a = 0; a < 3; ++a) {
+        lo[a] = beam_lights > 0 ? std::min(lo[a], l[a]) : l[a];
+        hi[a] = beam_lights > 0 ? std::max(hi[a], l[a]) : l[a];
+      }
+      ++beam_lights;
+    }
+  }
+  if (beam_lights == 0) return;
+  const BeamFrame frame = beam_frame(beam, p.lo(), p.hi());
+  const BeamTarget target = beam_target(lo, hi);
+  beam_candidates(g, beam, frame, target, pixel.hit.triangle, scratch);
+  for (const std::uint32_t id : scratch.candidates)
+    count_candidate(g, beam, p, frame, target, id, scratch.n.data(), scratch.touched.data(),
+                    any_alone ? scratch.alone.data() : nullptr, scratch);
   for (std::size_t slot = 0; slot < lights; ++slot)
-    if (scratch.alone[slot] == 0) scratch.result[slot] = scratch.touched[slot] != 0 ? kUndefinedCount : scratch.n[slot];
+    if (scratch.alone[slot] == 0) result[slot] = scratch.touched[slot] != 0 ? kUndefinedCount : scratch.n[slot];
+}
+
+// Neighbouring pixels (a 2 x 2 tile) share their cone query where their hit points lie close:
+// one query from the box around them all, whose candidates each pixel then counts as
+// beam_counts does (deciding a candidate for the whole tile at once, with the tile's box in the
+// filters, almost never succeeded on ogre: the plane through P and a nearby edge turns too much
+// across a tile). The tree's traversal was a sixth of the soft reference's time.
+inline constexpr std::size_t kBeamTile = 4;
+// A tile shares its query only where its hit points' box is at most this fraction of the way to
+// the lights in every axis: a wider box (a depth step between the pixels) would widen the cone
+// and give each pixel more candidates to reject. Speed only.
+inline constexpr double kBeamTileSpread = 1.0 / 16;
+
+// n(P) for every light at each of `pixels` (countable centre hits, at most kBeamTile), into
+// scratch.result[k * lights + slot] for pixel k and the light in each slot.
+void beam_counts_tile(const ImageGeometry& g, const BeamLights& beam, std::span<const BeamPixel> pixels,
+                      BeamScratch& scratch) {
+  const std::size_t lights = beam.count;
+  scratch.result.resize(pixels.size() * lights);
+  Vec3 lo = pixels[0].box[0], hi = pixels[0].box[1];
+  bool together = pixels.size() > 1;
+  for (const BeamPixel& pixel : pixels) {
+    together = together && !lights_near(beam, pixel.box);
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = std::min(lo[a], pixel.box[0][a]);
+      hi[a] = std::max(hi[a], pixel.box[1][a]);
+    }
+  }
+  const BeamTarget target = beam_target(beam.lo, beam.hi);
+  for (int a = 0; a < 3 && together; ++a)
+    together = hi[a] - lo[a] <= kBeamTileSpread * std::max(std::fabs(target.to[a] - lo[a]), std::fabs(target.to[a] - hi[a]));
+  if (!together) {
+    for (std::size_t k = 0; k < pixels.size(); ++k) beam_counts(g, beam, pixels[k], scratch, &scratch.result[k * lights]);
+    return;
+  }
+  std::array<std::optional<detail::HitPoint>, kBeamTile> points;
+  std::array<BeamFrame, kBeamTile> frames;
+  for (std::size_t k = 0; k < pixels.size(); ++k) {
+    points[k].emplace(beam_hit_point(g, pixels[k]));
+    frames[k] = beam_frame(beam, pixels[k].box[0], pixels[k].box[1]);
+  }
+  scratch.n.assign(pixels.size() * lights, 0);
+  scratch.touched.assign(pixels.size() * lights, 0);
+  // Every pixel's candidates are among the tile's (its cone lies in the tile's); its own hit
+  // triangle is skipped below.
+  beam_candidates(g, beam, beam_frame(beam, lo, hi), target, kNoHit, scratch);
+  for (const std::uint32_t id : scratch.candidates)
+    for (std::size_t k = 0; k < pixels.size(); ++k)
+      if (pixels[k].hit.triangle != id)
+        count_candidate(g, beam, *points[k], frames[k], target, id, &scratch.n[k * lights],
+                        &scratch.touched[k * lights], nullptr, scratch);
+  for (std::size_t i = 0; i < pixels.size() * lights; ++i)
+    scratch.result[i] = scratch.touched[i] != 0 ? kUndefinedCount : scratch.n[i];
 }
 
 // Progress of one stage, reported about once per percent, one report at a time.
@@ -1470,40 +1582,66 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
   if (beam) {
     const BeamLights beam_lights(g);
     for (auto& counts_of_light : beam_counts_of) resize_huge(counts_of_light, grid.centres());
-    std::vector<std::size_t> work;
-    for (std::size_t k = 0; k < grid.centres(); ++k)
-      if (countable(hits[k])) work.push_back(k);
-    Progress progress(options, kAllLightsCounts, work.size() * lights.size());
+    // 2 x 2 tiles of centres with a countable hit (beam_counts_tile), in row-major order.
+    const std::uint32_t tile_columns = (grid.width + 1) / 2, tile_rows = (grid.height + 1) / 2;
+    const auto tile_pixels = [&](std::uint32_t tile, std::array<std::size_t, kBeamTile>& pixels) {
+      const std::uint32_t x = 2 * (tile % tile_columns), y = 2 * (tile / tile_columns);
+      std::size_t count = 0;
+      for (std::uint32_t dy = 0; dy < 2; ++dy)
+        for (std::uint32_t dx = 0; dx < 2; ++dx) {
+          const std::size_t pixel = std::size_t{y + dy} * grid.width + x + dx;
+          if (x + dx < grid.width && y + dy < grid.height && countable(hits[pixel])) pixels[count++] = pixel;
+        }
+      return count;
+    };
+    std::vector<std::uint32_t> tiles;
+    std::size_t work = 0;
+    for (std::uint32_t tile = 0; tile < tile_columns * tile_rows; ++tile) {
+      std::array<std::size_t, kBeamTile> pixels{};
+      const std::size_t count = tile_pixels(tile, pixels);
+      if (count > 0) tiles.push_back(tile);
+      work += count;
+    }
+    Progress progress(options, kAllLightsCounts, work * lights.size());
     tbb::enumerable_thread_specific<BeamScratch> scratch;
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, work.size(), 64), [&](const auto& r) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tiles.size(), 16), [&](const auto& r) {
       BeamScratch& local = scratch.local();
-      for (std::size_t w = r.begin(); w != r.end(); ++w) {
-        const std::size_t pixel = work[w];
-        const RayHit& hit = hits[pixel];
-        beam_counts(g, beam_lights, grid.ray(pixel), hit, point_boxes[pixel], local);
-        if (!tally) {
-          for (std::size_t slot = 0; slot < lights.size(); ++slot)
-            beam_counts_of[beam_lights.order[slot]][pixel] = local.result[slot];
-          continue;
+      std::size_t done = 0;
+      for (std::size_t t = r.begin(); t != r.end(); ++t) {
+        std::array<std::size_t, kBeamTile> pixels{};
+        const std::size_t count = tile_pixels(tiles[t], pixels);
+        std::array<BeamPixel, kBeamTile> beam_pixels;
+        for (std::size_t k = 0; k < count; ++k)
+          beam_pixels[k] = {grid.ray(pixels[k]), hits[pixels[k]], point_boxes[pixels[k]]};
+        beam_counts_tile(g, beam_lights, {beam_pixels.data(), count}, local);
+        done += count;
+        for (std::size_t k = 0; k < count; ++k) {
+          const std::size_t pixel = pixels[k];
+          const std::uint32_t* result = &local.result[k * lights.size()];
+          if (!tally) {
+            for (std::size_t slot = 0; slot < lights.size(); ++slot)
+              beam_counts_of[beam_lights.order[slot]][pixel] = result[slot];
+            continue;
+          }
+          // The per-light loop's verdicts, summed: a countable centre is defined unless its count
+          // is undefined, lit at 0, and a terminator where the light is not on the eye's side.
+          const RayHit& hit = hits[pixel];
+          const Sign* hit_sides = beam_lights.sides.data() + std::size_t{hit.triangle} * lights.size();
+          std::uint32_t defined = 0, lit = 0;
+          bool behind = false;
+          for (std::size_t slot = 0; slot < lights.size(); ++slot) {
+            defined += result[slot] != kUndefinedCount ? 1 : 0;
+            lit += result[slot] == 0 ? 1 : 0;
+            behind = behind || hit_sides[slot] != hit.eye_side;  // terminator()
+          }
+          image.tally.defined[pixel] = defined;
+          image.tally.lit[pixel] = lit;
+          image.tally.terminator[pixel] = behind ? 1 : 0;
         }
-        // The per-light loop's verdicts, summed: a countable centre is defined unless its count
-        // is undefined, lit at 0, and a terminator where the light is not on the eye's side.
-        const Sign* hit_sides = beam_lights.sides.data() + std::size_t{hit.triangle} * lights.size();
-        std::uint32_t defined = 0, lit = 0;
-        bool behind = false;
-        for (std::size_t slot = 0; slot < lights.size(); ++slot) {
-          const std::uint32_t n = local.result[slot];
-          defined += n != kUndefinedCount ? 1 : 0;
-          lit += n == 0 ? 1 : 0;
-          behind = behind || hit_sides[slot] != hit.eye_side;  // terminator()
-        }
-        image.tally.defined[pixel] = defined;
-        image.tally.lit[pixel] = lit;
-        image.tally.terminator[pixel] = behind ? 1 : 0;
       }
-      progress.advance(r.size() * lights.size());
+      progress.advance(done * lights.size());
     });
-    image.stats.counts += work.size() * lights.size();
+    image.stats.counts += work * lights.size();
   }
   // With a tally the beam has summed every light (no light image to make).
   for (std::size_t light = 0; light < (beam && tally ? 0 : lights.size()); ++light) {
