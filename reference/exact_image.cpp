@@ -535,6 +535,7 @@ struct BeamScratch {
   std::vector<std::uint8_t> alone;     // per slot: counted by count_at (P within rounding of the light)
   std::vector<std::uint32_t> result;   // per pixel and slot: n(P) or kUndefinedCount
   std::array<std::array<std::uint8_t, kBeamGroup>, 3> above{}, below{};  // per open edge, a group's lights
+  std::array<std::uint8_t, kBeamGroup> undecided{};  // a group's lights left to the exact test
 };
 
 // A box holding hit points (one P's enclosure, or a tile's: BeamTile) as the beam's filters
@@ -671,24 +672,43 @@ void count_candidate(const ImageGeometry& g, const BeamLights& beam, const detai
       add_inside(group.first, group.last);
       continue;
     }
+    // Every light of the group at once, in passes the compiler vectorises: each open edge's
+    // certain signs; per light `in` (every open edge certainly on the crossing side; the others
+    // are, for the whole group) and `out` (one certainly not); lights neither in nor out get the
+    // exact test after.
     const std::size_t size = group.last - group.first;
-    for (std::size_t i = 0; i < opens; ++i)
+    static constexpr std::array<std::uint8_t, kBeamGroup> kYes = [] {
+      std::array<std::uint8_t, kBeamGroup> yes{};
+      yes.fill(1);
+      return yes;
+    }();
+    static constexpr std::array<std::uint8_t, kBeamGroup> kNo{};
+    std::array<const std::uint8_t*, 3> up{kYes.data(), kYes.data(), kYes.data()};
+    std::array<const std::uint8_t*, 3> down{kNo.data(), kNo.data(), kNo.data()};
+    for (std::size_t i = 0; i < opens; ++i) {
       filters[open[i]]->classify({beam.x.data() + group.first, size}, {beam.y.data() + group.first, size},
                                  {beam.z.data() + group.first, size}, crossing_side, scratch.above[i].data(),
                                  scratch.below[i].data());
+      up[i] = scratch.above[i].data();
+      down[i] = scratch.below[i].data();
+    }
+    const Sign* group_sides = sides + group.first;
+    const std::uint8_t* group_alone = alone != nullptr ? alone + group.first : kNo.data();
+    std::uint32_t* group_n = n + group.first;
+    std::uint8_t* undecided = scratch.undecided.data();
+    std::uint8_t any_undecided = 0;
     for (std::size_t j = 0; j < size; ++j) {
+      const auto is_counted = static_cast<std::uint8_t>((group_sides[j] == crossing_side) & (group_alone[j] == 0));
+      const auto in = static_cast<std::uint8_t>(up[0][j] & up[1][j] & up[2][j]);
+      const auto out = static_cast<std::uint8_t>(down[0][j] | down[1][j] | down[2][j]);
+      group_n[j] += is_counted & in;
+      undecided[j] = static_cast<std::uint8_t>(is_counted & (in ^ 1u) & (out ^ 1u));
+      any_undecided |= undecided[j];
+    }
+    if (any_undecided == 0) continue;
+    for (std::size_t j = 0; j < size; ++j) {
+      if (undecided[j] == 0) continue;
       const std::size_t slot = group.first + j;
-      if (!counted(slot)) continue;
-      bool outside = false, inside = true;
-      for (std::size_t i = 0; i < opens; ++i) {
-        outside = outside || scratch.below[i][j] != 0;
-        inside = inside && scratch.above[i][j] != 0;
-      }
-      if (outside) continue;
-      if (inside) {
-        ++n[slot];
-        continue;
-      }
       // Some open edge undecided for this light: its exact sign (count_at's test); an open edge
       // the filter put on the crossing side counts as positive.
       const HomogeneousPoint& l = g.lights[beam.order[slot]];
