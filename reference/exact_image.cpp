@@ -412,6 +412,45 @@ class EdgePlaneFilter {
 
 // The fewest lights counted together: one light is counted as with footprints.
 inline constexpr std::size_t kBeamMinLights = 2;
+
+// s(t) of every triangle for several point lights at once (light_sides' signs, light by light):
+// per triangle one plane through its vertices, orient(a, b, c, L) = (L - a) . ((b - a) x (c - a))
+// for every light a dot product with one normal under EdgePlaneFilter's bound (a in P's place,
+// exactly: r = 0), light_orientation where the bound cannot decide. For 64 samples of ogre's
+// 124K triangles, a sixth of the time of 64 light_sides calls.
+std::vector<std::vector<Sign>> point_light_sides(const Soup& soup, std::span<const Light> lights) {
+  const std::size_t count = lights.size(), triangles = soup.triangles.size();
+  std::vector<std::vector<Sign>> sides(count);
+  for (auto& s : sides) s.resize(triangles);
+  std::vector<double> xs(count), ys(count), zs(count);
+  Vec3 lo{}, hi{};
+  for (std::size_t k = 0; k < count; ++k) {
+    const HomogeneousPoint& l = lights[k].position;
+    xs[k] = l[0];
+    ys[k] = l[1];
+    zs[k] = l[2];
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = k == 0 ? l[a] : std::min(lo[a], l[a]);
+      hi[a] = k == 0 ? l[a] : std::max(hi[a], l[a]);
+    }
+  }
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, triangles, 1024), [&](const auto& r) {
+    std::vector<std::uint8_t> above(count), below(count);
+    for (std::size_t t = r.begin(); t != r.end(); ++t) {
+      const Triangle& tri = soup.triangles[t];
+      const Vec3 &a = soup.vertices[tri[0]], &b = soup.vertices[tri[1]], &c = soup.vertices[tri[2]];
+      Vec3 reach{};  // |L - a| per axis over the lights
+      for (int axis = 0; axis < 3; ++axis)
+        reach[axis] = std::max(std::fabs(hi[axis] - a[axis]), std::fabs(lo[axis] - a[axis])) * (1.0 + 0x1p-50);
+      EdgePlaneFilter(a, Vec3{}, reach, b, c).classify(xs, ys, zs, Sign::positive, above.data(), below.data());
+      for (std::size_t k = 0; k < count; ++k)
+        sides[k][t] = above[k] != 0   ? Sign::positive
+                      : below[k] != 0 ? Sign::negative
+                                      : light_orientation(a, b, c, lights[k]);
+    }
+  });
+  return sides;
+}
 // The lights are split into groups of at most this many neighbours, which an edge's plane
 // decides together where it passes beside their box (EdgePlaneFilter::common_sign).
 inline constexpr std::size_t kBeamGroup = 8;
@@ -1453,14 +1492,20 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
         const CanonicalSoup canonical =
             canonical_soup(!footprints ? Soup{} : options.casts.empty() ? soup : casting_soup(soup, options.casts));
         const EdgeTable table = build_edge_table(canonical.soup);
-        for (const Light& light : lights) {
+        // Several point lights: every triangle's sides of all of them at once.
+        const bool point_lights =
+            lights.size() >= kBeamMinLights &&
+            std::all_of(lights.begin(), lights.end(), [](const Light& l) { return l.position[3] != 0.0; });
+        if (point_lights) sides_of_lights = point_light_sides(soup, lights);
+        for (std::size_t k = 0; k < lights.size(); ++k) {
+          const Light& light = lights[k];
           light_points.push_back(light.position);
-          sides_of_lights.push_back(light_sides(soup, light));
+          if (!point_lights) sides_of_lights.push_back(light_sides(soup, light));
           if (!footprints) continue;
           silhouettes.push_back(silhouette(canonical.soup, table, light));
           if (options.depth_band)
             edges_of_casters.push_back(
-                casting_edges(canonical.soup, table, casting_sides(sides_of_lights.back(), options.casts)));
+                casting_edges(canonical.soup, table, casting_sides(sides_of_lights[k], options.casts)));
         }
       });
   const ImageGeometry g{soup,
