@@ -56,9 +56,11 @@ struct Bounds {
 
 // A child of an inner node: an inner node's index (count == 0) or a leaf, boxes
 // [first, first + count) of the tree's leaf order.
+// Trivial (no member initialisers): the traversal stacks of them are left uninitialised (zeroing
+// 2-4 KiB of stack per query cost a sixth of the traversal).
 struct Child {
-  std::uint32_t index = 0;
-  std::uint32_t count = 0;
+  std::uint32_t index;
+  std::uint32_t count;
 };
 
 // An inner node: its two children's boxes, axis by axis, child 0 and child 1 side by side (so
@@ -83,6 +85,37 @@ struct Node {
     }
   }
 };
+
+// The tree as the queries walk it when its boxes and the query are moderate (kTame32 below): the
+// binary tree collapsed to nodes of up to 4 children (each binary node's children, the larger
+// inner ones replaced by theirs), their boxes rounded outward to floats, axis by axis, child k in
+// lane k, so that one slab test runs on all four in a 4-lane float register. Half the nodes to
+// visit and half the bytes per child: the traversal was a third of the exact image's time.
+struct Node4 {
+  using Lanes = float __attribute__((vector_size(16)));
+  std::array<Lanes, 3> lo;
+  std::array<Lanes, 3> hi;
+  std::array<Child, 4> child;
+  std::uint32_t size = 0;  // children in lanes [0, size)
+};
+
+// Outward roundings of a double to float, down(x) <= x <= up(x): the nearest float stepped
+// once more outward (a step looser where it was already on the right side). No comparison of
+// the float with x: GCC has been seen to fold a double -> float -> double round trip away
+// (core/float_rounding.h). For the build only (a libm call each).
+inline float round_down(double x) {
+  return std::nextafter(static_cast<float>(x), -std::numeric_limits<float>::infinity());
+}
+inline float round_up(double x) {
+  return std::nextafter(static_cast<float>(x), std::numeric_limits<float>::infinity());
+}
+
+// Where the float test applies: box coordinates, the query's origin and slack, and its inverse
+// directions within 2^40 in magnitude (and the inverses at least 2^-100, so that none rounds to
+// a float zero or loses its relative precision to underflow): every difference stays below
+// 2^41, every product below 2^81 and every sum below 2^84, far from float's 2^128.
+inline constexpr double kTame32 = 0x1p40;
+inline constexpr double kTinyInverse32 = 0x1p-100;
 
 // Where every value of a slab test stays far from overflow: box coordinates, query origins and
 // slacks, and inverse directions all within 2^400 in magnitude, so every product and sum of the
@@ -138,6 +171,28 @@ class Slab {
       widen_[k] = slack[k] * std::fabs(inv);
       fast_ = fast_ && !parallel_[k] && !free_[k] && tame(inv) && tame(from[k]) && tame(slack[k]);
     }
+    // The float query (entry4): from rounded to float, the slack widened by that rounding and
+    // rounded up, the inverse direction rounded to float (an error the margin covers); its
+    // widening slack32 |inv32| is formed in the test, as in the double one.
+    // No libm call here (once per query): each upper bound is a product by 1 + 2^-50 (double) or
+    // 1 + 2^-22 (float) plus a tiny absolute term, more than the one rounding it covers.
+    fast32_ = fast_;
+    for (int k = 0; k < 3 && fast32_; ++k) {
+      const double inv = inverse_[k];
+      fast32_ = std::fabs(from[k]) <= kTame32 && slack[k] <= kTame32 && std::fabs(inv) <= kTame32 &&
+                std::fabs(inv) >= kTinyInverse32;
+      if (!fast32_) break;
+      // Through a volatile, as core/float_rounding.h: the difference below must see the float.
+      const volatile float rounded = static_cast<float>(from[k]);
+      from32_[k] = rounded;
+      // |from - from32| (exact, or within its own rounding, which the factor covers).
+      const double moved = std::fabs(from[k] - static_cast<double>(from32_[k]));
+      const double slack32 = (slack[k] + moved) * (1.0 + 0x1p-50) + 0x1p-1000;
+      inverse32_[k] = static_cast<float>(inv);
+      widen32_[k] = (static_cast<float>(slack32) * (1.0f + 0x1p-22f) + 0x1p-120f) * std::fabs(inverse32_[k]);
+    }
+    t_max32_ = t_max == kInfinity ? std::numeric_limits<float>::infinity()
+                                  : static_cast<float>(t_max) * (1.0f + 0x1p-22f) + 0x1p-120f;
   }
 
   // false when the piece certainly misses b (dilated); else true with *enter a lower bound of
@@ -190,6 +245,44 @@ class Slab {
   // input within kTame.
   [[nodiscard]] bool fast() const { return fast_; }
 
+  // Whether entry4 applies (given a tree within kTame32): fast(), and the query's float
+  // rounding within kTame32 (see the constructor).
+  [[nodiscard]] bool fast32() const { return fast32_; }
+
+  // The four children of `node` at once in float arithmetic: bit c of the result set where the
+  // piece may meet child c's box (dilated), t[c] then a lower bound of its entry parameter.
+  // The query runs from from32 (from rounded to float) with its slack widened by that rounding
+  // (slack32: the dilated piece from from32 holds the one from `from`), against boxes rounded
+  // outward; each slab parameter A = fl(fl(x - f) * inv) carries three roundings of relative
+  // error u = 2^-24 (inv = fl32(fl(1 / v)) one of them), B = fl(s * |inv|) two, T = A -+ B one:
+  // the margin (|A| + B + |T|) 2^-20 (16 u per term) plus 2^-120 (far above any underflow's
+  // 2^-149) covers them and its own rounding, as the double test's margin does.
+  [[nodiscard]] unsigned entry4(const Node4& node, std::array<float, 4>& t) const {
+    using Lanes = Node4::Lanes;
+    const auto abs = [](Lanes x) { return x < 0.0f ? -x : x; };
+    constexpr float kRelative = 0x1p-20f, kAbsolute = 0x1p-120f;
+    Lanes enter{0.0f, 0.0f, 0.0f, 0.0f};
+    Lanes leave{t_max32_, t_max32_, t_max32_, t_max32_};
+    for (int k = 0; k < 3; ++k) {
+      const Lanes near_side = forward_[k] ? node.lo[k] : node.hi[k];
+      const Lanes far_side = forward_[k] ? node.hi[k] : node.lo[k];
+      const float f = from32_[k], inv = inverse32_[k], widen = widen32_[k];
+      const Lanes a_near = (near_side - f) * inv, a_far = (far_side - f) * inv;
+      const Lanes near = a_near - widen, far = a_far + widen;
+      const Lanes near_margin = (abs(a_near) + widen + abs(near)) * kRelative + kAbsolute;
+      const Lanes far_margin = (abs(a_far) + widen + abs(far)) * kRelative + kAbsolute;
+      const Lanes near_bound = near - near_margin, far_bound = far + far_margin;
+      enter = near_bound > enter ? near_bound : enter;
+      leave = far_bound < leave ? far_bound : leave;
+    }
+    unsigned mask = 0;
+    for (int c = 0; c < 4; ++c) {
+      t[static_cast<std::size_t>(c)] = enter[c];
+      mask |= enter[c] <= leave[c] ? 1u << c : 0u;
+    }
+    return mask;
+  }
+
   [[nodiscard]] bool entry(const Bounds& b, double* enter_out) const {
     double enter = 0.0;
     double leave = t_max_;
@@ -228,6 +321,11 @@ class Slab {
   std::array<bool, 3> forward_{};
   double t_max_;
   bool fast_ = true;
+  std::array<float, 3> from32_{};
+  std::array<float, 3> inverse32_{};
+  std::array<float, 3> widen32_{};
+  float t_max32_ = 0.0f;
+  bool fast32_ = false;
 };
 
 CGAL::Bbox_3 bbox(const Bounds& b) { return {b.lo[0], b.lo[1], b.lo[2], b.hi[0], b.hi[1], b.hi[2]}; }
@@ -241,8 +339,11 @@ struct BoxTree::Impl {
   std::vector<std::uint32_t> ids;   // the caller's id of each, in leaf order
   std::vector<Node> nodes;          // nodes[0] the root's children, when root is an inner node
   Bounds root_box;
-  Child root;                       // count == 0 and no nodes: empty
+  Child root{};                     // count == 0 and no nodes: empty
   bool tame = true;                 // every box coordinate within kTame (Slab::entry_pair)
+  std::vector<Node4> nodes4;        // the same tree, 4 children per node (Node4)
+  Child root4{};
+  bool tame32 = false;              // every box coordinate within kTame32 (Slab::entry4)
 
   Impl(const std::vector<Box>& closed, LeafTest test);
 
@@ -251,10 +352,16 @@ struct BoxTree::Impl {
   Child build(std::uint32_t first, std::uint32_t count, const Bounds& centres, std::vector<Primitive>& prims,
               std::atomic<std::uint32_t>& next_node, int depth);
 
+  // The Node4 subtree of binary child `c` (a leaf stays itself).
+  Child collapse(Child c);
+
   // Visits the leaves whose boxes the slab may meet, nearest-first with a bound when `bound` is
-  // set; `leaf(first, count)` returns false to stop.
+  // set; `leaf(first, count)` returns false to stop. In floats over nodes4 where both the tree
+  // and the query allow it (traverse4), else in doubles over the binary nodes.
   template <typename Leaf>
   void traverse(const Slab& slab, const double* bound, Leaf&& leaf) const;
+  template <typename Leaf>
+  void traverse4(const Slab& slab, double t, const double* bound, Leaf&& leaf) const;
 };
 
 BoxTree::Impl::Impl(const std::vector<Box>& closed, LeafTest test) : leaf_test(test) {
@@ -289,6 +396,54 @@ BoxTree::Impl::Impl(const std::vector<Box>& closed, LeafTest test) : leaf_test(t
     ids[i] = prims[i].id;
   }
   for (int k = 0; k < 3; ++k) tame = tame && shadowcert::detail::tame(root_box.lo[k]) && shadowcert::detail::tame(root_box.hi[k]);
+  tame32 = true;
+  for (int k = 0; k < 3; ++k)
+    tame32 = tame32 && std::fabs(root_box.lo[k]) <= kTame32 && std::fabs(root_box.hi[k]) <= kTame32;
+  if (tame32) {
+    reserve_huge(nodes4, nodes.size() / 2 + 1);
+    root4 = collapse(root);
+  }
+}
+
+Child BoxTree::Impl::collapse(Child c) {
+  if (c.count != 0) return c;
+  struct Entry {
+    Child child;
+    Bounds box;
+  };
+  std::array<Entry, 4> entries;
+  const Node& top = nodes[c.index];
+  entries[0] = {top.child[0], top.box(0)};
+  entries[1] = {top.child[1], top.box(1)};
+  std::size_t size = 2;
+  while (size < 4) {  // the inner entry of largest area opens into its two children
+    std::size_t open = size;
+    double area = -1.0;
+    for (std::size_t i = 0; i < size; ++i)
+      if (entries[i].child.count == 0 && entries[i].box.half_area() > area) {
+        open = i;
+        area = entries[i].box.half_area();
+      }
+    if (open == size) break;
+    const Node& inner = nodes[entries[open].child.index];
+    entries[size++] = {inner.child[1], inner.box(1)};
+    entries[open] = {inner.child[0], inner.box(0)};
+  }
+  const auto index = static_cast<std::uint32_t>(nodes4.size());
+  nodes4.emplace_back();
+  std::array<Child, 4> children{};
+  for (std::size_t i = 0; i < size; ++i) children[i] = collapse(entries[i].child);
+  Node4& node = nodes4[index];  // after the recursion: emplace_back moves the nodes
+  node.size = static_cast<std::uint32_t>(size);
+  for (std::size_t i = 0; i < 4; ++i) {
+    const Bounds& b = entries[std::min(i, size - 1)].box;  // unused lanes repeat a child (masked)
+    node.child[i] = children[std::min(i, size - 1)];
+    for (int k = 0; k < 3; ++k) {
+      node.lo[k][i] = round_down(b.lo[k]);
+      node.hi[k][i] = round_up(b.hi[k]);
+    }
+  }
+  return {index, 0};
 }
 
 Child BoxTree::Impl::build(std::uint32_t first, std::uint32_t count, const Bounds& centres,
@@ -413,6 +568,10 @@ void BoxTree::Impl::traverse(const Slab& slab, const double* bound, Leaf&& leaf)
     Child child;
     double t;
   };
+  if (tame32 && slab.fast32()) {
+    traverse4(slab, t, bound, leaf);
+    return;
+  }
   std::array<Entry, 128> stack;  // depth <= 2 log2(n) for the SAH splits (a fallback below)
   std::vector<Entry> overflow;
   std::size_t top = 0;
@@ -449,6 +608,60 @@ void BoxTree::Impl::traverse(const Slab& slab, const double* bound, Leaf&& leaf)
         }
         if (in0 || in1) {
           current = in0 ? Entry{node.child[0], t0} : Entry{node.child[1], t1};
+          continue;
+        }
+      }
+    }
+    if (!overflow.empty()) {
+      current = overflow.back();
+      overflow.pop_back();
+    } else if (top > 0) {
+      current = stack[--top];
+    } else {
+      return;
+    }
+  }
+}
+
+template <typename Leaf>
+void BoxTree::Impl::traverse4(const Slab& slab, double t, const double* bound, Leaf&& leaf) const {
+  struct Entry {
+    Child child;
+    double t;
+  };
+  std::array<Entry, 256> stack;  // up to 3 per level (a fallback below)
+  std::vector<Entry> overflow;
+  std::size_t top = 0;
+  Entry current{root4, t};
+  const auto push = [&](const Entry& e) {
+    if (top < stack.size()) {
+      stack[top++] = e;
+    } else {
+      overflow.push_back(e);
+    }
+  };
+  for (;;) {
+    if (bound == nullptr || current.t <= *bound) {
+      if (current.child.count != 0) {
+        if (!leaf(current.child.index, current.child.count)) return;
+      } else {
+        const Node4& node = nodes4[current.child.index];
+        std::array<float, 4> ts{};
+        unsigned mask = slab.entry4(node, ts) & ((1u << node.size) - 1u);
+        std::array<Entry, 4> met;
+        std::size_t count = 0;
+        for (; mask != 0; mask &= mask - 1) {
+          const auto c = static_cast<std::size_t>(__builtin_ctz(mask));
+          const double tc = ts[c];
+          if (bound != nullptr && tc > *bound) continue;
+          // Nearest last: the farther ones wait on the stack, the nearest is visited next.
+          std::size_t i = count++;
+          for (; i > 0 && met[i - 1].t < tc; --i) met[i] = met[i - 1];
+          met[i] = {node.child[c], tc};
+        }
+        if (count > 0) {
+          for (std::size_t i = 0; i + 1 < count; ++i) push(met[i]);
+          current = met[count - 1];
           continue;
         }
       }

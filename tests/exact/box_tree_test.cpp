@@ -2,12 +2,16 @@
 // on axis-aligned segments and rays, where the exact answer is a comparison of coordinates:
 // random boxes on a small integer grid (shared faces, touching corners, zero-width boxes), at
 // unit scale, scaled by 2^-900 and 2^900 (the slab test's general path), enough of them for the
-// parallel build; and the nearest-first query never skips a box entered before its bound.
+// parallel build; and the nearest-first query never skips a box entered before its bound. Oblique
+// queries on a lattice, offset and scaled, against an integer brute force: the float traversal.
 #include "exact/box_tree.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
+#include <cstdint>
+#include <string>
 #include <cmath>
 #include <random>
 #include <set>
@@ -158,6 +162,106 @@ TEST(BoxTree, DISABLED_HugeRays_ExactLeafTestReportsEveryBox) {
       return true;
     });
     EXPECT_EQ(got, expected(boxes, q, 0.0)) << "query " << i;
+  }
+}
+
+// Oblique queries between lattice points, where the float traversal (4 children per node, boxes
+// rounded outward to floats, exact/box_tree.cpp) runs: the exact answer from integer arithmetic
+// (each slab's parameter interval a fraction, compared by cross-multiplication), the lattice
+// translated by an offset floats cannot hold (2^30 + k, 2^39 + k: every box and query point is
+// rounded) and scaled (2^-20: large inverses). Queries touch box corners, edges and faces exactly.
+struct Lattice {
+  double offset = 0.0;
+  double scale = 1.0;
+  [[nodiscard]] double at(std::int64_t k) const { return offset + static_cast<double>(k) * scale; }
+};
+
+// Whether the segment a + t (b - a), t in [0, 1] (t >= 0 for a ray), meets the box [lo - s, hi + s]
+// (integer coordinates), exactly.
+bool lattice_meets(const std::array<std::int64_t, 3>& a, const std::array<std::int64_t, 3>& b,
+                   const std::array<std::int64_t, 3>& lo, const std::array<std::int64_t, 3>& hi, std::int64_t s,
+                   bool ray) {
+  // The interval of t as fractions enter_n / enter_d <= t <= leave_n / leave_d (denominators > 0;
+  // every product below 2^20).
+  std::int64_t enter_n = 0, enter_d = 1, leave_n = 1, leave_d = ray ? 0 : 1;  // leave_d 0: +infinity
+  for (int k = 0; k < 3; ++k) {
+    const std::int64_t d = b[k] - a[k], l = lo[k] - s - a[k], h = hi[k] + s - a[k];
+    if (d == 0) {
+      if (l > 0 || h < 0) return false;
+      continue;
+    }
+    std::int64_t n0 = d > 0 ? l : h, n1 = d > 0 ? h : l, den = d > 0 ? d : -d;
+    if (d < 0) {
+      n0 = -n0;
+      n1 = -n1;
+    }
+    if (n0 * enter_d > enter_n * den) {
+      enter_n = n0;
+      enter_d = den;
+    }
+    if (leave_d == 0 || n1 * leave_d < leave_n * den) {
+      leave_n = n1;
+      leave_d = den;
+    }
+  }
+  return leave_d == 0 || enter_n * leave_d <= leave_n * enter_d;
+}
+
+TEST(BoxTree, ObliqueLatticeQueries_FloatTraversalLosesNoBox) {
+  std::mt19937_64 rng(2024);
+  std::uniform_int_distribution<int> coordinate(-40, 40), size(0, 6), step(-9, 9);
+  for (const Lattice lattice : {Lattice{0.0, 1.0}, Lattice{0x1p30, 1.0}, Lattice{0x1p39, 1.0}, Lattice{0.0, 0x1p-20}}) {
+    SCOPED_TRACE("offset " + std::to_string(lattice.offset) + " scale " + std::to_string(lattice.scale));
+    // Even lattice coordinates, so that half a step (the dilation below) is a lattice step.
+    std::vector<std::array<std::int64_t, 3>> lo(6000), hi(6000);
+    std::vector<Box> boxes(6000);
+    for (std::size_t i = 0; i < boxes.size(); ++i)
+      for (int k = 0; k < 3; ++k) {
+        lo[i][k] = 2 * coordinate(rng);
+        hi[i][k] = lo[i][k] + 2 * size(rng);
+        boxes[i].lo[k] = lattice.at(lo[i][k]);
+        boxes[i].hi[k] = lattice.at(hi[i][k]);
+      }
+    const BoxTree tree(boxes, LeafTest::exact);
+    const auto point = [&](const std::array<std::int64_t, 3>& p) {
+      return Vec3{lattice.at(p[0]), lattice.at(p[1]), lattice.at(p[2])};
+    };
+    for (int i = 0; i < 400; ++i) {
+      std::array<std::int64_t, 3> a{}, d{};
+      for (int k = 0; k < 3; ++k) {
+        a[k] = 2 * coordinate(rng);
+        d[k] = 2 * step(rng);
+      }
+      if (d == std::array<std::int64_t, 3>{}) d[0] = 2;
+      const std::array<std::int64_t, 3> b{a[0] + d[0], a[1] + d[1], a[2] + d[2]};
+      const Vec3 direction{static_cast<double>(d[0]), static_cast<double>(d[1]), static_cast<double>(d[2])};
+      std::set<std::uint32_t> segment, ray, dilated, nearest, want_segment, want_ray, want_dilated;
+      for (std::uint32_t j = 0; j < boxes.size(); ++j) {
+        if (lattice_meets(a, b, lo[j], hi[j], 0, false)) want_segment.insert(j);
+        if (lattice_meets(a, b, lo[j], hi[j], 0, true)) want_ray.insert(j);
+        if (lattice_meets(a, b, lo[j], hi[j], 1, false)) want_dilated.insert(j);
+      }
+      const auto into = [](std::set<std::uint32_t>& s) {
+        return [&s](std::uint32_t id) {
+          s.insert(id);
+          return true;
+        };
+      };
+      tree.segment_query(point(a), point(b), into(segment));
+      tree.ray_query(point(a), direction, into(ray));
+      const Vec3 slack{lattice.scale, lattice.scale, lattice.scale};
+      tree.dilated_segment_query(point(a), point(b), slack, into(dilated));
+      // Along d scaled to the lattice, up to t = 1: the segment's boxes at least.
+      const Vec3 scaled{direction[0] * lattice.scale, direction[1] * lattice.scale, direction[2] * lattice.scale};
+      const double one = 1.0;
+      tree.nearest_first_ray_query(point(a), scaled, &one, into(nearest));
+      EXPECT_EQ(segment, want_segment) << "segment query " << i;
+      EXPECT_EQ(ray, want_ray) << "ray query " << i;
+      EXPECT_TRUE(std::includes(dilated.begin(), dilated.end(), want_dilated.begin(), want_dilated.end()))
+          << "dilated query " << i;
+      EXPECT_TRUE(std::includes(nearest.begin(), nearest.end(), want_segment.begin(), want_segment.end()))
+          << "nearest-first query " << i;
+    }
   }
 }
 
