@@ -99,15 +99,18 @@ struct Node4 {
   std::uint32_t size = 0;  // children in lanes [0, size)
 };
 
-// Outward roundings of a double to float, down(x) <= x <= up(x): the nearest float stepped
-// once more outward (a step looser where it was already on the right side). No comparison of
-// the float with x: GCC has been seen to fold a double -> float -> double round trip away
-// (core/float_rounding.h). For the build only (a libm call each).
+// Outward roundings of a double to float, down(x) <= x <= up(x), in arithmetic (no libm call,
+// no comparison): the nearest float d moved out by |d| 2^-22 + 2^-149, more than its rounding
+// (2^-24 |x| for a normal float, 2^-150 for a subnormal) and the step's own. Were the round trip
+// through float folded away (GCC has been seen to, core/float_rounding.h), the move in double
+// and its final rounding to float (2^-24) would still stay outside x.
 inline float round_down(double x) {
-  return std::nextafter(static_cast<float>(x), -std::numeric_limits<float>::infinity());
+  const float d = static_cast<float>(x);
+  return d - (std::fabs(d) * 0x1p-22f + 0x1p-149f);
 }
 inline float round_up(double x) {
-  return std::nextafter(static_cast<float>(x), std::numeric_limits<float>::infinity());
+  const float d = static_cast<float>(x);
+  return d + (std::fabs(d) * 0x1p-22f + 0x1p-149f);
 }
 
 // Where the float test applies: box coordinates, the query's origin and slack, and its inverse
@@ -257,7 +260,7 @@ class Slab {
   // error u = 2^-24 (inv = fl32(fl(1 / v)) one of them), B = fl(s * |inv|) two, T = A -+ B one:
   // the margin (|A| + B + |T|) 2^-20 (16 u per term) plus 2^-120 (far above any underflow's
   // 2^-149) covers them and its own rounding, as the double test's margin does.
-  [[nodiscard]] unsigned entry4(const Node4& node, std::array<float, 4>& t) const {
+  [[nodiscard]] unsigned entry4(const Node4& node, std::array<double, 4>& t) const {
     using Lanes = Node4::Lanes;
     const auto abs = [](Lanes x) { return x < 0.0f ? -x : x; };
     constexpr float kRelative = 0x1p-20f, kAbsolute = 0x1p-120f;
@@ -337,7 +340,7 @@ struct BoxTree::Impl {
   LeafTest leaf_test;
   std::vector<Bounds> boxes;        // in leaf order
   std::vector<std::uint32_t> ids;   // the caller's id of each, in leaf order
-  std::vector<Node> nodes;          // nodes[0] the root's children, when root is an inner node
+  std::vector<Node> nodes;          // the binary tree (freed once collapsed into nodes4)
   Bounds root_box;
   Child root{};                     // count == 0 and no nodes: empty
   bool tame = true;                 // every box coordinate within kTame (Slab::entry_pair)
@@ -352,8 +355,11 @@ struct BoxTree::Impl {
   Child build(std::uint32_t first, std::uint32_t count, const Bounds& centres, std::vector<Primitive>& prims,
               std::atomic<std::uint32_t>& next_node, int depth);
 
-  // The Node4 subtree of binary child `c` (a leaf stays itself).
-  Child collapse(Child c);
+  // The collapse into nodes4, in parallel: count4 stores in counts[i] the number of Node4s the
+  // subtree of binary inner node i becomes (and returns it); fill4 writes that subtree's Node4s
+  // depth-first from nodes4[at].
+  std::uint32_t count4(std::uint32_t index, std::vector<std::uint32_t>& counts, int depth) const;
+  void fill4(std::uint32_t index, std::uint32_t at, const std::vector<std::uint32_t>& counts);
 
   // Visits the leaves whose boxes the slab may meet, nearest-first with a bound when `bound` is
   // set; `leaf(first, count)` returns false to stop. In floats over nodes4 where both the tree
@@ -395,55 +401,102 @@ BoxTree::Impl::Impl(const std::vector<Box>& closed, LeafTest test) : leaf_test(t
     boxes[i] = prims[i].box;
     ids[i] = prims[i].id;
   }
+  prims = {};  // before the collapse: the peak of memory is the build's
   for (int k = 0; k < 3; ++k) tame = tame && shadowcert::detail::tame(root_box.lo[k]) && shadowcert::detail::tame(root_box.hi[k]);
   tame32 = true;
   for (int k = 0; k < 3; ++k)
     tame32 = tame32 && std::fabs(root_box.lo[k]) <= kTame32 && std::fabs(root_box.hi[k]) <= kTame32;
-  if (tame32) {
-    reserve_huge(nodes4, nodes.size() / 2 + 1);
-    root4 = collapse(root);
+  if (tame32) {  // the binary nodes only serve the collapse
+    if (root.count != 0) {
+      root4 = root;
+    } else {
+      std::vector<std::uint32_t> counts(nodes.size());
+      resize_huge(nodes4, count4(root.index, counts, 0));
+      fill4(root.index, 0, counts);
+      root4 = {0, 0};
+    }
+    nodes = {};
   }
 }
 
-Child BoxTree::Impl::collapse(Child c) {
-  if (c.count != 0) return c;
-  struct Entry {
-    Child child;
-    Bounds box;
-  };
-  std::array<Entry, 4> entries;
-  const Node& top = nodes[c.index];
-  entries[0] = {top.child[0], top.box(0)};
-  entries[1] = {top.child[1], top.box(1)};
-  std::size_t size = 2;
-  while (size < 4) {  // the inner entry of largest area opens into its two children
-    std::size_t open = size;
+// The children of a Node4 over binary inner node `index`: its two, the inner one of largest area
+// opened into its two children while fewer than 4.
+struct Node4Entries {
+  std::array<Child, 4> child;
+  std::array<Bounds, 4> box;
+  std::size_t size = 0;
+};
+
+Node4Entries node4_entries(const std::vector<Node>& nodes, std::uint32_t index) {
+  Node4Entries e;
+  const Node& top = nodes[index];
+  e.child = {top.child[0], top.child[1]};
+  e.box[0] = top.box(0);
+  e.box[1] = top.box(1);
+  e.size = 2;
+  while (e.size < 4) {
+    std::size_t open = e.size;
     double area = -1.0;
-    for (std::size_t i = 0; i < size; ++i)
-      if (entries[i].child.count == 0 && entries[i].box.half_area() > area) {
+    for (std::size_t i = 0; i < e.size; ++i)
+      if (e.child[i].count == 0 && e.box[i].half_area() > area) {
         open = i;
-        area = entries[i].box.half_area();
+        area = e.box[i].half_area();
       }
-    if (open == size) break;
-    const Node& inner = nodes[entries[open].child.index];
-    entries[size++] = {inner.child[1], inner.box(1)};
-    entries[open] = {inner.child[0], inner.box(0)};
+    if (open == e.size) break;
+    const Node& inner = nodes[e.child[open].index];
+    e.child[e.size] = inner.child[1];
+    e.box[e.size++] = inner.box(1);
+    e.child[open] = inner.child[0];
+    e.box[open] = inner.box(0);
   }
-  const auto index = static_cast<std::uint32_t>(nodes4.size());
-  nodes4.emplace_back();
-  std::array<Child, 4> children{};
-  for (std::size_t i = 0; i < size; ++i) children[i] = collapse(entries[i].child);
-  Node4& node = nodes4[index];  // after the recursion: emplace_back moves the nodes
-  node.size = static_cast<std::uint32_t>(size);
+  return e;
+}
+
+// Below this many Node4s a subtree is counted or filled on the calling thread.
+inline constexpr std::uint32_t kParallelCollapse = 2048;
+
+std::uint32_t BoxTree::Impl::count4(std::uint32_t index, std::vector<std::uint32_t>& counts, int depth) const {
+  const Node4Entries e = node4_entries(nodes, index);
+  std::array<std::uint32_t, 4> sub{};
+  const auto count_child = [&](std::size_t i) {
+    if (i < e.size && e.child[i].count == 0) sub[i] = count4(e.child[i].index, counts, depth + 1);
+  };
+  if (depth < 6) {  // the top levels' subtrees side by side (their sizes are not known yet)
+    tbb::parallel_invoke([&] { count_child(0); }, [&] { count_child(1); }, [&] { count_child(2); },
+                         [&] { count_child(3); });
+  } else {
+    for (std::size_t i = 0; i < e.size; ++i) count_child(i);
+  }
+  return counts[index] = 1 + sub[0] + sub[1] + sub[2] + sub[3];
+}
+
+void BoxTree::Impl::fill4(std::uint32_t index, std::uint32_t at, const std::vector<std::uint32_t>& counts) {
+  const Node4Entries e = node4_entries(nodes, index);
+  Node4& node = nodes4[at];
+  node.size = static_cast<std::uint32_t>(e.size);
+  std::array<std::uint32_t, 4> first{};  // where each inner child's subtree goes (depth-first order)
+  std::uint32_t next = at + 1;
+  for (std::size_t i = 0; i < e.size; ++i) {
+    first[i] = next;
+    if (e.child[i].count == 0) next += counts[e.child[i].index];
+  }
   for (std::size_t i = 0; i < 4; ++i) {
-    const Bounds& b = entries[std::min(i, size - 1)].box;  // unused lanes repeat a child (masked)
-    node.child[i] = children[std::min(i, size - 1)];
+    const std::size_t c = std::min(i, e.size - 1);  // unused lanes repeat a child (masked)
+    node.child[i] = e.child[c].count != 0 ? e.child[c] : Child{first[c], 0};
     for (int k = 0; k < 3; ++k) {
-      node.lo[k][i] = round_down(b.lo[k]);
-      node.hi[k][i] = round_up(b.hi[k]);
+      node.lo[k][i] = round_down(e.box[c].lo[k]);
+      node.hi[k][i] = round_up(e.box[c].hi[k]);
     }
   }
-  return {index, 0};
+  const auto fill_child = [&](std::size_t i) {
+    if (i < e.size && e.child[i].count == 0) fill4(e.child[i].index, first[i], counts);
+  };
+  if (counts[index] >= kParallelCollapse) {
+    tbb::parallel_invoke([&] { fill_child(0); }, [&] { fill_child(1); }, [&] { fill_child(2); },
+                         [&] { fill_child(3); });
+  } else {
+    for (std::size_t i = 0; i < e.size; ++i) fill_child(i);
+  }
 }
 
 Child BoxTree::Impl::build(std::uint32_t first, std::uint32_t count, const Bounds& centres,
@@ -561,14 +614,14 @@ Child BoxTree::Impl::build(std::uint32_t first, std::uint32_t count, const Bound
 
 template <typename Leaf>
 void BoxTree::Impl::traverse(const Slab& slab, const double* bound, Leaf&& leaf) const {
-  if (root.count == 0 && nodes.empty()) return;
+  if (boxes.empty()) return;
   double t = 0.0;
   if (!slab.entry(root_box, &t) || (bound != nullptr && t > *bound)) return;
   struct Entry {
     Child child;
     double t;
   };
-  if (tame32 && slab.fast32()) {
+  if (tame32) {
     traverse4(slab, t, bound, leaf);
     return;
   }
@@ -633,6 +686,7 @@ void BoxTree::Impl::traverse4(const Slab& slab, double t, const double* bound, L
   std::vector<Entry> overflow;
   std::size_t top = 0;
   Entry current{root4, t};
+  const bool fast = slab.fast32();
   const auto push = [&](const Entry& e) {
     if (top < stack.size()) {
       stack[top++] = e;
@@ -646,8 +700,22 @@ void BoxTree::Impl::traverse4(const Slab& slab, double t, const double* bound, L
         if (!leaf(current.child.index, current.child.count)) return;
       } else {
         const Node4& node = nodes4[current.child.index];
-        std::array<float, 4> ts{};
-        unsigned mask = slab.entry4(node, ts) & ((1u << node.size) - 1u);
+        std::array<double, 4> ts{};
+        unsigned mask = 0;
+        if (fast) {
+          mask = slab.entry4(node, ts) & ((1u << node.size) - 1u);
+        } else {
+          // A query the float test does not cover: the general double test on each child's
+          // float box (exactly a double box, holding the child's own).
+          for (std::uint32_t c = 0; c < node.size; ++c) {
+            Bounds b;
+            for (int k = 0; k < 3; ++k) {
+              b.lo[k] = node.lo[k][c];
+              b.hi[k] = node.hi[k][c];
+            }
+            if (slab.entry(b, &ts[c])) mask |= 1u << c;
+          }
+        }
         std::array<Entry, 4> met;
         std::size_t count = 0;
         for (; mask != 0; mask &= mask - 1) {
