@@ -336,6 +336,42 @@ Kernel::Point_3 point_3(const Vec3& p) { return {p[0], p[1], p[2]}; }
 
 }  // namespace
 
+// A traversal's pending subtrees with the parameter where the query enters each: a fixed array
+// (left uninitialised: Child is trivial) with a vector beyond it for the rare deeper tree, last
+// in, first out across both.
+struct TraversalEntry {
+  Child child;
+  double t;
+};
+
+template <std::size_t N>
+class TraversalStack {
+ public:
+  void push(const TraversalEntry& e) {
+    if (top_ < fixed_.size()) {
+      fixed_[top_++] = e;
+    } else {
+      overflow_.push_back(e);
+    }
+  }
+  // The last pushed entry into *e; false when none is left.
+  bool pop(TraversalEntry* e) {
+    if (!overflow_.empty()) {
+      *e = overflow_.back();
+      overflow_.pop_back();
+      return true;
+    }
+    if (top_ == 0) return false;
+    *e = fixed_[--top_];
+    return true;
+  }
+
+ private:
+  std::array<TraversalEntry, N> fixed_;
+  std::vector<TraversalEntry> overflow_;
+  std::size_t top_ = 0;
+};
+
 struct BoxTree::Impl {
   LeafTest leaf_test;
   std::vector<Bounds> boxes;        // in leaf order
@@ -617,17 +653,12 @@ void BoxTree::Impl::traverse(const Slab& slab, const double* bound, Leaf&& leaf)
   if (boxes.empty()) return;
   double t = 0.0;
   if (!slab.entry(root_box, &t) || (bound != nullptr && t > *bound)) return;
-  struct Entry {
-    Child child;
-    double t;
-  };
   if (tame32) {
     traverse4(slab, t, bound, leaf);
     return;
   }
-  std::array<Entry, 128> stack;  // depth <= 2 log2(n) for the SAH splits (a fallback below)
-  std::vector<Entry> overflow;
-  std::size_t top = 0;
+  using Entry = TraversalEntry;
+  TraversalStack<128> stack;  // depth <= 2 log2(n) for the SAH splits
   Entry current{root, t};
   const bool fast = tame && slab.fast();
   for (;;) {
@@ -650,12 +681,7 @@ void BoxTree::Impl::traverse(const Slab& slab, const double* bound, Leaf&& leaf)
         if (in0 && in1) {
           // The nearer first; the other waits on the stack.
           const bool first_near = t0 <= t1;
-          const Entry later = first_near ? Entry{node.child[1], t1} : Entry{node.child[0], t0};
-          if (top < stack.size()) {
-            stack[top++] = later;
-          } else {
-            overflow.push_back(later);
-          }
+          stack.push(first_near ? Entry{node.child[1], t1} : Entry{node.child[0], t0});
           current = first_near ? Entry{node.child[0], t0} : Entry{node.child[1], t1};
           continue;
         }
@@ -665,35 +691,16 @@ void BoxTree::Impl::traverse(const Slab& slab, const double* bound, Leaf&& leaf)
         }
       }
     }
-    if (!overflow.empty()) {
-      current = overflow.back();
-      overflow.pop_back();
-    } else if (top > 0) {
-      current = stack[--top];
-    } else {
-      return;
-    }
+    if (!stack.pop(&current)) return;
   }
 }
 
 template <typename Leaf>
 void BoxTree::Impl::traverse4(const Slab& slab, double t, const double* bound, Leaf&& leaf) const {
-  struct Entry {
-    Child child;
-    double t;
-  };
-  std::array<Entry, 256> stack;  // up to 3 per level (a fallback below)
-  std::vector<Entry> overflow;
-  std::size_t top = 0;
+  using Entry = TraversalEntry;
+  TraversalStack<256> stack;  // up to 3 per level
   Entry current{root4, t};
   const bool fast = slab.fast32();
-  const auto push = [&](const Entry& e) {
-    if (top < stack.size()) {
-      stack[top++] = e;
-    } else {
-      overflow.push_back(e);
-    }
-  };
   for (;;) {
     if (bound == nullptr || current.t <= *bound) {
       if (current.child.count != 0) {
@@ -728,20 +735,13 @@ void BoxTree::Impl::traverse4(const Slab& slab, double t, const double* bound, L
           met[i] = {node.child[c], tc};
         }
         if (count > 0) {
-          for (std::size_t i = 0; i + 1 < count; ++i) push(met[i]);
+          for (std::size_t i = 0; i + 1 < count; ++i) stack.push(met[i]);
           current = met[count - 1];
           continue;
         }
       }
     }
-    if (!overflow.empty()) {
-      current = overflow.back();
-      overflow.pop_back();
-    } else if (top > 0) {
-      current = stack[--top];
-    } else {
-      return;
-    }
+    if (!stack.pop(&current)) return;
   }
 }
 

@@ -12,6 +12,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -19,11 +20,13 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "core/box.h"
 #include "core/pixel_ray.h"
 #include "core/vector3.h"
 #include "exact/box_tree.h"
+#include "exact/face_crossing.h"
 #include "exact/light_orientation.h"
 #include "reference/detail/hit_point_occlusion.h"
 #include "reference/detail/ray_hit.h"
@@ -210,21 +213,19 @@ Crossing polyhedral_crossing(const Geometry& g, std::size_t light, const detail:
     const Vec3 &a = g.vertex(t, 0), &b = g.vertex(t, 1), &c = g.vertex(t, 2);
     const Sign start = p.side(a, b, c);
     if (start == Sign::zero || start == s) return true;  // the open segment misses its plane's triangle
-    bool on_boundary = false;
-    for (const auto& [u, v] : {std::pair{&a, &b}, std::pair{&b, &c}, std::pair{&c, &a}}) {
-      switch (p.orient_with(l, *u, *v) * -start) {
-        case Sign::positive:
-          break;
-        case Sign::zero:
-          on_boundary = true;
-          break;
-        case Sign::negative:
-          return true;
-      }
-    }
-    if (on_boundary) {
-      result = Crossing::touches;
-      return true;  // a crossing elsewhere still shadows P
+    // exact/face_crossing.h's rule on the three edge lines (orient(P, L, p, q) times -start).
+    const std::array<std::pair<const Vec3*, const Vec3*>, 3> edges{{{&a, &b}, {&b, &c}, {&c, &a}}};
+    switch (detail::fold_boundary_signs([&](int k) {
+      const auto& [u, v] = edges[static_cast<std::size_t>(k)];
+      return p.orient_with(l, *u, *v) * -start;
+    })) {
+      case detail::Meeting::apart:
+        return true;
+      case detail::Meeting::touches:
+        result = Crossing::touches;
+        return true;  // a crossing elsewhere still shadows P
+      case detail::Meeting::crosses:
+        break;
     }
     result = Crossing::crosses;
     return false;

@@ -6,6 +6,7 @@
 #include <CGAL/Mpzf.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -182,19 +183,13 @@ RayMeeting ray_meets_triangle(const PixelRay& ray, const Vec3& a, const Vec3& b,
   // eye's side (or minus the direction's when e is on the plane), orient(e, d, p, q) =
   // -s * sigma(p, q, X), so X is strictly inside iff every edge line gives -s.
   const Sign s = m.eye_side != Sign::zero ? m.eye_side : -m.direction_side;
-  bool on_boundary = false;
-  for (const auto& [p, q] : {std::pair{&ha, &hb}, std::pair{&hb, &hc}, std::pair{&hc, &ha}}) {
-    switch (orient_unchecked(e, d, *p, *q) * -s) {
-      case Sign::positive:
-        break;
-      case Sign::zero:
-        on_boundary = true;
-        break;
-      case Sign::negative:
-        return m;  // X strictly outside one edge line: outside the closed triangle
-    }
-  }
-  m.contact = on_boundary || m.eye_side == Sign::zero ? RayContact::touches : RayContact::crosses;
+  const std::array<std::pair<const HomogeneousPoint*, const HomogeneousPoint*>, 3> edges{{{&ha, &hb}, {&hb, &hc}, {&hc, &ha}}};
+  const Meeting meeting = fold_boundary_signs([&](int k) {
+    const auto& [p, q] = edges[static_cast<std::size_t>(k)];
+    return orient_unchecked(e, d, *p, *q) * -s;
+  });
+  if (meeting == Meeting::apart) return m;  // X strictly outside one edge line: outside the closed triangle
+  m.contact = meeting == Meeting::touches || m.eye_side == Sign::zero ? RayContact::touches : RayContact::crosses;
   return m;
 }
 
