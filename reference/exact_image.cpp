@@ -41,6 +41,7 @@
 #include "exact/face_crossing.h"
 #include "exact/light_orientation.h"
 #include "exact/light_orientation_filter.h"
+#include "reference/detail/eye_tile.h"
 #include "reference/detail/pixel_footprint.h"
 #include "reference/detail/ray_hit.h"
 #include "scene/canonical_soup.h"
@@ -168,12 +169,17 @@ std::unique_ptr<Silhouette> casting_edges(const Soup& canonical, const EdgeTable
 }
 
 // The first hit of `ray` (exact). `in_plane` is scratch space for contacts along the ray.
-RayHit first_hit(const ImageGeometry& g, const PixelRay& ray, std::vector<std::uint32_t>& in_plane) {
+// `candidates`: a list holding every triangle the ray can meet (its tile's, TileCandidates), or
+// nullptr: the box tree's nearest-first query. The answer is a function of the set of
+// triangles the ray meets (the nearest meeting; at a tie or an in-plane contact before it, the
+// least id), so both give the same hit.
+RayHit first_hit(const ImageGeometry& g, const PixelRay& ray, std::vector<std::uint32_t>& in_plane,
+                 const std::vector<std::uint32_t>* candidates = nullptr) {
   in_plane.clear();
   std::optional<detail::RayParameter> best;
   RayHit hit;
   double bound = std::numeric_limits<double>::infinity();
-  g.tree.nearest_first_ray_query(ray.origin, ray.direction, &bound, [&](std::uint32_t id) {
+  const auto visit = [&](std::uint32_t id) {
     const Vec3 &a = g.vertex(id, 0), &b = g.vertex(id, 1), &c = g.vertex(id, 2);
     const detail::RayMeeting m = detail::ray_meets_triangle(ray, a, b, c);
     switch (m.contact) {
@@ -202,7 +208,12 @@ RayHit first_hit(const ImageGeometry& g, const PixelRay& ray, std::vector<std::u
         break;
     }
     return true;
-  });
+  };
+  if (candidates != nullptr) {
+    for (std::uint32_t id : *candidates) visit(id);
+  } else {
+    g.tree.nearest_first_ray_query(ray.origin, ray.direction, &bound, visit);
+  }
   for (std::uint32_t id : in_plane) {
     if (best && !detail::in_plane_contact_before(ray, g.vertex(id, 0), g.vertex(id, 1), g.vertex(id, 2), *best))
       continue;  // met only beyond the first hit
@@ -216,8 +227,11 @@ RayHit first_hit(const ImageGeometry& g, const PixelRay& ray, std::vector<std::u
 // casting triangles other than the hit one that the open segment P -> light crosses;
 // kUndefinedCount when it touches one (P on a volume boundary).
 // `box`: P's enclosure as HitPoint computes it (the per-ray cache, point_boxes below).
+// `candidates`: a list holding every casting triangle the segment can meet (its tile's,
+// light_tile_candidates), or nullptr: the box tree's query. The count is a function of the set
+// of triangles the segment crosses or touches, so both give it.
 std::uint32_t count_at(const ImageGeometry& g, std::size_t light, const PixelRay& ray, const RayHit& hit,
-                       const PointBox& box) {
+                       const PointBox& box, const std::vector<std::uint32_t>* candidates = nullptr) {
   const std::uint32_t h = hit.triangle;
   const detail::HitPoint p(detail::RayParameter(ray, g.vertex(h, 0), g.vertex(h, 1), g.vertex(h, 2), hit.direction_side,
                                                 detail::RayParameter::Unenclosed{}),
@@ -255,6 +269,12 @@ std::uint32_t count_at(const ImageGeometry& g, std::size_t light, const PixelRay
     ++n;
     return true;
   };
+  if (candidates != nullptr) {
+    if (l[3] != 0.0 && p.equals({l[0], l[1], l[2]})) return 0;  // the open segment is empty
+    for (std::uint32_t id : *candidates)
+      if (!classify(id)) break;
+    return touched ? kUndefinedCount : n;
+  }
   // The query starts from a double point of P's enclosure and is dilated by the enclosure's
   // size, so the exact segment's candidates are all visited (exact/box_tree.h).
   Vec3 from = p.lo(), slack{};
@@ -939,6 +959,142 @@ struct RayGrid {
   }
 };
 
+// ---- Tiles of the window that share their box-tree queries --------------------------------
+// The window is cut into tiles of kTileSize x kTileSize pixels. A tile's rays (its centres and
+// the corners it owns) and its pixels' eye pyramids lie in one cone (reference/detail/eye_tile.h):
+// one query of the tree for that cone lists every triangle any of them can meet, and where the
+// list is short each of them tests the list instead of walking the tree (the answers are
+// those of the walk: first_hit, footprint_sees_more). docs/diff.md#exact-image-speed.
+inline constexpr std::uint32_t kTileSize = 8;
+// Beyond this many triangles a tile's rays walk the tree themselves: each ray would test every
+// candidate, where its own walk visits a few leaves.
+inline constexpr std::size_t kTileCandidates = 24;
+
+// The tiles of `window`, row-major. Tile t covers pixels [x0, x1) x [y0, y1) and owns the
+// corners [x0, cx1) x [y0, cy1): its pixels' upper-left corners, and the window's last corner
+// column and row in the tiles at its right and bottom ends.
+struct TileGrid {
+  PixelWindow window;
+  std::uint32_t columns = 0, rows = 0;
+
+  explicit TileGrid(const PixelWindow& w)
+      : window(w), columns((w.width + kTileSize - 1) / kTileSize), rows((w.height + kTileSize - 1) / kTileSize) {}
+  [[nodiscard]] std::uint32_t count() const { return columns * rows; }
+  [[nodiscard]] std::uint32_t of(std::uint32_t i, std::uint32_t r) const {
+    return (r - window.y) / kTileSize * columns + (i - window.x) / kTileSize;
+  }
+  struct Bounds {
+    std::uint32_t x0, x1, y0, y1, cx1, cy1;
+  };
+  [[nodiscard]] Bounds bounds(std::uint32_t t) const {
+    Bounds b{};
+    b.x0 = window.x + t % columns * kTileSize;
+    b.y0 = window.y + t / columns * kTileSize;
+    b.x1 = std::min(b.x0 + kTileSize, window.x + window.width);
+    b.y1 = std::min(b.y0 + kTileSize, window.y + window.height);
+    b.cx1 = b.x1 + (b.x1 == window.x + window.width ? 1 : 0);
+    b.cy1 = b.y1 + (b.y1 == window.y + window.height ? 1 : 0);
+    return b;
+  }
+};
+
+// A tile's list: every triangle that one of its rays or eye pyramids can meet, when there are
+// at most kTileCandidates of them (and the cone could be bounded); otherwise no list.
+struct TileCandidates {
+  std::vector<std::uint32_t> ids;
+  bool listed = false;
+  [[nodiscard]] const std::vector<std::uint32_t>* list() const { return listed ? &ids : nullptr; }
+};
+
+// Per-thread scratch of the tiles.
+struct TileScratch {
+  std::vector<std::uint32_t> seen;  // per triangle: the generation that collected it
+  std::uint32_t generation = 0;
+  std::vector<std::uint32_t> in_plane;  // first_hit's
+};
+
+TileCandidates tile_candidates(const ImageGeometry& g, const std::optional<detail::EyeTileCone>& cone,
+                               TileScratch& scratch) {
+  TileCandidates out;
+  if (!cone) return out;
+  if (scratch.seen.size() != g.soup.triangles.size()) scratch.seen.assign(g.soup.triangles.size(), 0);
+  if (++scratch.generation == 0) {
+    std::fill(scratch.seen.begin(), scratch.seen.end(), 0u);
+    scratch.generation = 1;
+  }
+  bool overflow = false;
+  const auto collect = [&](std::uint32_t id) {
+    if (scratch.seen[id] == scratch.generation) return true;
+    scratch.seen[id] = scratch.generation;
+    out.ids.push_back(id);
+    overflow = out.ids.size() > kTileCandidates;
+    return !overflow;
+  };
+  for (const detail::DilatedSegment& piece : *cone) {
+    g.tree.dilated_segment_query(piece.from, piece.to, piece.slack, collect);
+    if (overflow) return {};
+  }
+  out.listed = true;
+  return out;
+}
+
+// A tile's list for light number `light`: every casting triangle that light does not lie on
+// whose box a segment from a point of [lo, hi] (the box of the tile's hit points to count) to
+// the light can meet, when there are at most kTileCandidates (count_at's candidates). For a
+// point light the segments from P = m + e (m the box's middle, |e_i| <= half_i) reach
+// m + t (L - m) + (1 - t) e at parameter t: pieces [t0, t1] of the segment m -> L dilated by
+// (1 - t0) half (a cone narrowing to the light), plus the rounding of their end points. For a
+// directional light, the ray from m along it dilated by half.
+inline constexpr std::array<double, 5> kLightTileCuts{0.0, 0.25, 0.5, 0.75, 1.0};
+
+TileCandidates light_tile_candidates(const ImageGeometry& g, std::size_t light, const Vec3& lo, const Vec3& hi,
+                                     TileScratch& scratch) {
+  TileCandidates out;
+  if (scratch.seen.size() != g.soup.triangles.size()) scratch.seen.assign(g.soup.triangles.size(), 0);
+  if (++scratch.generation == 0) {
+    std::fill(scratch.seen.begin(), scratch.seen.end(), 0u);
+    scratch.generation = 1;
+  }
+  const std::vector<Sign>& sides = g.light_sides[light];
+  bool overflow = false;
+  const auto collect = [&](std::uint32_t id) {
+    if (scratch.seen[id] == scratch.generation) return true;
+    scratch.seen[id] = scratch.generation;
+    if (!g.casting(id) || sides[id] == Sign::zero) return true;  // count_at passes these by
+    out.ids.push_back(id);
+    overflow = out.ids.size() > kTileCandidates;
+    return !overflow;
+  };
+  Vec3 m{}, half{};
+  for (int a = 0; a < 3; ++a) {
+    m[a] = std::clamp(lo[a] / 2 + hi[a] / 2, lo[a], hi[a]);
+    half[a] = std::max(hi[a] - m[a], m[a] - lo[a]) * (1.0 + 0x1p-50);
+  }
+  const HomogeneousPoint& l = g.lights[light];
+  const Vec3 to{l[0], l[1], l[2]};
+  if (l[3] == 0.0) {
+    Vec3 slack{};
+    for (int a = 0; a < 3; ++a) slack[a] = std::nextafter(half[a] + 0x1p-1000, std::numeric_limits<double>::infinity());
+    g.tree.dilated_ray_query(m, to, slack, collect);
+  } else {
+    const auto at = [&](double t) {
+      return Vec3{m[0] + t * (to[0] - m[0]), m[1] + t * (to[1] - m[1]), m[2] + t * (to[2] - m[2])};
+    };
+    for (std::size_t piece = 0; piece + 1 < kLightTileCuts.size() && !overflow; ++piece) {
+      const double t0 = kLightTileCuts[piece];
+      Vec3 slack{};
+      for (int a = 0; a < 3; ++a)
+        slack[a] = std::nextafter((1.0 - t0) * half[a] * (1.0 + 0x1p-50) +
+                                      0x1p-50 * (std::fabs(m[a]) + std::fabs(to[a])) + 0x1p-1000,
+                                  std::numeric_limits<double>::infinity());
+      g.tree.dilated_segment_query(at(t0), at(kLightTileCuts[piece + 1]), slack, collect);
+    }
+  }
+  if (overflow) return {};
+  out.listed = true;
+  return out;
+}
+
 // The light-independent ambiguity of a pixel: a zero sign on a footprint ray, or footprint
 // rays that see different triangles (or not all a triangle).
 std::uint8_t footprint_ambiguity(const std::vector<RayHit>& hits, const std::array<std::size_t, 5>& rays) {
@@ -1139,13 +1295,14 @@ class EyePyramidFilter {
 
 // The pyramid itself is built only for the first candidate other than h that the cheap filter
 // (EyePyramidFilter, for a hit triangle) leaves (most pixels of a mesh have none).
+// `candidates`: as first_hit's (every triangle the pixel's eye pyramid can meet), or nullptr:
+// the box tree's query. The answer is whether some triangle passes the exact test, so both give it.
 bool footprint_sees_more(const ImageGeometry& g, const Vec3& eye, const CornerHits& corners, std::uint32_t h,
-                         const EyePyramidFilter* filter = nullptr) {
-  Vec3 from, slack;
-  detail::FootprintPolytope::query_box(corners.boxes, from, slack);
+                         const EyePyramidFilter* filter = nullptr,
+                         const std::vector<std::uint32_t>* candidates = nullptr) {
   std::optional<detail::FootprintPolytope> pyramid;
   bool more = false;
-  g.tree.dilated_segment_query(from, eye, slack, [&](std::uint32_t id) {
+  const auto visit = [&](std::uint32_t id) {
     if (id == h) return true;
     if (filter != nullptr && (filter->separates(g.vertex(id, 0), g.vertex(id, 1), g.vertex(id, 2)) ||
                               filter->beside_in_plane(g.vertex(id, 0), g.vertex(id, 1), g.vertex(id, 2))))
@@ -1154,7 +1311,15 @@ bool footprint_sees_more(const ImageGeometry& g, const Vec3& eye, const CornerHi
     if (!pyramid->meets_an_edge_of(g.vertex(id, 0), g.vertex(id, 1), g.vertex(id, 2))) return true;
     more = true;
     return false;
-  });
+  };
+  if (candidates != nullptr) {
+    for (std::uint32_t id : *candidates)
+      if (!visit(id)) break;
+    return more;
+  }
+  Vec3 from, slack;
+  detail::FootprintPolytope::query_box(corners.boxes, from, slack);
+  g.tree.dilated_segment_query(from, eye, slack, visit);
   return more;
 }
 
@@ -1529,21 +1694,44 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
   // 100 MB, whose 4 KiB first-touch faults cost this virtual machine about 0.1 s of CPU.
   std::vector<RayHit> hits;
   resize_huge(hits, grid.size());
+  // Tile by tile: the tile's list (TileCandidates), then its centre rays and (for the
+  // footprints) the corner rays it owns.
+  const TileGrid tiles(window);
+  std::vector<TileCandidates> tile_lists(tiles.count());
+  tbb::enumerable_thread_specific<TileScratch> tile_scratch;
   {
-    // The window's centre rows, then (for the footprints) its corner rows, one row more.
+    Vec3 scene_lo{}, scene_hi{};  // the box of every vertex: where the tiles' cones end
+    if (!soup.vertices.empty()) scene_lo = scene_hi = soup.vertices.front();
+    for (const Vec3& v : soup.vertices)
+      for (int k = 0; k < 3; ++k) {
+        scene_lo[k] = std::min(scene_lo[k], v[k]);
+        scene_hi[k] = std::max(scene_hi[k], v[k]);
+      }
     const std::size_t centre_rays = std::size_t{window.width} * window.height;
     const std::size_t corner_rays = footprints ? std::size_t{window.width + 1} * (window.height + 1) : 0;
     Progress progress(options, "hits", centre_rays + corner_rays);
-    const std::uint32_t rows = window.height + (footprints ? window.height + 1 : 0);
-    tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, rows, 1), [&](const tbb::blocked_range<std::uint32_t>& r) {
-      std::vector<std::uint32_t> in_plane;
-      for (std::uint32_t row = r.begin(); row != r.end(); ++row) {
-        const bool centre_row = row < window.height;
-        const std::size_t first = centre_row ? std::size_t{window.y + row} * grid.width + window.x
-                                             : grid.corner(window.x, window.y + row - window.height);
-        const std::size_t count = centre_row ? window.width : window.width + 1;
-        for (std::size_t k = first; k < first + count; ++k) hits[k] = first_hit(g, grid.ray(k), in_plane);
-        progress.advance(count);
+    tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, tiles.count(), 1), [&](const auto& r) {
+      TileScratch& local = tile_scratch.local();
+      for (std::uint32_t t = r.begin(); t != r.end(); ++t) {
+        const TileGrid::Bounds b = tiles.bounds(t);
+        tile_lists[t] = tile_candidates(
+            g, detail::eye_tile_cone(grid.frame, b.x0, b.x1, b.y0, b.y1, scene_lo, scene_hi), local);
+        const std::vector<std::uint32_t>* list = tile_lists[t].list();
+        for (std::uint32_t y = b.y0; y < b.y1; ++y)
+          for (std::uint32_t x = b.x0; x < b.x1; ++x) {
+            const std::size_t k = std::size_t{y} * grid.width + x;
+            hits[k] = first_hit(g, grid.ray(k), local.in_plane, list);
+          }
+        std::size_t done = std::size_t{b.x1 - b.x0} * (b.y1 - b.y0);
+        if (footprints) {
+          for (std::uint32_t y = b.y0; y < b.cy1; ++y)
+            for (std::uint32_t x = b.x0; x < b.cx1; ++x) {
+              const std::size_t k = grid.corner(x, y);
+              hits[k] = first_hit(g, grid.ray(k), local.in_plane, list);
+            }
+          done += std::size_t{b.cx1 - b.x0} * (b.cy1 - b.y0);
+        }
+        progress.advance(done);
       }
     });
     image.stats.rays = centre_rays + corner_rays;
@@ -1602,7 +1790,11 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
             // All five rays miss (footprint_ambiguity found them alike): a triangle may still
             // poke into the footprint between them, a vertex or an edge within a rounding of
             // GL's sample at the centre (fuzz --gl seed 202 case 1706: 0.001 px).
-            if (!backdrop || footprint_sees_more(g, grid.frame.eye, with_boxes(backdrop->corners(grid, i, row)), kNoHit))
+            // The tile's list first: most such tiles list no triangle at all.
+            const std::vector<std::uint32_t>* list = tile_lists[tiles.of(i, row)].list();
+            if (backdrop && list != nullptr && list->empty()) continue;
+            if (!backdrop ||
+                footprint_sees_more(g, grid.frame.eye, with_boxes(backdrop->corners(grid, i, row)), kNoHit, nullptr, list))
               geometric[pixel] |= kFootprintTriangles;
             continue;
           }
@@ -1611,7 +1803,7 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
           const std::uint32_t h = hits[pixel].triangle;
           const EyePyramidFilter filter(grid.frame.eye, corners, {g.vertex(h, 0), g.vertex(h, 1), g.vertex(h, 2)},
                                         hits[pixel].eye_side);
-          if (footprint_sees_more(g, grid.frame.eye, corners, h, &filter))
+          if (footprint_sees_more(g, grid.frame.eye, corners, h, &filter, tile_lists[tiles.of(i, row)].list()))
             geometric[pixel] |= kFootprintTriangles;
           else if (options.depth_band &&
                    band_meets_surface(g, depth_band(g, grid.frame, grid.ray(pixel), hits[pixel], options.depth_band),
@@ -1663,22 +1855,22 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
         }
       return count;
     };
-    std::vector<std::uint32_t> tiles;
+    std::vector<std::uint32_t> beam_tiles;
     std::size_t work = 0;
     for (std::uint32_t tile = 0; tile < tile_columns * tile_rows; ++tile) {
       std::array<std::size_t, kBeamTile> pixels{};
       const std::size_t count = tile_pixels(tile, pixels);
-      if (count > 0) tiles.push_back(tile);
+      if (count > 0) beam_tiles.push_back(tile);
       work += count;
     }
     Progress progress(options, kAllLightsCounts, work * lights.size());
     tbb::enumerable_thread_specific<BeamScratch> scratch;
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tiles.size(), 16), [&](const auto& r) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, beam_tiles.size(), 16), [&](const auto& r) {
       BeamScratch& local = scratch.local();
       std::size_t done = 0;
       for (std::size_t t = r.begin(); t != r.end(); ++t) {
         std::array<std::size_t, kBeamTile> pixels{};
-        const std::size_t count = tile_pixels(tiles[t], pixels);
+        const std::size_t count = tile_pixels(beam_tiles[t], pixels);
         std::array<BeamPixel, kBeamTile> beam_pixels;
         for (std::size_t k = 0; k < count; ++k)
           beam_pixels[k] = {grid.ray(pixels[k]), hits[pixels[k]], point_boxes[pixels[k]]};
@@ -1729,15 +1921,36 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
           if (footprints && geometric[rays[0]] == 0 && !terminator(g, light, centre))
             for (std::size_t k = 1; k < rays.size(); ++k) needed[rays[k]] = 1;
         }
-      std::vector<std::size_t> work;
-      for (std::size_t k = 0; k < needed.size(); ++k)
-        if (needed[k] != 0) work.push_back(k);
-      Progress progress(options, "counts", work.size());
-      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, work.size(), 64), [&](const auto& r) {
-        for (std::size_t k = r.begin(); k != r.end(); ++k) counts[work[k]] = count_at(g, light, grid.ray(work[k]), hits[work[k]], point_boxes[work[k]]);
+      // Tile by tile (the hits' tiles): the box of the needed rays' hit points and the light
+      // give one list (light_tile_candidates) that each of them counts.
+      std::atomic<std::uint64_t> work{0};
+      Progress progress(options, "counts", tiles.count());
+      tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, tiles.count(), 1), [&](const auto& r) {
+        TileScratch& local = tile_scratch.local();
+        std::vector<std::size_t> rays;
+        for (std::uint32_t t = r.begin(); t != r.end(); ++t) {
+          const TileGrid::Bounds b = tiles.bounds(t);
+          rays.clear();
+          for (std::uint32_t y = b.y0; y < b.y1; ++y)
+            for (std::uint32_t x = b.x0; x < b.x1; ++x)
+              if (const std::size_t k = std::size_t{y} * grid.width + x; needed[k] != 0) rays.push_back(k);
+          for (std::uint32_t y = b.y0; y < b.cy1; ++y)
+            for (std::uint32_t x = b.x0; x < b.cx1; ++x)
+              if (const std::size_t k = grid.corner(x, y); needed[k] != 0) rays.push_back(k);
+          if (rays.empty()) continue;
+          Vec3 lo = point_boxes[rays.front()][0], hi = point_boxes[rays.front()][1];
+          for (std::size_t k : rays)
+            for (int a = 0; a < 3; ++a) {
+              lo[a] = std::min(lo[a], point_boxes[k][0][a]);
+              hi[a] = std::max(hi[a], point_boxes[k][1][a]);
+            }
+          const TileCandidates list = light_tile_candidates(g, light, lo, hi, local);
+          for (std::size_t k : rays) counts[k] = count_at(g, light, grid.ray(k), hits[k], point_boxes[k], list.list());
+          work += rays.size();
+        }
         progress.advance(r.size());
       });
-      image.stats.counts += work.size();
+      image.stats.counts += work;
     }
 
     ExactLightImage out;
