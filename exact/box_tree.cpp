@@ -723,6 +723,20 @@ void BoxTree::Impl::traverse4(const Slab& slab, double t, const double* bound, L
             if (slab.entry(b, &ts[c])) mask |= 1u << c;
           }
         }
+        if (bound == nullptr) {
+          // Unbounded (every box met is reported): no order to keep, the children as they come.
+          if (mask == 0) {
+            if (!stack.pop(&current)) return;
+            continue;
+          }
+          auto c = static_cast<std::size_t>(__builtin_ctz(mask));
+          for (mask &= mask - 1; mask != 0; mask &= mask - 1) {
+            stack.push({node.child[c], ts[c]});
+            c = static_cast<std::size_t>(__builtin_ctz(mask));
+          }
+          current = {node.child[c], ts[c]};
+          continue;
+        }
         std::array<Entry, 4> met;
         std::size_t count = 0;
         for (; mask != 0; mask &= mask - 1) {

@@ -1038,61 +1038,80 @@ TileCandidates tile_candidates(const ImageGeometry& g, const std::optional<detai
   return out;
 }
 
-// A tile's list for light number `light`: every casting triangle that light does not lie on
-// whose box a segment from a point of [lo, hi] (the box of the tile's hit points to count) to
-// the light can meet, when there are at most kTileCandidates (count_at's candidates). For a
-// point light the segments from P = m + e (m the box's middle, |e_i| <= half_i) reach
-// m + t (L - m) + (1 - t) e at parameter t: pieces [t0, t1] of the segment m -> L dilated by
-// (1 - t0) half (a cone narrowing to the light), plus the rounding of their end points. For a
-// directional light, the ray from m along it dilated by half.
+// Calls visit(id) for every box of `tree` that a segment from a point of [lo, hi] (a box of
+// hit points) to the light l can meet (for a directional light, the ray from it along l), until
+// visit returns false. For a point light the segments from P = m + e (m the box's middle,
+// |e_i| <= half_i) reach m + t (L - m) + (1 - t) e at parameter t: pieces [t0, t1] of the
+// segment m -> L dilated by (1 - t0) half (a cone narrowing to the light), plus the rounding of
+// their end points. For a directional light, the ray from m along it dilated by half.
 inline constexpr std::array<double, 5> kLightTileCuts{0.0, 0.25, 0.5, 0.75, 1.0};
 
-TileCandidates light_tile_candidates(const ImageGeometry& g, std::size_t light, const Vec3& lo, const Vec3& hi,
-                                     TileScratch& scratch) {
-  TileCandidates out;
-  if (scratch.seen.size() != g.soup.triangles.size()) scratch.seen.assign(g.soup.triangles.size(), 0);
-  if (++scratch.generation == 0) {
-    std::fill(scratch.seen.begin(), scratch.seen.end(), 0u);
-    scratch.generation = 1;
-  }
-  const std::vector<Sign>& sides = g.light_sides[light];
-  bool overflow = false;
-  const auto collect = [&](std::uint32_t id) {
-    if (scratch.seen[id] == scratch.generation) return true;
-    scratch.seen[id] = scratch.generation;
-    if (!g.casting(id) || sides[id] == Sign::zero) return true;  // count_at passes these by
-    out.ids.push_back(id);
-    overflow = out.ids.size() > kTileCandidates;
-    return !overflow;
-  };
+template <typename Visit>
+void light_cone_query(const detail::BoxTree& tree, const HomogeneousPoint& l, const Vec3& lo, const Vec3& hi,
+                      Visit&& visit) {
+  bool stopped = false;
+  const auto until_stopped = [&](std::uint32_t id) { return !(stopped = !visit(id)); };
   Vec3 m{}, half{};
   for (int a = 0; a < 3; ++a) {
     m[a] = std::clamp(lo[a] / 2 + hi[a] / 2, lo[a], hi[a]);
     half[a] = std::max(hi[a] - m[a], m[a] - lo[a]) * (1.0 + 0x1p-50);
   }
-  const HomogeneousPoint& l = g.lights[light];
   const Vec3 to{l[0], l[1], l[2]};
   if (l[3] == 0.0) {
     Vec3 slack{};
     for (int a = 0; a < 3; ++a) slack[a] = std::nextafter(half[a] + 0x1p-1000, std::numeric_limits<double>::infinity());
-    g.tree.dilated_ray_query(m, to, slack, collect);
-  } else {
-    const auto at = [&](double t) {
-      return Vec3{m[0] + t * (to[0] - m[0]), m[1] + t * (to[1] - m[1]), m[2] + t * (to[2] - m[2])};
-    };
-    for (std::size_t piece = 0; piece + 1 < kLightTileCuts.size() && !overflow; ++piece) {
-      const double t0 = kLightTileCuts[piece];
-      Vec3 slack{};
-      for (int a = 0; a < 3; ++a)
-        slack[a] = std::nextafter((1.0 - t0) * half[a] * (1.0 + 0x1p-50) +
-                                      0x1p-50 * (std::fabs(m[a]) + std::fabs(to[a])) + 0x1p-1000,
-                                  std::numeric_limits<double>::infinity());
-      g.tree.dilated_segment_query(at(t0), at(kLightTileCuts[piece + 1]), slack, collect);
-    }
+    tree.dilated_ray_query(m, to, slack, until_stopped);
+    return;
   }
+  const auto at = [&](double t) {
+    return Vec3{m[0] + t * (to[0] - m[0]), m[1] + t * (to[1] - m[1]), m[2] + t * (to[2] - m[2])};
+  };
+  for (std::size_t piece = 0; piece + 1 < kLightTileCuts.size() && !stopped; ++piece) {
+    const double t0 = kLightTileCuts[piece];
+    Vec3 slack{};
+    for (int a = 0; a < 3; ++a)
+      slack[a] = std::nextafter((1.0 - t0) * half[a] * (1.0 + 0x1p-50) +
+                                    0x1p-50 * (std::fabs(m[a]) + std::fabs(to[a])) + 0x1p-1000,
+                                std::numeric_limits<double>::infinity());
+    tree.dilated_segment_query(at(t0), at(kLightTileCuts[piece + 1]), slack, until_stopped);
+  }
+}
+
+// The ids light_cone_query reports that `keep` keeps, each once, when there are at most
+// kTileCandidates of them (`ids`: the number of boxes of the tree).
+template <typename Keep>
+TileCandidates light_cone_candidates(const detail::BoxTree& tree, std::size_t ids, const HomogeneousPoint& l,
+                                     const Vec3& lo, const Vec3& hi, Keep&& keep, TileScratch& scratch) {
+  TileCandidates out;
+  if (scratch.seen.size() != ids) scratch.seen.assign(ids, 0);
+  if (++scratch.generation == 0) {
+    std::fill(scratch.seen.begin(), scratch.seen.end(), 0u);
+    scratch.generation = 1;
+  }
+  bool overflow = false;
+  light_cone_query(tree, l, lo, hi, [&](std::uint32_t id) {
+    if (scratch.seen[id] == scratch.generation) return true;
+    scratch.seen[id] = scratch.generation;
+    if (!keep(id)) return true;
+    out.ids.push_back(id);
+    overflow = out.ids.size() > kTileCandidates;
+    return !overflow;
+  });
   if (overflow) return {};
   out.listed = true;
   return out;
+}
+
+// A tile's list for light number `light` (count_at's candidates): every casting triangle that
+// the light does not lie on and that a segment from [lo, hi] (the box of the tile's hit points
+// to count) to the light can meet.
+TileCandidates light_tile_candidates(const ImageGeometry& g, std::size_t light, const Vec3& lo, const Vec3& hi,
+                                     TileScratch& scratch) {
+  const std::vector<Sign>& sides = g.light_sides[light];
+  return light_cone_candidates(
+      g.tree, g.soup.triangles.size(), g.lights[light], lo, hi,
+      [&](std::uint32_t id) { return g.casting(id) && sides[id] != Sign::zero; },  // count_at passes the rest by
+      scratch);
 }
 
 // The light-independent ambiguity of a pixel: a zero sign on a footprint ray, or footprint
@@ -1325,10 +1344,11 @@ bool footprint_sees_more(const ImageGeometry& g, const Vec3& eye, const CornerHi
 
 // Whether n changes over the footprint: a silhouette edge crosses its light pyramid.
 // As footprint_sees_more, the pyramid is built for the first candidate edge only.
-bool footprint_shadow_varies(const ImageGeometry& g, std::size_t light, const CornerHits& corners) {
+// `candidates`: a list holding every silhouette edge the light pyramid can meet (its tile's),
+// or nullptr: the silhouette tree's query.
+bool footprint_shadow_varies(const ImageGeometry& g, std::size_t light, const CornerHits& corners,
+                             const std::vector<std::uint32_t>* candidates = nullptr) {
   const HomogeneousPoint& l = g.lights[light];
-  Vec3 from, slack;
-  detail::FootprintPolytope::query_box(corners.boxes, from, slack);
   std::optional<detail::FootprintPolytope> pyramid;
   const Silhouette& silhouette = *g.silhouettes[light];
   bool varies = false;
@@ -1338,6 +1358,13 @@ bool footprint_shadow_varies(const ImageGeometry& g, std::size_t light, const Co
     varies = true;
     return false;
   };
+  if (candidates != nullptr) {
+    for (std::uint32_t id : *candidates)
+      if (!visit(id)) break;
+    return varies;
+  }
+  Vec3 from, slack;
+  detail::FootprintPolytope::query_box(corners.boxes, from, slack);
   if (l[3] == 0.0) {
     silhouette.tree.dilated_ray_query(from, {l[0], l[1], l[2]}, slack, visit);
   } else {
@@ -1694,6 +1721,23 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
   // 100 MB, whose 4 KiB first-touch faults cost this virtual machine about 0.1 s of CPU.
   std::vector<RayHit> hits;
   resize_huge(hits, grid.size());
+  // Every countable hit's point box, once, as its ray is traced (the centres' for their counts;
+  // the corners' for theirs and for the pyramids of the four pixels around each).
+  // Not value-initialised (zeroing 48 bytes per ray costs more than the boxes): only the
+  // countable hits' entries are written, and only those are read.
+  HugePageBuffer<PointBox> point_boxes(grid.size());
+  const auto trace = [&](std::size_t k, const std::vector<std::uint32_t>* list, std::vector<std::uint32_t>& in_plane) {
+    const PixelRay ray = grid.ray(k);
+    const RayHit hit = hits[k] = first_hit(g, ray, in_plane, list);
+    if (!countable(hit)) return;
+    const std::uint32_t h = hit.triangle;
+    if (const auto box = detail::semi_static_hit_box(ray, {g.vertex(h, 0), g.vertex(h, 1), g.vertex(h, 2)})) {
+      point_boxes[k] = *box;
+      return;
+    }
+    const detail::HitPoint p(detail::RayParameter(ray, g.vertex(h, 0), g.vertex(h, 1), g.vertex(h, 2), hit.direction_side));
+    point_boxes[k] = {p.lo(), p.hi()};
+  };
   // Tile by tile: the tile's list (TileCandidates), then its centre rays and (for the
   // footprints) the corner rays it owns.
   const TileGrid tiles(window);
@@ -1719,15 +1763,13 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
         const std::vector<std::uint32_t>* list = tile_lists[t].list();
         for (std::uint32_t y = b.y0; y < b.y1; ++y)
           for (std::uint32_t x = b.x0; x < b.x1; ++x) {
-            const std::size_t k = std::size_t{y} * grid.width + x;
-            hits[k] = first_hit(g, grid.ray(k), local.in_plane, list);
+            trace(std::size_t{y} * grid.width + x, list, local.in_plane);
           }
         std::size_t done = std::size_t{b.x1 - b.x0} * (b.y1 - b.y0);
         if (footprints) {
           for (std::uint32_t y = b.y0; y < b.cy1; ++y)
             for (std::uint32_t x = b.x0; x < b.cx1; ++x) {
-              const std::size_t k = grid.corner(x, y);
-              hits[k] = first_hit(g, grid.ray(k), local.in_plane, list);
+              trace(grid.corner(x, y), list, local.in_plane);
             }
           done += std::size_t{b.cx1 - b.x0} * (b.cy1 - b.y0);
         }
@@ -1736,26 +1778,6 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
     });
     image.stats.rays = centre_rays + corner_rays;
   }
-  // Every countable hit's point box, once (the centres' for their counts; the corners' for
-  // theirs and for the pyramids of the four pixels around each).
-  // Not value-initialised (zeroing 48 bytes per ray costs more than the boxes): only the
-  // countable hits' entries are written, and only those are read.
-  HugePageBuffer<PointBox> point_boxes(grid.size());
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, grid.size(), 1024), [&](const auto& r) {
-    for (std::size_t k = r.begin(); k != r.end(); ++k) {
-      const RayHit& hit = hits[k];
-      if (!countable(hit)) continue;
-      const std::uint32_t h = hit.triangle;
-      const PixelRay ray = grid.ray(k);
-      if (const auto box = detail::semi_static_hit_box(ray, {g.vertex(h, 0), g.vertex(h, 1), g.vertex(h, 2)})) {
-        point_boxes[k] = *box;
-        continue;
-      }
-      const detail::HitPoint p(
-          detail::RayParameter(ray, g.vertex(h, 0), g.vertex(h, 1), g.vertex(h, 2), hit.direction_side));
-      point_boxes[k] = {p.lo(), p.hi()};
-    }
-  });
   image.stats.hit_seconds = seconds_since(stage);
 
   // 2. and 3., light by light.
@@ -1953,6 +1975,36 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
       image.stats.counts += work;
     }
 
+    // With the footprints, per tile the silhouette edges the light pyramids of its pixels can
+    // meet (the box of its pixels' countable corner hits and the light: light_cone_candidates),
+    // for footprint_shadow_varies.
+    std::vector<TileCandidates> silhouette_lists(footprints ? tiles.count() : 0);
+    if (footprints) {
+      const Silhouette& silhouette = *g.silhouettes[light];
+      tbb::enumerable_thread_specific<TileScratch> silhouette_scratch;
+      tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, tiles.count(), 1), [&](const auto& r) {
+        TileScratch& local = silhouette_scratch.local();
+        for (std::uint32_t t = r.begin(); t != r.end(); ++t) {
+          const TileGrid::Bounds b = tiles.bounds(t);
+          bool any = false;
+          Vec3 lo{}, hi{};
+          for (std::uint32_t y = b.y0; y <= b.y1; ++y)
+            for (std::uint32_t x = b.x0; x <= b.x1; ++x) {
+              const std::size_t k = grid.corner(x, y);
+              if (!countable(hits[k])) continue;
+              for (int a = 0; a < 3; ++a) {
+                lo[a] = any ? std::min(lo[a], point_boxes[k][0][a]) : point_boxes[k][0][a];
+                hi[a] = any ? std::max(hi[a], point_boxes[k][1][a]) : point_boxes[k][1][a];
+              }
+              any = true;
+            }
+          if (any)
+            silhouette_lists[t] = light_cone_candidates(silhouette.tree, silhouette.edges.size(), g.lights[light], lo, hi,
+                                                        [](std::uint32_t) { return true; }, local);
+        }
+      });
+    }
+
     ExactLightImage out;
     resize_huge(out.counts, grid.centres());
     resize_huge(out.lit, grid.centres());
@@ -1976,7 +2028,8 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
               }
             // The corners agree: n must still be constant between them (a shadow sliver).
             if (bits == 0 && footprints &&
-                footprint_shadow_varies(g, light, corner_hits(g, grid, hits, point_boxes.data(), i, row)))
+                footprint_shadow_varies(g, light, corner_hits(g, grid, hits, point_boxes.data(), i, row),
+                                        silhouette_lists[tiles.of(i, row)].list()))
               bits |= kFootprintCounts;
             if (bits == 0 && footprints && options.depth_band) {
               const DepthBand band = depth_band(g, grid.frame, grid.ray(pixel), centre, options.depth_band);
