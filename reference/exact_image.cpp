@@ -964,7 +964,7 @@ struct RayGrid {
 // the corners it owns) and its pixels' eye pyramids lie in one cone (reference/detail/eye_tile.h):
 // one query of the tree for that cone lists every triangle any of them can meet, and where the
 // list is short each of them tests the list instead of walking the tree (the answers are
-// those of the walk: first_hit, footprint_sees_more). docs/diff.md#exact-image-speed.
+// those of the walk: first_hit, footprint_sees_more). docs/diff.md#tiles-coherent-rays-share-their-queries.
 inline constexpr std::uint32_t kTileSize = 8;
 // Beyond this many triangles a tile's rays walk the tree themselves: each ray would test every
 // candidate, where its own walk visits a few leaves.

@@ -3,8 +3,8 @@
 // exact/box_tree.h's dilated queries, so that a tile of the exact image asks the box tree once
 // for every triangle any of its rays can meet (reference/exact_image.cpp: the tile's rays then
 // test that list instead of each walking the tree). Coherent rays share their traversal, as
-// packet and frustum tracers share theirs (docs/diff.md#exact-image-speed); the per-ray tests
-// stay the exact ones, so every answer is the one a per-ray query gives.
+// packet and frustum tracers share theirs (docs/diff.md#tiles-coherent-rays-share-their-queries);
+// the per-ray tests stay the exact ones, so every answer is the one a per-ray query gives.
 //
 // The bound: pixel_ray(frame, x, y) has direction d = forward + a right + b up, a and b each
 // rounded once from x and y by monotone operations, so over the tile's image points [x0, x1] x
