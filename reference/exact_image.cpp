@@ -41,6 +41,7 @@
 #include "exact/face_crossing.h"
 #include "exact/light_orientation.h"
 #include "exact/light_orientation_filter.h"
+#include "exact/orient_unchecked.h"
 #include "reference/detail/eye_tile.h"
 #include "reference/detail/pixel_footprint.h"
 #include "reference/detail/ray_hit.h"
@@ -1226,24 +1227,11 @@ std::optional<Sign> filtered_det_sign(const Vec3& x, const Vec3& y, const Vec3& 
   return std::nullopt;
 }
 
-// The eye pyramid hull{e, R} over a pixel lies in five closed half-spaces known without its hit
-// points: beside each face through the eye and two neighbouring corner rays (d_k, d_k+1), on the
-// side of the next corner ray (the corner rays span a convex cone, R lies in it), and on the
-// eye's side of h's plane (R lies in it). A triangle each of whose edges has both ends
-// certainly strictly outside one of them has no edge in the pyramid: the exact answer of
-// FootprintPolytope::meets_an_edge_of, found with a few filtered determinants of input doubles
-// (most candidates are h's neighbours beside R or triangles behind h's plane). Where a filter
-// is unsure, the polytope decides as before.
-class EyePyramidFilter {
+// Which triangles lie in the plane of a hit triangle h, beside it as the eye sees it (a
+// property of h, the triangle and the eye alone, whatever pixel is asked: a tile caches it).
+class HitPlaneNeighbours {
  public:
-  EyePyramidFilter(const Vec3& eye, const CornerHits& corners, const std::array<Vec3, 3>& h, Sign eye_side)
-      : eye_(eye), h_(h), eye_side_(eye_side) {
-    for (std::size_t k = 0; k < 4; ++k) directions_[k] = corners.parameters[k].ray().direction;
-    for (std::size_t k = 0; k < 4; ++k) {
-      const std::optional<Sign> s =
-          filtered_det_sign(directions_[k], directions_[(k + 1) % 4], directions_[(k + 2) % 4]);
-      inside_[k] = s.value_or(Sign::zero);  // zero: this face is not used
-    }
+  HitPlaneNeighbours(const Vec3& eye, const std::array<Vec3, 3>& h) : eye_(eye), h_(h) {
     for (std::size_t k = 0; k < 3; ++k) {
       const Vec3& w = h[(k + 2) % 3];
       h_side_[k] = detail::semi_static_light_orientation(eye, h[k], h[(k + 1) % 3], {w[0], w[1], w[2], 1.0})
@@ -1251,19 +1239,9 @@ class EyePyramidFilter {
     }
   }
 
-  // Whether no edge of triangle abc meets the pyramid: each edge has both ends certainly
-  // strictly outside one common half-space (bits of outcode()).
-  [[nodiscard]] bool separates(const Vec3& a, const Vec3& b, const Vec3& c) const {
-    const unsigned oa = outcode(a);
-    if (oa == 0) return false;
-    const unsigned ob = outcode(b);
-    if ((oa & ob) == 0) return false;
-    const unsigned oc = outcode(c);
-    return (ob & oc) != 0 && (oc & oa) != 0;
-  }
-
-  // Whether triangle abc lies in h's plane and outside h: the pyramid meets that plane in R
-  // alone, R lies strictly inside h (its corners are crossings of h), so an abc with every
+  // Whether triangle abc lies in h's plane and outside h. For a pixel whose five rays cross h
+  // (not at a zero sign) its eye pyramid meets that plane in R alone, and R lies strictly
+  // inside h (its corners are crossings of h), so an abc with every
   // vertex on the closed far side of one of h's edge lines misses R, and so does each of its
   // edges. In h's plane the side of the line uv is the side of the plane through the eye, u
   // and v (the eye is off h's plane). The other half of a floor quad, every floor pixel's
@@ -1289,6 +1267,49 @@ class EyePyramidFilter {
   }
 
  private:
+  Vec3 eye_;
+  std::array<Vec3, 3> h_;
+  std::array<Sign, 3> h_side_{};  // h's side of the plane through the eye and each of its edges
+};
+
+// The eye pyramid hull{e, R} over a pixel lies in five closed half-spaces known without its hit
+// points: beside each face through the eye and two neighbouring corner rays (d_k, d_k+1), on the
+// side of the next corner ray (the corner rays span a convex cone, R lies in it), and on the
+// eye's side of h's plane (R lies in it). A triangle each of whose edges has both ends
+// certainly strictly outside one of them has no edge in the pyramid: the exact answer of
+// FootprintPolytope::meets_an_edge_of, found with a few filtered determinants of input doubles
+// (most candidates are h's neighbours beside R or triangles behind h's plane). Where a filter
+// is unsure, the polytope decides as before.
+class EyePyramidFilter {
+ public:
+  EyePyramidFilter(const Vec3& eye, const CornerHits& corners, const std::array<Vec3, 3>& h, Sign eye_side)
+      : eye_(eye), h_(h), eye_side_(eye_side), neighbours_(eye, h) {
+    for (std::size_t k = 0; k < 4; ++k) directions_[k] = corners.parameters[k].ray().direction;
+    for (std::size_t k = 0; k < 4; ++k) {
+      const std::optional<Sign> s =
+          filtered_det_sign(directions_[k], directions_[(k + 1) % 4], directions_[(k + 2) % 4]);
+      inside_[k] = s.value_or(Sign::zero);  // zero: this face is not used
+    }
+  }
+
+  // HitPlaneNeighbours::beside_in_plane (an abc there has no edge in the pyramid).
+  [[nodiscard]] bool beside_in_plane(const Vec3& a, const Vec3& b, const Vec3& c) const {
+    return neighbours_.beside_in_plane(a, b, c);
+  }
+
+  // Whether no edge of triangle abc meets the pyramid: each edge has both ends certainly
+  // strictly outside one common half-space (bits of outcode()).
+  [[nodiscard]] bool separates(const Vec3& a, const Vec3& b, const Vec3& c) const {
+    const unsigned oa = outcode(a);
+    if (oa == 0) return false;
+    const unsigned ob = outcode(b);
+    if ((oa & ob) == 0) return false;
+    const unsigned oc = outcode(c);
+    return (ob & oc) != 0 && (oc & oa) != 0;
+  }
+
+
+ private:
   // Bit k (k < 4): v certainly strictly outside the face through corner rays k, k + 1; bit 4:
   // certainly strictly beyond h's plane.
   [[nodiscard]] unsigned outcode(const Vec3& v) const {
@@ -1309,7 +1330,7 @@ class EyePyramidFilter {
   Sign eye_side_;
   std::array<Vec3, 4> directions_{};
   std::array<Sign, 4> inside_{};
-  std::array<Sign, 3> h_side_{};  // h's side of the plane through the eye and each of its edges
+  HitPlaneNeighbours neighbours_;
 };
 
 // The pyramid itself is built only for the first candidate other than h that the cheap filter
@@ -1805,6 +1826,8 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
   if (footprints) {
     Progress progress(options, "footprints", grid.height);
     tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, grid.height), [&](const auto& r) {
+      std::uint32_t cached_tile = kNoHit, cached_h = kNoHit;
+      bool cached_alone = false;
       for (std::uint32_t row = r.begin(); row != r.end(); ++row) {
         for (std::uint32_t i = 0; i < grid.width; ++i) {
           const std::size_t pixel = std::size_t{row} * grid.width + i;
@@ -1821,11 +1844,29 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
             continue;
           }
           if (geometric[pixel] != 0 || !countable(hits[pixel])) continue;
-          const CornerHits corners = corner_hits(g, grid, hits, point_boxes.data(), i, row);
           const std::uint32_t h = hits[pixel].triangle;
-          const EyePyramidFilter filter(grid.frame.eye, corners, {g.vertex(h, 0), g.vertex(h, 1), g.vertex(h, 2)},
-                                        hits[pixel].eye_side);
-          if (footprint_sees_more(g, grid.frame.eye, corners, h, &filter, tile_lists[tiles.of(i, row)].list()))
+          const std::uint32_t tile = tiles.of(i, row);
+          const std::vector<std::uint32_t>* list = tile_lists[tile].list();
+          // A tile whose list holds, besides h, only triangles beside h in its plane: no pixel
+          // of it that sees h alone at its five rays sees anything else (footprint_sees_more
+          // passes each of them by with EyePyramidFilter::beside_in_plane, a test of h and the
+          // eye alone); its answer is known without the corners. Cached for the last tile and h.
+          if (list != nullptr && !(tile == cached_tile && h == cached_h)) {
+            cached_tile = tile;
+            cached_h = h;
+            const HitPlaneNeighbours neighbours(grid.frame.eye, {g.vertex(h, 0), g.vertex(h, 1), g.vertex(h, 2)});
+            cached_alone = std::all_of(list->begin(), list->end(), [&](std::uint32_t id) {
+              return id == h || neighbours.beside_in_plane(g.vertex(id, 0), g.vertex(id, 1), g.vertex(id, 2));
+            });
+          }
+          const bool sees_more = [&] {
+            if (list != nullptr && cached_alone) return false;
+            const CornerHits corners = corner_hits(g, grid, hits, point_boxes.data(), i, row);
+            const EyePyramidFilter filter(grid.frame.eye, corners, {g.vertex(h, 0), g.vertex(h, 1), g.vertex(h, 2)},
+                                          hits[pixel].eye_side);
+            return footprint_sees_more(g, grid.frame.eye, corners, h, &filter, list);
+          }();
+          if (sees_more)
             geometric[pixel] |= kFootprintTriangles;
           else if (options.depth_band &&
                    band_meets_surface(g, depth_band(g, grid.frame, grid.ray(pixel), hits[pixel], options.depth_band),
@@ -1950,6 +1991,7 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
       tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, tiles.count(), 1), [&](const auto& r) {
         TileScratch& local = tile_scratch.local();
         std::vector<std::size_t> rays;
+        std::vector<std::uint32_t> rest;
         for (std::uint32_t t = r.begin(); t != r.end(); ++t) {
           const TileGrid::Bounds b = tiles.bounds(t);
           rays.clear();
@@ -1967,7 +2009,30 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
               hi[a] = std::max(hi[a], point_boxes[k][1][a]);
             }
           const TileCandidates list = light_tile_candidates(g, light, lo, hi, local);
-          for (std::size_t k : rays) counts[k] = count_at(g, light, grid.ray(k), hits[k], point_boxes[k], list.list());
+          if (!list.listed) {
+            for (std::size_t k : rays) counts[k] = count_at(g, light, grid.ray(k), hits[k], point_boxes[k]);
+            work += rays.size();
+            continue;
+          }
+          // Per hit triangle h, the list without h and the triangles in h's plane: P lies on
+          // that plane, so count_at passes them by (P on their plane); an empty rest counts 0.
+          std::uint32_t cached_h = kNoHit;
+          for (std::size_t k : rays) {
+            const std::uint32_t h = hits[k].triangle;
+            if (h != cached_h) {
+              cached_h = h;
+              const HomogeneousPoint a = finite_point(g.vertex(h, 0)), b = finite_point(g.vertex(h, 1)),
+                                     c = finite_point(g.vertex(h, 2));
+              const auto on_plane = [&](std::uint32_t v) {
+                return detail::orient_unchecked(a, b, c, finite_point(g.soup.vertices[v])) == Sign::zero;
+              };
+              rest.clear();
+              for (std::uint32_t id : list.ids)
+                if (id != h && !std::all_of(g.soup.triangles[id].begin(), g.soup.triangles[id].end(), on_plane))
+                  rest.push_back(id);
+            }
+            counts[k] = rest.empty() ? 0 : count_at(g, light, grid.ray(k), hits[k], point_boxes[k], &rest);
+          }
           work += rays.size();
         }
         progress.advance(r.size());
