@@ -174,15 +174,20 @@ std::unique_ptr<Silhouette> casting_edges(const Soup& canonical, const EdgeTable
 // nullptr: the box tree's nearest-first query. The answer is a function of the set of
 // triangles the ray meets (the nearest meeting; at a tie or an in-plane contact before it, the
 // least id), so both give the same hit.
+// `known` (with `candidates`): per candidate, the signs of ray_meets_triangle already known for
+// this ray (certified), or nullptr.
 RayHit first_hit(const ImageGeometry& g, const PixelRay& ray, std::vector<std::uint32_t>& in_plane,
-                 const std::vector<std::uint32_t>* candidates = nullptr) {
+                 const std::vector<std::uint32_t>* candidates = nullptr,
+                 const detail::KnownRaySigns* known = nullptr) {
   in_plane.clear();
   std::optional<detail::RayParameter> best;
   RayHit hit;
   double bound = std::numeric_limits<double>::infinity();
+  const detail::KnownRaySigns* known_signs = nullptr;  // the visited candidate's, when known
   const auto visit = [&](std::uint32_t id) {
     const Vec3 &a = g.vertex(id, 0), &b = g.vertex(id, 1), &c = g.vertex(id, 2);
-    const detail::RayMeeting m = detail::ray_meets_triangle(ray, a, b, c);
+    const detail::RayMeeting m = known_signs != nullptr ? detail::ray_meets_triangle(ray, a, b, c, *known_signs)
+                                                        : detail::ray_meets_triangle(ray, a, b, c);
     switch (m.contact) {
       case detail::RayContact::apart:
         return true;
@@ -211,7 +216,10 @@ RayHit first_hit(const ImageGeometry& g, const PixelRay& ray, std::vector<std::u
     return true;
   };
   if (candidates != nullptr) {
-    for (std::uint32_t id : *candidates) visit(id);
+    for (std::size_t k = 0; k < candidates->size(); ++k) {
+      known_signs = known != nullptr ? &known[k] : nullptr;
+      visit((*candidates)[k]);
+    }
   } else {
     g.tree.nearest_first_ray_query(ray.origin, ray.direction, &bound, visit);
   }
@@ -348,6 +356,17 @@ class EdgePlaneFilter {
     bound_ = bound * (1.0 + 0x1p-20) + 0x1p-800;
     usable_ = tame && std::isfinite(bound_);
     norm_ = std::sqrt(n_[0] * n_[0] + n_[1] * n_[1] + n_[2] * n_[2]);
+  }
+
+  // The sign of d . n(m) = det[d, p - m, q - m] for an exact vector d with |d_i| <= W_i and
+  // r = 0 (m itself: a point of the plane): orient(m, d, p, q) with d a direction (w = 0).
+  // Its rounding is within B: fl(L - m) above is d here, with no rounding of its own.
+  [[nodiscard]] std::optional<Sign> sign_along(const Vec3& d) const {
+    if (!usable_) return std::nullopt;
+    const double v = d[0] * n_[0] + d[1] * n_[1] + d[2] * n_[2];
+    if (v > bound_) return Sign::positive;
+    if (v < -bound_) return Sign::negative;
+    return std::nullopt;
   }
 
   // The sign for light L (|L - m| <= W), or nullopt where the filter cannot decide.
@@ -1012,7 +1031,33 @@ struct TileScratch {
   std::vector<std::uint32_t> seen;  // per triangle: the generation that collected it
   std::uint32_t generation = 0;
   std::vector<std::uint32_t> in_plane;  // first_hit's
+  std::vector<detail::KnownRaySigns> known;  // first_hit's, per candidate of the tile
 };
+
+// Per candidate of a tile's list, ray_meets_triangle's signs as far as the tile knows them: the
+// eye's side of its plane (exact, one eye for every ray), and for a ray's direction d, with
+// |d_i| <= W_i over the tile, filters of orient(a, b, c, d) = d . ((b - a) x (c - a)) and of
+// orient(e, d, p, q) = d . ((p - e) x (q - e)) per edge (EdgePlaneFilter::sign_along): one dot
+// product each per ray, the exact sign where they cannot decide.
+struct CandidateRaySigns {
+  Sign eye_side;
+  EdgePlaneFilter direction;
+  std::array<EdgePlaneFilter, 3> edges;
+};
+
+std::vector<CandidateRaySigns> candidate_ray_signs(const ImageGeometry& g, const std::vector<std::uint32_t>& ids,
+                                                   const Vec3& eye, const Vec3& W) {
+  std::vector<CandidateRaySigns> out;
+  out.reserve(ids.size());
+  for (std::uint32_t id : ids) {
+    const Vec3 &a = g.vertex(id, 0), &b = g.vertex(id, 1), &c = g.vertex(id, 2);
+    out.push_back({detail::orient_unchecked(finite_point(a), finite_point(b), finite_point(c), finite_point(eye)),
+                   EdgePlaneFilter(a, Vec3{}, W, b, c),
+                   {EdgePlaneFilter(eye, Vec3{}, W, a, b), EdgePlaneFilter(eye, Vec3{}, W, b, c),
+                    EdgePlaneFilter(eye, Vec3{}, W, c, a)}});
+  }
+  return out;
+}
 
 TileCandidates tile_candidates(const ImageGeometry& g, const std::optional<detail::EyeTileCone>& cone,
                                TileScratch& scratch) {
@@ -1747,9 +1792,21 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
   // Not value-initialised (zeroing 48 bytes per ray costs more than the boxes): only the
   // countable hits' entries are written, and only those are read.
   HugePageBuffer<PointBox> point_boxes(grid.size());
-  const auto trace = [&](std::size_t k, const std::vector<std::uint32_t>* list, std::vector<std::uint32_t>& in_plane) {
+  const auto trace = [&](std::size_t k, const std::vector<std::uint32_t>* list,
+                         const std::vector<CandidateRaySigns>& signs, TileScratch& local) {
     const PixelRay ray = grid.ray(k);
-    const RayHit hit = hits[k] = first_hit(g, ray, in_plane, list);
+    const detail::KnownRaySigns* known = nullptr;
+    if (list != nullptr && !list->empty()) {
+      local.known.resize(signs.size());
+      for (std::size_t c = 0; c < signs.size(); ++c) {
+        detail::KnownRaySigns& s = local.known[c];
+        s.eye_side = signs[c].eye_side;
+        s.direction_side = signs[c].direction.sign_along(ray.direction);
+        for (std::size_t e = 0; e < 3; ++e) s.edges[e] = signs[c].edges[e].sign_along(ray.direction);
+      }
+      known = local.known.data();
+    }
+    const RayHit hit = hits[k] = first_hit(g, ray, local.in_plane, list, known);
     if (!countable(hit)) return;
     const std::uint32_t h = hit.triangle;
     if (const auto box = detail::semi_static_hit_box(ray, {g.vertex(h, 0), g.vertex(h, 1), g.vertex(h, 2)})) {
@@ -1782,15 +1839,20 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
         tile_lists[t] = tile_candidates(
             g, detail::eye_tile_cone(grid.frame, b.x0, b.x1, b.y0, b.y1, scene_lo, scene_hi), local);
         const std::vector<std::uint32_t>* list = tile_lists[t].list();
+        const std::vector<CandidateRaySigns> signs =
+            list != nullptr && !list->empty()
+                ? candidate_ray_signs(g, *list, grid.frame.eye,
+                                      detail::eye_tile_direction_bound(grid.frame, b.x0, b.x1, b.y0, b.y1))
+                : std::vector<CandidateRaySigns>{};
         for (std::uint32_t y = b.y0; y < b.y1; ++y)
           for (std::uint32_t x = b.x0; x < b.x1; ++x) {
-            trace(std::size_t{y} * grid.width + x, list, local.in_plane);
+            trace(std::size_t{y} * grid.width + x, list, signs, local);
           }
         std::size_t done = std::size_t{b.x1 - b.x0} * (b.y1 - b.y0);
         if (footprints) {
           for (std::uint32_t y = b.y0; y < b.cy1; ++y)
             for (std::uint32_t x = b.x0; x < b.cx1; ++x) {
-              trace(grid.corner(x, y), list, local.in_plane);
+              trace(grid.corner(x, y), list, signs, local);
             }
           done += std::size_t{b.cx1 - b.x0} * (b.cy1 - b.y0);
         }

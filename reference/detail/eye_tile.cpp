@@ -101,4 +101,14 @@ std::optional<EyeTileCone> eye_tile_cone(const CameraFrame& frame, double x0, do
   return cone;
 }
 
+Vec3 eye_tile_direction_bound(const CameraFrame& frame, double x0, double x1, double y0, double y1) {
+  // |d_k| <= |f_k| + |a| |r_k| + |b| |u_k| plus its three roundings (3u of that sum).
+  const double amax = std::max(std::fabs(plane_a(frame, x0)), std::fabs(plane_a(frame, x1)));
+  const double bmax = std::max(std::fabs(plane_b(frame, y0)), std::fabs(plane_b(frame, y1)));
+  Vec3 w{};
+  for (int k = 0; k < 3; ++k)
+    w[k] = (std::fabs(frame.forward[k]) + amax * std::fabs(frame.right[k]) + bmax * std::fabs(frame.up[k])) * kWiden;
+  return w;
+}
+
 }  // namespace shadowcert::detail

@@ -41,4 +41,8 @@ using EyeTileCone = std::array<DilatedSegment, kEyeTilePieces>;
 [[nodiscard]] std::optional<EyeTileCone> eye_tile_cone(const CameraFrame& frame, double x0, double x1, double y0,
                                                        double y1, const Vec3& lo, const Vec3& hi);
 
+// A bound on |d_k| per axis for the direction d of every ray pixel_ray(frame, x, y) with x in
+// [x0, x1] and y in [y0, y1] (as eye_tile_cone's; for filters on the tile's rays' signs).
+[[nodiscard]] Vec3 eye_tile_direction_bound(const CameraFrame& frame, double x0, double x1, double y0, double y1);
+
 }  // namespace shadowcert::detail

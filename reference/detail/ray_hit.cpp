@@ -165,12 +165,17 @@ std::optional<std::array<Vec3, 2>> semi_static_hit_box(const PixelRay& ray, cons
 }
 
 RayMeeting ray_meets_triangle(const PixelRay& ray, const Vec3& a, const Vec3& b, const Vec3& c) {
+  return ray_meets_triangle(ray, a, b, c, KnownRaySigns{});
+}
+
+RayMeeting ray_meets_triangle(const PixelRay& ray, const Vec3& a, const Vec3& b, const Vec3& c,
+                              const KnownRaySigns& known) {
   const HomogeneousPoint ha = finite_point(a), hb = finite_point(b), hc = finite_point(c);
   const HomogeneousPoint e = finite_point(ray.origin);
   const HomogeneousPoint d{ray.direction[0], ray.direction[1], ray.direction[2], 0.0};
   RayMeeting m;
-  m.eye_side = orient_unchecked(ha, hb, hc, e);
-  m.direction_side = orient_unchecked(ha, hb, hc, d);
+  m.eye_side = known.eye_side ? *known.eye_side : orient_unchecked(ha, hb, hc, e);
+  m.direction_side = known.direction_side ? *known.direction_side : orient_unchecked(ha, hb, hc, d);
   if (m.direction_side == Sign::zero) {
     // Parallel to the plane: apart when off it; in it, a triangle without area is no surface
     // (docs/definitions.md#orientation), one with area may be met along a segment.
@@ -186,7 +191,8 @@ RayMeeting ray_meets_triangle(const PixelRay& ray, const Vec3& a, const Vec3& b,
   const std::array<std::pair<const HomogeneousPoint*, const HomogeneousPoint*>, 3> edges{{{&ha, &hb}, {&hb, &hc}, {&hc, &ha}}};
   const Meeting meeting = fold_boundary_signs([&](int k) {
     const auto& [p, q] = edges[static_cast<std::size_t>(k)];
-    return orient_unchecked(e, d, *p, *q) * -s;
+    const std::optional<Sign>& edge = known.edges[static_cast<std::size_t>(k)];
+    return (edge ? *edge : orient_unchecked(e, d, *p, *q)) * -s;
   });
   if (meeting == Meeting::apart) return m;  // X strictly outside one edge line: outside the closed triangle
   m.contact = meeting == Meeting::touches || m.eye_side == Sign::zero ? RayContact::touches : RayContact::crosses;

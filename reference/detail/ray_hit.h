@@ -38,6 +38,17 @@ struct RayMeeting {
 
 [[nodiscard]] RayMeeting ray_meets_triangle(const PixelRay& ray, const Vec3& a, const Vec3& b, const Vec3& c);
 
+// Signs of that test a caller already knows, each certified (a filter's verdict, or exact);
+// nullopt: computed here. eye_side = orient(a, b, c, e), direction_side = orient(a, b, c, d),
+// edges[k] = orient(e, d, p, q) for the edges pq = ab, bc, ca. The answer is the same.
+struct KnownRaySigns {
+  std::optional<Sign> eye_side;
+  std::optional<Sign> direction_side;
+  std::array<std::optional<Sign>, 3> edges{};
+};
+[[nodiscard]] RayMeeting ray_meets_triangle(const PixelRay& ray, const Vec3& a, const Vec3& b, const Vec3& c,
+                                            const KnownRaySigns& known);
+
 // The parameter t = N / D at which the ray meets the plane of abc (crosses or touches, so
 // D != 0 and t >= 0). Keeps copies of its inputs for the exact fallback.
 class RayParameter {

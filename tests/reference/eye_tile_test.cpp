@@ -146,6 +146,41 @@ TEST(EyeTile, EightPixelTile_IsAsNarrowAsItsRays) {
   }
 }
 
+// eye_tile_direction_bound bounds every ray direction of the tile per axis (the per-tile sign
+// filters of exact_image.cpp rest on it), and not by much more than the largest of them.
+TEST(EyeTile, DirectionBound_HoldsEveryRayOfTheTile) {
+  const unsigned seed = 20261207;
+  std::printf("seed %u\n", seed);
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> unit(0.0, 1.0), coordinate(-1e3, 1e3);
+  for (int trial = 0; trial < 1000; ++trial) {
+    Camera camera;
+    camera.eye = {coordinate(rng), coordinate(rng), coordinate(rng)};
+    camera.target = {coordinate(rng), coordinate(rng), coordinate(rng)};
+    camera.fov_y_degrees = 5.0 + 170.0 * unit(rng);
+    camera.width = 16 + static_cast<std::uint32_t>(2000 * unit(rng));
+    camera.height = 16 + static_cast<std::uint32_t>(2000 * unit(rng));
+    const CameraFrame frame = shadowcert::camera_frame(camera);
+    const double size = 8.0;
+    const double x0 = std::floor(unit(rng) * (camera.width - size)), y0 = std::floor(unit(rng) * (camera.height - size));
+    const Vec3 w = shadowcert::detail::eye_tile_direction_bound(frame, x0, x0 + size, y0, y0 + size);
+    Vec3 largest{};
+    for (int sample = 0; sample < 100; ++sample) {
+      const double x = sample < 4 ? x0 + size * (sample % 2) : x0 + size * unit(rng);
+      const double y = sample < 4 ? y0 + size * (sample / 2) : y0 + size * unit(rng);
+      const shadowcert::PixelRay ray = shadowcert::pixel_ray(frame, x, y);
+      for (int k = 0; k < 3; ++k) {
+        ASSERT_LE(std::fabs(ray.direction[k]), w[k]) << "trial " << trial << " axis " << k;
+        largest[k] = std::max(largest[k], std::fabs(ray.direction[k]));
+      }
+    }
+    // Not loose: within the sum of the three terms' magnitudes, which at most a few times the
+    // largest direction component over the unit frame vectors (|f|, |r|, |u| = 1).
+    const double norm = std::sqrt(largest[0] * largest[0] + largest[1] * largest[1] + largest[2] * largest[2]);
+    for (int k = 0; k < 3; ++k) EXPECT_LE(w[k], 3.0 * norm + 1e-12) << "trial " << trial << " axis " << k;
+  }
+}
+
 TEST(EyeTile, WideFieldOrUntameInput_DeclinesTheCone) {
   Camera camera;
   camera.eye = {0.0, 0.0, 5.0};

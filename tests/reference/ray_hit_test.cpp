@@ -10,6 +10,9 @@
 #include <optional>
 #include <random>
 
+#include "exact/light_orientation.h"
+#include "exact/orient_unchecked.h"
+
 namespace {
 
 using namespace shadowcert;
@@ -147,6 +150,39 @@ TEST(HitPoint, FilteredSigns_EqualExactSigns) {
         }
       }
   EXPECT_GT(decided, 2000);
+}
+
+
+// ray_meets_triangle with some of its signs given (as exact_image's per-tile filters give them)
+// answers as it does computing them all, on rays across, along and through triangles, and on
+// triangles without area.
+TEST(RayMeetsTriangle, KnownSigns_GiveTheSameMeeting) {
+  std::mt19937_64 rng(2412);
+  std::uniform_int_distribution<int> coin(0, 1);
+  int met = 0;
+  for (double scale : {1e-3, 1.0, 1e3})
+    for (int i = 0; i < 600; ++i) {
+      Draw d = draw(rng, scale, 0.0, 3.0 * scale, i % 3 == 0);
+      if (i % 7 == 0) d.triangle[2] = d.triangle[1];  // no area
+      if (i % 11 == 0) d.ray.origin = d.triangle[0];  // from a vertex
+      const auto& [a, b, c] = d.triangle;
+      const HomogeneousPoint ha = finite_point(a), hb = finite_point(b), hc = finite_point(c);
+      const HomogeneousPoint e = finite_point(d.ray.origin);
+      const HomogeneousPoint dir{d.ray.direction[0], d.ray.direction[1], d.ray.direction[2], 0.0};
+      detail::KnownRaySigns known;
+      if (coin(rng) != 0) known.eye_side = detail::orient_unchecked(ha, hb, hc, e);
+      if (coin(rng) != 0) known.direction_side = detail::orient_unchecked(ha, hb, hc, dir);
+      const std::array<std::pair<HomogeneousPoint, HomogeneousPoint>, 3> edges{{{ha, hb}, {hb, hc}, {hc, ha}}};
+      for (std::size_t k = 0; k < 3; ++k)
+        if (coin(rng) != 0) known.edges[k] = detail::orient_unchecked(e, dir, edges[k].first, edges[k].second);
+      const detail::RayMeeting all = detail::ray_meets_triangle(d.ray, a, b, c);
+      const detail::RayMeeting given = detail::ray_meets_triangle(d.ray, a, b, c, known);
+      EXPECT_EQ(given.contact, all.contact) << "scale " << scale << " draw " << i;
+      EXPECT_EQ(given.eye_side, all.eye_side) << "scale " << scale << " draw " << i;
+      EXPECT_EQ(given.direction_side, all.direction_side) << "scale " << scale << " draw " << i;
+      met += all.contact != detail::RayContact::apart;
+    }
+  EXPECT_GT(met, 500);  // the draws aim at the triangles: most rays meet them
 }
 
 }  // namespace
