@@ -43,6 +43,7 @@
 #include "exact/light_orientation_filter.h"
 #include "exact/orient_unchecked.h"
 #include "reference/detail/eye_tile.h"
+#include "reference/detail/plane_through_filter.h"
 #include "reference/detail/pixel_footprint.h"
 #include "reference/detail/ray_hit.h"
 #include "scene/canonical_soup.h"
@@ -989,6 +990,12 @@ inline constexpr std::uint32_t kTileSize = 8;
 // Beyond this many triangles a tile's rays walk the tree themselves: each ray would test every
 // candidate, where its own walk visits a few leaves.
 inline constexpr std::size_t kTileCandidates = 24;
+// The count tiles of a point light: each hit point tests every candidate through its filters
+// (a few dot products, SegmentCrossingFilter), so a longer list still costs less than a walk.
+inline constexpr std::size_t kFilteredCountCandidates = 128;
+// Groups of hit points with too many candidates are halved down to this many (fewer: each walks
+// the tree).
+inline constexpr std::size_t kLeastCountGroup = 4;
 
 // The tiles of `window`, row-major. Tile t covers pixels [x0, x1) x [y0, y1) and owns the
 // corners [x0, cx1) x [y0, cy1): its pixels' upper-left corners, and the window's last corner
@@ -1026,12 +1033,21 @@ struct TileCandidates {
   [[nodiscard]] const std::vector<std::uint32_t>* list() const { return listed ? &ids : nullptr; }
 };
 
+struct SegmentCrossingFilter;
+
 // Per-thread scratch of the tiles.
 struct TileScratch {
   std::vector<std::uint32_t> seen;  // per triangle: the generation that collected it
   std::uint32_t generation = 0;
   std::vector<std::uint32_t> in_plane;  // first_hit's
   std::vector<detail::KnownRaySigns> known;  // first_hit's, per candidate of the tile
+  // The count tiles': per candidate its filters, per ray its box middle and the candidates the
+  // filters leave; which candidates lie in the plane of triangle in_plane_of (in_plane_of).
+  std::vector<SegmentCrossingFilter> crossing;
+  std::vector<Vec3> middles;
+  std::vector<std::uint32_t> undecided;
+  std::uint32_t in_plane_of = std::numeric_limits<std::uint32_t>::max();
+  std::vector<std::pair<std::uint32_t, bool>> in_plane_known;
 };
 
 // Per candidate of a tile's list, ray_meets_triangle's signs as far as the tile knows them: the
@@ -1123,11 +1139,12 @@ void light_cone_query(const detail::BoxTree& tree, const HomogeneousPoint& l, co
   }
 }
 
-// The ids light_cone_query reports that `keep` keeps, each once, when there are at most
-// kTileCandidates of them (`ids`: the number of boxes of the tree).
+// The ids light_cone_query reports that `keep` keeps, each once, when there are at most `cap`
+// of them (`ids`: the number of boxes of the tree).
 template <typename Keep>
 TileCandidates light_cone_candidates(const detail::BoxTree& tree, std::size_t ids, const HomogeneousPoint& l,
-                                     const Vec3& lo, const Vec3& hi, Keep&& keep, TileScratch& scratch) {
+                                     const Vec3& lo, const Vec3& hi, Keep&& keep, TileScratch& scratch,
+                                     std::size_t cap = kTileCandidates) {
   TileCandidates out;
   if (scratch.seen.size() != ids) scratch.seen.assign(ids, 0);
   if (++scratch.generation == 0) {
@@ -1140,7 +1157,7 @@ TileCandidates light_cone_candidates(const detail::BoxTree& tree, std::size_t id
     scratch.seen[id] = scratch.generation;
     if (!keep(id)) return true;
     out.ids.push_back(id);
-    overflow = out.ids.size() > kTileCandidates;
+    overflow = out.ids.size() > cap;
     return !overflow;
   });
   if (overflow) return {};
@@ -1152,12 +1169,78 @@ TileCandidates light_cone_candidates(const detail::BoxTree& tree, std::size_t id
 // the light does not lie on and that a segment from [lo, hi] (the box of the tile's hit points
 // to count) to the light can meet.
 TileCandidates light_tile_candidates(const ImageGeometry& g, std::size_t light, const Vec3& lo, const Vec3& hi,
-                                     TileScratch& scratch) {
+                                     TileScratch& scratch, std::size_t cap) {
   const std::vector<Sign>& sides = g.light_sides[light];
   return light_cone_candidates(
       g.tree, g.soup.triangles.size(), g.lights[light], lo, hi,
       [&](std::uint32_t id) { return g.casting(id) && sides[id] != Sign::zero; },  // count_at passes the rest by
-      scratch);
+      scratch, cap);
+}
+
+// count_at's test of one candidate, filtered for a tile's hit points towards a point light L:
+// P's side of the candidate's plane, orient(a, b, c, P) (`plane`, through a), and per edge uv
+// orient(P, L, u, v) = -sign((P - L) . ((u - L) x (v - L))) (`edges`, through L). `side`: the
+// light's side of the plane (nonzero: light_tile_candidates keeps no other).
+struct SegmentCrossingFilter {
+  detail::PlaneThroughFilter plane;
+  std::array<detail::PlaneThroughFilter, 3> edges;
+  int side = 0;
+};
+
+// What the filters say of the open segment P -> L and one candidate: apart, crosses, or
+// undecided (count_at decides). `x`: P's box middle.
+enum class FilteredCrossing : std::uint8_t { apart, crosses, undecided };
+FilteredCrossing filtered_crossing(const SegmentCrossingFilter& f, const Vec3& x) {
+  const int start = f.plane.sign(x);
+  if (start == 0) return FilteredCrossing::undecided;
+  if (start == f.side) return FilteredCrossing::apart;  // P and L on one side
+  // exact/face_crossing.h's rule as count_at: crossing X strictly inside iff orient(P, L, u, v)
+  // = -start for every edge, outside if one has +start; orient = -(filter's sign).
+  bool all_inside = true;
+  for (const detail::PlaneThroughFilter& e : f.edges) {
+    const int w = -e.sign(x) * -start;
+    if (w < 0) return FilteredCrossing::apart;
+    all_inside = all_inside && w > 0;
+  }
+  return all_inside ? FilteredCrossing::crosses : FilteredCrossing::undecided;
+}
+
+// Whether triangle `id` lies in the plane of triangle h (its three vertices on it), remembered in
+// `known` (the answers for this h so far).
+bool in_plane_of(const ImageGeometry& g, std::uint32_t h, std::uint32_t id,
+                 std::vector<std::pair<std::uint32_t, bool>>& known) {
+  for (const auto& [other, in] : known)
+    if (other == id) return in;
+  const HomogeneousPoint a = finite_point(g.vertex(h, 0)), b = finite_point(g.vertex(h, 1)), c = finite_point(g.vertex(h, 2));
+  const bool in = std::all_of(g.soup.triangles[id].begin(), g.soup.triangles[id].end(), [&](std::uint32_t v) {
+    return detail::orient_unchecked(a, b, c, finite_point(g.soup.vertices[v])) == Sign::zero;
+  });
+  known.emplace_back(id, in);
+  return in;
+}
+
+// The filters of a tile's list (`ids`) for the point light L and hit points whose box middles
+// lie in [lo, hi] within R of the hit points themselves.
+void segment_crossing_filters(const ImageGeometry& g, std::size_t light, const std::vector<std::uint32_t>& ids,
+                              const Vec3& lo, const Vec3& hi, const Vec3& R, std::vector<SegmentCrossingFilter>& out) {
+  const HomogeneousPoint& l = g.lights[light];
+  const Vec3 L{l[0], l[1], l[2]};
+  // |x - o| <= max(|lo - o|, |hi - o|) per axis, rounded up.
+  const auto reach = [&](const Vec3& o) {
+    Vec3 w{};
+    for (int a = 0; a < 3; ++a) w[a] = std::max(std::fabs(lo[a] - o[a]), std::fabs(hi[a] - o[a])) * (1.0 + 0x1p-50);
+    return w;
+  };
+  const Vec3 WL = reach(L);
+  out.clear();
+  for (std::uint32_t id : ids) {
+    const Vec3 &a = g.vertex(id, 0), &b = g.vertex(id, 1), &c = g.vertex(id, 2);
+    SegmentCrossingFilter f;
+    f.plane = detail::PlaneThroughFilter(a, b, c, reach(a), R);
+    f.edges = {detail::PlaneThroughFilter(L, a, b, WL, R), detail::PlaneThroughFilter(L, b, c, WL, R), detail::PlaneThroughFilter(L, c, a, WL, R)};
+    f.side = static_cast<int>(g.light_sides[light][id]);
+    out.push_back(f);
+  }
 }
 
 // The light-independent ambiguity of a pixel: a zero sign on a footprint ray, or footprint
@@ -2064,37 +2147,108 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
             for (std::uint32_t x = b.x0; x < b.cx1; ++x)
               if (const std::size_t k = grid.corner(x, y); needed[k] != 0) rays.push_back(k);
           if (rays.empty()) continue;
-          Vec3 lo = point_boxes[rays.front()][0], hi = point_boxes[rays.front()][1];
-          for (std::size_t k : rays)
-            for (int a = 0; a < 3; ++a) {
-              lo[a] = std::min(lo[a], point_boxes[k][0][a]);
-              hi[a] = std::max(hi[a], point_boxes[k][1][a]);
+          // One list per group of rays (the tile's, or its halves where too many triangles).
+          const auto count_group = [&](const auto& self, std::span<std::size_t> rays) -> void {
+            Vec3 lo = point_boxes[rays.front()][0], hi = point_boxes[rays.front()][1];
+            for (std::size_t k : rays)
+              for (int a = 0; a < 3; ++a) {
+                lo[a] = std::min(lo[a], point_boxes[k][0][a]);
+                hi[a] = std::max(hi[a], point_boxes[k][1][a]);
+              }
+            // A point light outside the box: the filters decide most candidates per hit point,
+            // so the tile may list more of them.
+            const HomogeneousPoint& l = g.lights[light];
+            const bool filtered = l[3] != 0.0 && !(lo[0] <= l[0] && l[0] <= hi[0] && lo[1] <= l[1] && l[1] <= hi[1] &&
+                                                  lo[2] <= l[2] && l[2] <= hi[2]);
+            const TileCandidates list =
+                light_tile_candidates(g, light, lo, hi, local, filtered ? kFilteredCountCandidates : kTileCandidates);
+            if (!list.listed && filtered && rays.size() > kLeastCountGroup) {
+              // Too many for one list (hit points far apart, as across a silhouette): the halves
+              // of the group across its box's longest axis, each with its own list.
+              int axis = 0;
+              for (int a = 1; a < 3; ++a)
+                if (hi[a] - lo[a] > hi[axis] - lo[axis]) axis = a;
+              const double cut = lo[axis] / 2 + hi[axis] / 2;
+              auto middle = std::partition(rays.begin(), rays.end(), [&](std::size_t k) {
+                return point_boxes[k][0][axis] / 2 + point_boxes[k][1][axis] / 2 < cut;
+              });
+              if (middle == rays.begin() || middle == rays.end()) middle = rays.begin() + static_cast<std::ptrdiff_t>(rays.size() / 2);
+              const auto split = static_cast<std::size_t>(middle - rays.begin());
+              self(self, rays.first(split));
+              self(self, rays.subspan(split));
+              return;
             }
-          const TileCandidates list = light_tile_candidates(g, light, lo, hi, local);
-          if (!list.listed) {
-            for (std::size_t k : rays) counts[k] = count_at(g, light, grid.ray(k), hits[k], point_boxes[k]);
-            work += rays.size();
-            continue;
-          }
-          // Per hit triangle h, the list without h and the triangles in h's plane: P lies on
-          // that plane, so count_at passes them by (P on their plane); an empty rest counts 0.
-          std::uint32_t cached_h = kNoHit;
-          for (std::size_t k : rays) {
-            const std::uint32_t h = hits[k].triangle;
-            if (h != cached_h) {
-              cached_h = h;
-              const HomogeneousPoint a = finite_point(g.vertex(h, 0)), b = finite_point(g.vertex(h, 1)),
-                                     c = finite_point(g.vertex(h, 2));
-              const auto on_plane = [&](std::uint32_t v) {
-                return detail::orient_unchecked(a, b, c, finite_point(g.soup.vertices[v])) == Sign::zero;
-              };
-              rest.clear();
-              for (std::uint32_t id : list.ids)
-                if (id != h && !std::all_of(g.soup.triangles[id].begin(), g.soup.triangles[id].end(), on_plane))
-                  rest.push_back(id);
+            if (!list.listed) {
+              for (std::size_t k : rays) counts[k] = count_at(g, light, grid.ray(k), hits[k], point_boxes[k]);
+              return;
             }
-            counts[k] = rest.empty() ? 0 : count_at(g, light, grid.ray(k), hits[k], point_boxes[k], &rest);
-          }
+            if (filtered) {
+              // The box middles x and the radius R around them that count_at's boxes give.
+              Vec3 mlo{}, mhi{}, R{};
+              if (local.middles.size() < rays.size()) local.middles.resize(rays.size());
+              for (std::size_t i = 0; i < rays.size(); ++i) {
+                const PointBox& box = point_boxes[rays[i]];
+                Vec3& x = local.middles[i];
+                for (int a = 0; a < 3; ++a) {
+                  x[a] = std::clamp(box[0][a] / 2 + box[1][a] / 2, box[0][a], box[1][a]);
+                  R[a] = std::max({R[a], box[1][a] - x[a], x[a] - box[0][a]});
+                  mlo[a] = i == 0 ? x[a] : std::min(mlo[a], x[a]);
+                  mhi[a] = i == 0 ? x[a] : std::max(mhi[a], x[a]);
+                }
+              }
+              for (double& r : R) r *= 1.0 + 0x1p-50;
+              segment_crossing_filters(g, light, list.ids, mlo, mhi, R, local.crossing);
+            }
+            // Per hit triangle h, the list without h and the triangles in h's plane: P lies on
+            // that plane, so count_at passes them by (P on their plane); an empty rest counts 0.
+            // With the filters only the candidates they leave are checked (per h, remembered).
+            std::uint32_t cached_h = kNoHit;
+            for (std::size_t i = 0; i < rays.size(); ++i) {
+              const std::size_t k = rays[i];
+              const std::uint32_t h = hits[k].triangle;
+              if (filtered) {
+                if (h != local.in_plane_of) {
+                  local.in_plane_of = h;
+                  local.in_plane_known.clear();
+                }
+                std::uint32_t crossed = 0;
+                local.undecided.clear();
+                for (std::size_t c = 0; c < list.ids.size(); ++c) {
+                  const std::uint32_t id = list.ids[c];
+                  if (id == h) continue;
+                  switch (filtered_crossing(local.crossing[c], local.middles[i])) {
+                    case FilteredCrossing::apart:
+                      break;
+                    case FilteredCrossing::crosses:
+                      ++crossed;
+                      break;
+                    case FilteredCrossing::undecided:
+                      if (!in_plane_of(g, h, id, local.in_plane_known)) local.undecided.push_back(id);
+                      break;
+                  }
+                }
+                const std::uint32_t more = local.undecided.empty()
+                                               ? 0
+                                               : count_at(g, light, grid.ray(k), hits[k], point_boxes[k], &local.undecided);
+                counts[k] = more == kUndefinedCount ? kUndefinedCount : crossed + more;
+                continue;
+              }
+              if (h != cached_h) {
+                cached_h = h;
+                const HomogeneousPoint a = finite_point(g.vertex(h, 0)), b = finite_point(g.vertex(h, 1)),
+                                       c = finite_point(g.vertex(h, 2));
+                const auto on_plane = [&](std::uint32_t v) {
+                  return detail::orient_unchecked(a, b, c, finite_point(g.soup.vertices[v])) == Sign::zero;
+                };
+                rest.clear();
+                for (std::uint32_t id : list.ids)
+                  if (id != h && !std::all_of(g.soup.triangles[id].begin(), g.soup.triangles[id].end(), on_plane))
+                    rest.push_back(id);
+              }
+              counts[k] = rest.empty() ? 0 : count_at(g, light, grid.ray(k), hits[k], point_boxes[k], &rest);
+            }
+          };
+          count_group(count_group, std::span<std::size_t>(rays));
           work += rays.size();
         }
         progress.advance(r.size());
