@@ -990,6 +990,10 @@ inline constexpr std::uint32_t kTileSize = 8;
 // Beyond this many triangles a tile's rays walk the tree themselves: each ray would test every
 // candidate, where its own walk visits a few leaves.
 inline constexpr std::size_t kTileCandidates = 24;
+// The eye tiles' lists for the first hits: there the per-tile sign filters (CandidateRaySigns)
+// leave each ray few candidates to test, so a longer list pays; the footprints test the list
+// only up to kTileCandidates.
+inline constexpr std::size_t kEyeTileCandidates = 48;
 // The count tiles of a point light: each hit point tests every candidate through its filters
 // (a few dot products, SegmentCrossingFilter), so a longer list still costs less than a walk.
 inline constexpr std::size_t kFilteredCountCandidates = 128;
@@ -1040,7 +1044,8 @@ struct TileScratch {
   std::vector<std::uint32_t> seen;  // per triangle: the generation that collected it
   std::uint32_t generation = 0;
   std::vector<std::uint32_t> in_plane;  // first_hit's
-  std::vector<detail::KnownRaySigns> known;  // first_hit's, per candidate of the tile
+  std::vector<detail::KnownRaySigns> known;  // first_hit's, per candidate of the tile it tests
+  std::vector<std::uint32_t> survivors;      // those candidates
   // The count tiles': per candidate its filters, per ray its box middle and the candidates the
   // filters leave; which candidates lie in the plane of triangle in_plane_of (in_plane_of).
   std::vector<SegmentCrossingFilter> crossing;
@@ -1075,6 +1080,12 @@ std::vector<CandidateRaySigns> candidate_ray_signs(const ImageGeometry& g, const
   return out;
 }
 
+// The list the footprint tests read: the eye tile's, where it holds at most kTileCandidates.
+const std::vector<std::uint32_t>* footprint_list(const TileCandidates& tile) {
+  const std::vector<std::uint32_t>* list = tile.list();
+  return list != nullptr && list->size() <= kTileCandidates ? list : nullptr;
+}
+
 TileCandidates tile_candidates(const ImageGeometry& g, const std::optional<detail::EyeTileCone>& cone,
                                TileScratch& scratch) {
   TileCandidates out;
@@ -1089,7 +1100,7 @@ TileCandidates tile_candidates(const ImageGeometry& g, const std::optional<detai
     if (scratch.seen[id] == scratch.generation) return true;
     scratch.seen[id] = scratch.generation;
     out.ids.push_back(id);
-    overflow = out.ids.size() > kTileCandidates;
+    overflow = out.ids.size() > kEyeTileCandidates;
     return !overflow;
   };
   for (const detail::DilatedSegment& piece : *cone) {
@@ -1880,13 +1891,26 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
     const PixelRay ray = grid.ray(k);
     const detail::KnownRaySigns* known = nullptr;
     if (list != nullptr && !list->empty()) {
-      local.known.resize(signs.size());
+      // The candidates the filters show apart (the plane behind the eye, or the crossing
+      // strictly outside an edge line: ray_meets_triangle's own verdicts) are left out.
+      local.known.clear();
+      local.survivors.clear();
       for (std::size_t c = 0; c < signs.size(); ++c) {
-        detail::KnownRaySigns& s = local.known[c];
+        detail::KnownRaySigns s;
         s.eye_side = signs[c].eye_side;
         s.direction_side = signs[c].direction.sign_along(ray.direction);
-        for (std::size_t e = 0; e < 3; ++e) s.edges[e] = signs[c].edges[e].sign_along(ray.direction);
+        if (s.direction_side && *s.direction_side != Sign::zero && *s.direction_side == *s.eye_side) continue;
+        bool apart = false;
+        for (std::size_t e = 0; e < 3; ++e) {
+          s.edges[e] = signs[c].edges[e].sign_along(ray.direction);
+          // With the eye off the plane, s = eye_side: an edge sign of s puts X outside.
+          apart = apart || (*s.eye_side != Sign::zero && s.edges[e] && *s.edges[e] == *s.eye_side);
+        }
+        if (apart && s.direction_side && *s.direction_side != Sign::zero) continue;
+        local.known.push_back(s);
+        local.survivors.push_back((*list)[c]);
       }
+      list = &local.survivors;
       known = local.known.data();
     }
     const RayHit hit = hits[k] = first_hit(g, ray, local.in_plane, list, known);
@@ -1981,7 +2005,7 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
             // poke into the footprint between them, a vertex or an edge within a rounding of
             // GL's sample at the centre (fuzz --gl seed 202 case 1706: 0.001 px).
             // The tile's list first: most such tiles list no triangle at all.
-            const std::vector<std::uint32_t>* list = tile_lists[tiles.of(i, row)].list();
+            const std::vector<std::uint32_t>* list = footprint_list(tile_lists[tiles.of(i, row)]);
             if (backdrop && list != nullptr && list->empty()) continue;
             if (!backdrop ||
                 footprint_sees_more(g, grid.frame.eye, with_boxes(backdrop->corners(grid, i, row)), kNoHit, nullptr, list))
@@ -1991,7 +2015,7 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
           if (geometric[pixel] != 0 || !countable(hits[pixel])) continue;
           const std::uint32_t h = hits[pixel].triangle;
           const std::uint32_t tile = tiles.of(i, row);
-          const std::vector<std::uint32_t>* list = tile_lists[tile].list();
+          const std::vector<std::uint32_t>* list = footprint_list(tile_lists[tile]);
           // A tile whose list holds, besides h, only triangles beside h in its plane: no pixel
           // of it that sees h alone at its five rays sees anything else (footprint_sees_more
           // passes each of them by with EyePyramidFilter::beside_in_plane, a test of h and the
