@@ -1047,12 +1047,12 @@ struct TileScratch {
   std::vector<detail::KnownRaySigns> known;  // first_hit's, per candidate of the tile it tests
   std::vector<std::uint32_t> survivors;      // those candidates
   // The count tiles': per candidate its filters, per ray its box middle and the candidates the
-  // filters leave; which candidates lie in the plane of triangle in_plane_of (in_plane_of).
+  // filters leave; P's side of the candidates' planes that hit triangle side_of decides (side_beside).
   std::vector<SegmentCrossingFilter> crossing;
   std::vector<Vec3> middles;
   std::vector<std::uint32_t> undecided;
-  std::uint32_t in_plane_of = std::numeric_limits<std::uint32_t>::max();
-  std::vector<std::pair<std::uint32_t, bool>> in_plane_known;
+  std::uint32_t side_of = std::numeric_limits<std::uint32_t>::max();
+  std::vector<std::pair<std::uint32_t, std::int8_t>> side_known;
 };
 
 // Per candidate of a tile's list, ray_meets_triangle's signs as far as the tile knows them: the
@@ -1201,9 +1201,8 @@ struct SegmentCrossingFilter {
 // What the filters say of the open segment P -> L and one candidate: apart, crosses, or
 // undecided (count_at decides). `x`: P's box middle.
 enum class FilteredCrossing : std::uint8_t { apart, crosses, undecided };
-FilteredCrossing filtered_crossing(const SegmentCrossingFilter& f, const Vec3& x) {
-  const int start = f.plane.sign(x);
-  if (start == 0) return FilteredCrossing::undecided;
+// With P's side of the plane known (`start`, nonzero).
+FilteredCrossing filtered_crossing(const SegmentCrossingFilter& f, const Vec3& x, int start) {
   if (start == f.side) return FilteredCrossing::apart;  // P and L on one side
   // exact/face_crossing.h's rule as count_at: crossing X strictly inside iff orient(P, L, u, v)
   // = -start for every edge, outside if one has +start; orient = -(filter's sign).
@@ -1216,18 +1215,47 @@ FilteredCrossing filtered_crossing(const SegmentCrossingFilter& f, const Vec3& x
   return all_inside ? FilteredCrossing::crosses : FilteredCrossing::undecided;
 }
 
-// Whether triangle `id` lies in the plane of triangle h (its three vertices on it), remembered in
-// `known` (the answers for this h so far).
-bool in_plane_of(const ImageGeometry& g, std::uint32_t h, std::uint32_t id,
-                 std::vector<std::pair<std::uint32_t, bool>>& known) {
-  for (const auto& [other, in] : known)
-    if (other == id) return in;
-  const HomogeneousPoint a = finite_point(g.vertex(h, 0)), b = finite_point(g.vertex(h, 1)), c = finite_point(g.vertex(h, 2));
-  const bool in = std::all_of(g.soup.triangles[id].begin(), g.soup.triangles[id].end(), [&](std::uint32_t v) {
-    return detail::orient_unchecked(a, b, c, finite_point(g.soup.vertices[v])) == Sign::zero;
-  });
-  known.emplace_back(id, in);
-  return in;
+FilteredCrossing filtered_crossing(const SegmentCrossingFilter& f, const Vec3& x) {
+  const int start = f.plane.sign(x);
+  if (start == 0) return FilteredCrossing::undecided;
+  return filtered_crossing(f, x, start);
+}
+
+// P's side of the plane of triangle `id`, orient(a, b, c, P), for P strictly inside triangle h
+// (a countable hit), where h alone decides it: 0 when id lies in h's plane (its three vertices
+// on it; count_at then passes it by), and where id shares an edge uv with h (equal
+// coordinates) the sign of orient(a, b, c, x) for h's third vertex x: orient(a, b, c, .) is
+// affine and zero at u and v, and P = alpha u + beta v + gamma x with gamma > 0 (P is off the
+// edge), so its sign at P is gamma times that at x. This settles the triangles that are in h's
+// plane up to the rounding of their vertices (the two halves of a UV sphere's planar quads),
+// where the filters cannot. kUnknownSide otherwise. Remembered in `known` for this h.
+inline constexpr int kUnknownSide = 2;
+int side_beside(const ImageGeometry& g, std::uint32_t h, std::uint32_t id,
+                std::vector<std::pair<std::uint32_t, std::int8_t>>& known) {
+  for (const auto& [other, side] : known)
+    if (other == id) return side;
+  const std::array<Vec3, 3> hv{g.vertex(h, 0), g.vertex(h, 1), g.vertex(h, 2)};
+  const HomogeneousPoint a = finite_point(hv[0]), b = finite_point(hv[1]), c = finite_point(hv[2]);
+  int side = kUnknownSide;
+  if (std::all_of(g.soup.triangles[id].begin(), g.soup.triangles[id].end(), [&](std::uint32_t v) {
+        return detail::orient_unchecked(a, b, c, finite_point(g.soup.vertices[v])) == Sign::zero;
+      })) {
+    side = 0;
+  } else {
+    const std::array<Vec3, 3> tv{g.vertex(id, 0), g.vertex(id, 1), g.vertex(id, 2)};
+    int shared = 0, third = -1;
+    for (int i = 0; i < 3; ++i) {
+      const bool in = std::find(tv.begin(), tv.end(), hv[static_cast<std::size_t>(i)]) != tv.end();
+      shared += in;
+      if (!in) third = i;
+    }
+    // Two shared vertices: x is off id's plane, or id would lie in h's plane.
+    if (shared == 2)
+      side = static_cast<int>(detail::orient_unchecked(finite_point(tv[0]), finite_point(tv[1]), finite_point(tv[2]),
+                                                       finite_point(hv[static_cast<std::size_t>(third)])));
+  }
+  known.emplace_back(id, static_cast<std::int8_t>(side));
+  return side;
 }
 
 // The filters of a tile's list (`ids`) for the point light L and hit points whose box middles
@@ -2231,9 +2259,9 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
               const std::size_t k = rays[i];
               const std::uint32_t h = hits[k].triangle;
               if (filtered) {
-                if (h != local.in_plane_of) {
-                  local.in_plane_of = h;
-                  local.in_plane_known.clear();
+                if (h != local.side_of) {
+                  local.side_of = h;
+                  local.side_known.clear();
                 }
                 std::uint32_t crossed = 0;
                 local.undecided.clear();
@@ -2247,7 +2275,25 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
                       ++crossed;
                       break;
                     case FilteredCrossing::undecided:
-                      if (!in_plane_of(g, h, id, local.in_plane_known)) local.undecided.push_back(id);
+                      // P's side known from h (side_beside), the edges' filters; else count_at.
+                      switch (const int start = side_beside(g, h, id, local.side_known); start) {
+                        case 0:  // in h's plane: count_at passes it by
+                          break;
+                        case kUnknownSide:
+                          local.undecided.push_back(id);
+                          break;
+                        default:
+                          switch (filtered_crossing(local.crossing[c], local.middles[i], start)) {
+                            case FilteredCrossing::apart:
+                              break;
+                            case FilteredCrossing::crosses:
+                              ++crossed;
+                              break;
+                            case FilteredCrossing::undecided:
+                              local.undecided.push_back(id);
+                              break;
+                          }
+                      }
                       break;
                   }
                 }
