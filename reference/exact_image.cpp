@@ -175,11 +175,14 @@ std::unique_ptr<Silhouette> casting_edges(const Soup& canonical, const EdgeTable
 // nullptr: the box tree's nearest-first query. The answer is a function of the set of
 // triangles the ray meets (the nearest meeting; at a tie or an in-plane contact before it, the
 // least id), so both give the same hit.
-// `known` (with `candidates`): per candidate, the signs of ray_meets_triangle already known for
-// this ray (certified), or nullptr.
+// With a list: known(k, signs) fills the signs of ray_meets_triangle for candidate k that the
+// tile's filters certify for this ray, and returns false where they show it apart (skipped).
+// `near` (or nullptr): per candidate, ascending, a lower bound on its distance from the ray's
+// origin; the scan stops at the first candidate that can only be met beyond the best meeting's
+// parameter (t >= near / |d|), as the walk prunes its boxes, so the answer is the same.
+template <typename Known>
 RayHit first_hit(const ImageGeometry& g, const PixelRay& ray, std::vector<std::uint32_t>& in_plane,
-                 const std::vector<std::uint32_t>* candidates = nullptr,
-                 const detail::KnownRaySigns* known = nullptr) {
+                 const std::vector<std::uint32_t>* candidates, const double* near, Known&& known) {
   in_plane.clear();
   std::optional<detail::RayParameter> best;
   RayHit hit;
@@ -217,9 +220,16 @@ RayHit first_hit(const ImageGeometry& g, const PixelRay& ray, std::vector<std::u
     return true;
   };
   if (candidates != nullptr) {
+    // |d| rounded up (a few roundings of relative 2^-53 each; 2^-40 taken), and the lower bound
+    // near / |d| rounded down the same way. Without a usable |d| no candidate is skipped.
+    const Vec3& d = ray.direction;
+    const double length = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) * (1.0 + 0x1p-40);
+    const bool prune = near != nullptr && length > 0x1p-500 && std::isfinite(length);
+    detail::KnownRaySigns signs;
+    known_signs = &signs;
     for (std::size_t k = 0; k < candidates->size(); ++k) {
-      known_signs = known != nullptr ? &known[k] : nullptr;
-      visit((*candidates)[k]);
+      if (prune && near[k] / length * (1.0 - 0x1p-40) > bound) break;
+      if (known(k, signs)) visit((*candidates)[k]);
     }
   } else {
     g.tree.nearest_first_ray_query(ray.origin, ray.direction, &bound, visit);
@@ -990,10 +1000,10 @@ inline constexpr std::uint32_t kTileSize = 8;
 // Beyond this many triangles a tile's rays walk the tree themselves: each ray would test every
 // candidate, where its own walk visits a few leaves.
 inline constexpr std::size_t kTileCandidates = 24;
-// The eye tiles' lists for the first hits: there the per-tile sign filters (CandidateRaySigns)
-// leave each ray few candidates to test, so a longer list pays; the footprints test the list
-// only up to kTileCandidates.
-inline constexpr std::size_t kEyeTileCandidates = 48;
+// The eye tiles' lists for the first hits: sorted nearest first, each ray stops its scan behind
+// its first hit, and the per-tile sign filters (CandidateRaySigns) skip most of what it scans,
+// so a longer list pays; the footprints test the list only up to kTileCandidates.
+inline constexpr std::size_t kEyeTileCandidates = 128;
 // The count tiles of a point light: each hit point tests every candidate through its filters
 // (a few dot products, SegmentCrossingFilter), so a longer list still costs less than a walk.
 inline constexpr std::size_t kFilteredCountCandidates = 128;
@@ -1044,8 +1054,7 @@ struct TileScratch {
   std::vector<std::uint32_t> seen;  // per triangle: the generation that collected it
   std::uint32_t generation = 0;
   std::vector<std::uint32_t> in_plane;  // first_hit's
-  std::vector<detail::KnownRaySigns> known;  // first_hit's, per candidate of the tile it tests
-  std::vector<std::uint32_t> survivors;      // those candidates
+  std::vector<double> near;  // per candidate of the eye tile, a lower bound on its distance from the eye
   // The count tiles': per candidate its filters, per ray its box middle and the candidates the
   // filters leave; P's side of the candidates' planes that hit triangle side_of decides (side_beside).
   std::vector<SegmentCrossingFilter> crossing;
@@ -1078,6 +1087,34 @@ std::vector<CandidateRaySigns> candidate_ray_signs(const ImageGeometry& g, const
                     EdgePlaneFilter(eye, Vec3{}, W, c, a)}});
   }
   return out;
+}
+
+// Sorts `ids` by their triangles' distance from `eye`, nearest first, into `near`: per
+// candidate a lower bound on the distance from the eye to its bounding box (each gap to the box,
+// its square, the sum and the root a few roundings of relative 2^-53; 2^-40 taken off; 0
+// where it overflows). first_hit stops its scan of the list at the first that lies beyond its
+// best meeting.
+void order_by_distance(const ImageGeometry& g, const Vec3& eye, std::vector<std::uint32_t>& ids,
+                       std::vector<double>& near) {
+  std::vector<std::pair<double, std::uint32_t>> order;
+  order.reserve(ids.size());
+  for (std::uint32_t id : ids) {
+    double sum = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      const double a = g.vertex(id, 0)[k], b = g.vertex(id, 1)[k], c = g.vertex(id, 2)[k];
+      const double lo = std::min({a, b, c}), hi = std::max({a, b, c});
+      const double gap = std::max({lo - eye[k], eye[k] - hi, 0.0});
+      sum += gap * gap;
+    }
+    const double distance = std::sqrt(sum) * (1.0 - 0x1p-40);
+    order.emplace_back(std::isfinite(distance) ? distance : 0.0, id);
+  }
+  std::sort(order.begin(), order.end());
+  near.resize(ids.size());
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    near[k] = order[k].first;
+    ids[k] = order[k].second;
+  }
 }
 
 // The list the footprint tests read: the eye tile's, where it holds at most kTileCandidates.
@@ -1917,31 +1954,21 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
   const auto trace = [&](std::size_t k, const std::vector<std::uint32_t>* list,
                          const std::vector<CandidateRaySigns>& signs, TileScratch& local) {
     const PixelRay ray = grid.ray(k);
-    const detail::KnownRaySigns* known = nullptr;
-    if (list != nullptr && !list->empty()) {
-      // The candidates the filters show apart (the plane behind the eye, or the crossing
-      // strictly outside an edge line: ray_meets_triangle's own verdicts) are left out.
-      local.known.clear();
-      local.survivors.clear();
-      for (std::size_t c = 0; c < signs.size(); ++c) {
-        detail::KnownRaySigns s;
-        s.eye_side = signs[c].eye_side;
-        s.direction_side = signs[c].direction.sign_along(ray.direction);
-        if (s.direction_side && *s.direction_side != Sign::zero && *s.direction_side == *s.eye_side) continue;
-        bool apart = false;
-        for (std::size_t e = 0; e < 3; ++e) {
-          s.edges[e] = signs[c].edges[e].sign_along(ray.direction);
-          // With the eye off the plane, s = eye_side: an edge sign of s puts X outside.
-          apart = apart || (*s.eye_side != Sign::zero && s.edges[e] && *s.edges[e] == *s.eye_side);
-        }
-        if (apart && s.direction_side && *s.direction_side != Sign::zero) continue;
-        local.known.push_back(s);
-        local.survivors.push_back((*list)[c]);
+    // The candidates the filters show apart (the plane behind the eye, or the crossing strictly
+    // outside an edge line: ray_meets_triangle's own verdicts) are skipped.
+    const auto known = [&](std::size_t c, detail::KnownRaySigns& s) {
+      s.eye_side = signs[c].eye_side;
+      s.direction_side = signs[c].direction.sign_along(ray.direction);
+      if (s.direction_side && *s.direction_side != Sign::zero && *s.direction_side == *s.eye_side) return false;
+      bool apart = false;
+      for (std::size_t e = 0; e < 3; ++e) {
+        s.edges[e] = signs[c].edges[e].sign_along(ray.direction);
+        // With the eye off the plane, s = eye_side: an edge sign of s puts X outside.
+        apart = apart || (*s.eye_side != Sign::zero && s.edges[e] && *s.edges[e] == *s.eye_side);
       }
-      list = &local.survivors;
-      known = local.known.data();
-    }
-    const RayHit hit = hits[k] = first_hit(g, ray, local.in_plane, list, known);
+      return !(apart && s.direction_side && *s.direction_side != Sign::zero);
+    };
+    const RayHit hit = hits[k] = first_hit(g, ray, local.in_plane, list, local.near.data(), known);
     if (!countable(hit)) return;
     const std::uint32_t h = hit.triangle;
     if (const auto box = detail::semi_static_hit_box(ray, {g.vertex(h, 0), g.vertex(h, 1), g.vertex(h, 2)})) {
@@ -1973,6 +2000,7 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
         const TileGrid::Bounds b = tiles.bounds(t);
         tile_lists[t] = tile_candidates(
             g, detail::eye_tile_cone(grid.frame, b.x0, b.x1, b.y0, b.y1, scene_lo, scene_hi), local);
+        if (tile_lists[t].listed) order_by_distance(g, grid.frame.eye, tile_lists[t].ids, local.near);
         const std::vector<std::uint32_t>* list = tile_lists[t].list();
         const std::vector<CandidateRaySigns> signs =
             list != nullptr && !list->empty()
