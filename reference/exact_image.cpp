@@ -354,12 +354,13 @@ class EdgePlaneFilter {
   EdgePlaneFilter(const Vec3& m, const Vec3& r, const Vec3& W, const Vec3& p, const Vec3& q) : m_(m) {
     constexpr double u = 0x1p-53, kTame = 0x1p200;
     const Vec3 a = difference(p, m), b = difference(q, m), d = difference(p, q);
+    const detail::RoundedCross cross = detail::rounded_cross(a, b);
+    n_ = cross.n;
     double bound = 0.0;
     bool tame = true;
     for (int i = 0; i < 3; ++i) {
       const int j = (i + 1) % 3, k = (i + 2) % 3;
-      n_[i] = a[j] * b[k] - a[k] * b[j];
-      const double e = 8.2 * u * (std::fabs(a[j] * b[k]) + std::fabs(a[k] * b[j]));
+      const double e = cross.e[i];
       bound += W[i] * (5.0 * u * std::fabs(n_[i]) + 2.0 * e) + r[i] * (std::fabs(n_[i]) + e) +
                r[i] * (std::fabs(d[j]) * W[k] + std::fabs(d[k]) * W[j]);
       for (const double x : {a[i], b[i], d[i], W[i], r[i]}) tame = tame && std::fabs(x) <= kTame;
@@ -1293,6 +1294,33 @@ int side_beside(const ImageGeometry& g, std::uint32_t h, std::uint32_t id,
   }
   known.emplace_back(id, static_cast<std::int8_t>(side));
   return side;
+}
+
+// count_at's count for one hit point P of a filtered count tile (`ids`: the tile's list,
+// local.crossing its filters; `middle`: P's box middle): the crossings the filters certify, P's
+// side taken from the hit triangle where it decides (side_beside), plus count_at's verdict on
+// the candidates left. local.side_of/side_known must hold the answers for this hit's triangle.
+std::uint32_t filtered_count(const ImageGeometry& g, std::size_t light, const PixelRay& ray, const RayHit& hit,
+                             const PointBox& box, const std::vector<std::uint32_t>& ids, const Vec3& middle,
+                             TileScratch& local) {
+  const std::uint32_t h = hit.triangle;
+  std::uint32_t crossed = 0;
+  local.undecided.clear();
+  for (std::size_t c = 0; c < ids.size(); ++c) {
+    const std::uint32_t id = ids[c];
+    if (id == h) continue;
+    FilteredCrossing verdict = filtered_crossing(local.crossing[c], middle);
+    if (verdict == FilteredCrossing::undecided) {
+      const int start = side_beside(g, h, id, local.side_known);
+      if (start == 0) continue;  // in h's plane: count_at passes it by
+      if (start != kUnknownSide) verdict = filtered_crossing(local.crossing[c], middle, start);
+    }
+    if (verdict == FilteredCrossing::crosses) ++crossed;
+    if (verdict == FilteredCrossing::undecided) local.undecided.push_back(id);
+  }
+  if (local.undecided.empty()) return crossed;
+  const std::uint32_t more = count_at(g, light, ray, hit, box, &local.undecided);
+  return more == kUndefinedCount ? kUndefinedCount : crossed + more;
 }
 
 // The filters of a tile's list (`ids`) for the point light L and hit points whose box middles
@@ -2291,44 +2319,7 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
                   local.side_of = h;
                   local.side_known.clear();
                 }
-                std::uint32_t crossed = 0;
-                local.undecided.clear();
-                for (std::size_t c = 0; c < list.ids.size(); ++c) {
-                  const std::uint32_t id = list.ids[c];
-                  if (id == h) continue;
-                  switch (filtered_crossing(local.crossing[c], local.middles[i])) {
-                    case FilteredCrossing::apart:
-                      break;
-                    case FilteredCrossing::crosses:
-                      ++crossed;
-                      break;
-                    case FilteredCrossing::undecided:
-                      // P's side known from h (side_beside), the edges' filters; else count_at.
-                      switch (const int start = side_beside(g, h, id, local.side_known); start) {
-                        case 0:  // in h's plane: count_at passes it by
-                          break;
-                        case kUnknownSide:
-                          local.undecided.push_back(id);
-                          break;
-                        default:
-                          switch (filtered_crossing(local.crossing[c], local.middles[i], start)) {
-                            case FilteredCrossing::apart:
-                              break;
-                            case FilteredCrossing::crosses:
-                              ++crossed;
-                              break;
-                            case FilteredCrossing::undecided:
-                              local.undecided.push_back(id);
-                              break;
-                          }
-                      }
-                      break;
-                  }
-                }
-                const std::uint32_t more = local.undecided.empty()
-                                               ? 0
-                                               : count_at(g, light, grid.ray(k), hits[k], point_boxes[k], &local.undecided);
-                counts[k] = more == kUndefinedCount ? kUndefinedCount : crossed + more;
+                counts[k] = filtered_count(g, light, grid.ray(k), hits[k], point_boxes[k], list.ids, local.middles[i], local);
                 continue;
               }
               if (h != cached_h) {

@@ -57,19 +57,27 @@ Point at(const shadowcert::PixelRay& ray, long double t) {
           ray.origin[2] + t * ray.direction[2]};
 }
 
+// A camera with eye and target in [-extent, extent]^3, a vertical field of view in
+// [5, 5 + fov_spread] degrees and 16 to 2015 pixels a side.
+Camera random_camera(std::mt19937_64& rng, double extent, double fov_spread) {
+  std::uniform_real_distribution<double> unit(0.0, 1.0), coordinate(-extent, extent);
+  Camera camera;
+  camera.eye = {coordinate(rng), coordinate(rng), coordinate(rng)};
+  camera.target = {coordinate(rng), coordinate(rng), coordinate(rng)};
+  camera.fov_y_degrees = 5.0 + fov_spread * unit(rng);
+  camera.width = 16 + static_cast<std::uint32_t>(2000 * unit(rng));
+  camera.height = 16 + static_cast<std::uint32_t>(2000 * unit(rng));
+  return camera;
+}
+
 TEST(EyeTile, RandomTilesRaysAndPyramids_LieInTheCone) {
   const unsigned seed = 20261206;
   std::printf("seed %u\n", seed);
   std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> unit(0.0, 1.0), coordinate(-50.0, 50.0);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
   std::size_t inside = 0;
   for (int trial = 0; trial < 1000; ++trial) {
-    Camera camera;
-    camera.eye = {coordinate(rng), coordinate(rng), coordinate(rng)};
-    camera.target = {coordinate(rng), coordinate(rng), coordinate(rng)};
-    camera.fov_y_degrees = 5.0 + 150.0 * unit(rng);
-    camera.width = 16 + static_cast<std::uint32_t>(2000 * unit(rng));
-    camera.height = 16 + static_cast<std::uint32_t>(2000 * unit(rng));
+    const Camera camera = random_camera(rng, 50.0, 150.0);
     const CameraFrame frame = shadowcert::camera_frame(camera);
     // A tile of up to 16 pixels on a side anywhere in the image; the box around the target.
     const double size = 1.0 + 15.0 * std::floor(unit(rng) * 2.0);
@@ -152,14 +160,9 @@ TEST(EyeTile, DirectionBound_HoldsEveryRayOfTheTile) {
   const unsigned seed = 20261207;
   std::printf("seed %u\n", seed);
   std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> unit(0.0, 1.0), coordinate(-1e3, 1e3);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
   for (int trial = 0; trial < 1000; ++trial) {
-    Camera camera;
-    camera.eye = {coordinate(rng), coordinate(rng), coordinate(rng)};
-    camera.target = {coordinate(rng), coordinate(rng), coordinate(rng)};
-    camera.fov_y_degrees = 5.0 + 170.0 * unit(rng);
-    camera.width = 16 + static_cast<std::uint32_t>(2000 * unit(rng));
-    camera.height = 16 + static_cast<std::uint32_t>(2000 * unit(rng));
+    const Camera camera = random_camera(rng, 1e3, 170.0);
     const CameraFrame frame = shadowcert::camera_frame(camera);
     const double size = 8.0;
     const double x0 = std::floor(unit(rng) * (camera.width - size)), y0 = std::floor(unit(rng) * (camera.height - size));
