@@ -24,6 +24,7 @@
 
 #include <cstdio>
 
+#include "bench/cpu_vector_isa.h"
 #include "bench/peak_memory.h"
 #include "io/soup_file.h"
 #include "raytrace/ray_traced_image.h"
@@ -172,9 +173,9 @@ void exact_vs_embree(benchmark::State& state, const BenchScene& scene, const cha
   state.counters["counts_s"] = stats.count_seconds;
   state.counters["ratio"] = exact / embree;
   std::printf("%s %ux%u, %u threads: exact %.3f s (tree %.3f, hits %.3f, footprints %.3f, counts %.3f), "
-              "Embree robust %.3f s, exact/Embree %.2f\n",
+              "Embree robust %.3f s, exact/Embree %.2f (cpu %s)\n",
               name, camera.width, camera.height, threads, exact, stats.tree_seconds, stats.hit_seconds,
-              stats.footprint_seconds, stats.count_seconds, embree, exact / embree);
+              stats.footprint_seconds, stats.count_seconds, embree, exact / embree, bench::cpu_vector_isa());
 }
 
 void BM_ExactVsEmbree_OgreOverFloor(benchmark::State& state) {
@@ -245,9 +246,9 @@ void BM_ExactVsEmbree_Scaling(benchmark::State& state) {
   state.counters["embree_peak_MiB"] = embree_peak;
   state.counters["exact_peak_MiB"] = exact_peak;
   std::printf("scaling: sphere grid %zu triangles %ux%u, %u threads: exact %.3f s, %.0f MiB; Embree robust %.3f s, "
-              "%.0f MiB; exact/Embree %.2f\n",
+              "%.0f MiB; exact/Embree %.2f (cpu %s)\n",
               scene.soup.triangles.size(), camera.width, camera.height, threads, exact, exact_peak, embree, embree_peak,
-              exact / embree);
+              exact / embree, bench::cpu_vector_isa());
 }
 BENCHMARK(BM_ExactVsEmbree_Scaling)
     ->Args({100'000, 1024, 768})
