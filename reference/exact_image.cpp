@@ -2065,7 +2065,7 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
       for (std::uint32_t i = 0; i < grid.width; ++i)
         // Outside the window no ray was traced (no hit: nothing below looks further).
         geometric[std::size_t{row} * grid.width + i] =
-            !in_window(i, row) ? kOutsideWindow
+            !in_window(i, row) ? static_cast<std::uint8_t>(kOutsideWindow)
             : footprints       ? footprint_ambiguity(hits, grid.footprint(i, row))
                                : static_cast<std::uint8_t>(hits[std::size_t{row} * grid.width + i].degenerate ? kZeroSign : 0);
   });
@@ -2256,9 +2256,9 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
               if (const std::size_t k = grid.corner(x, y); needed[k] != 0) rays.push_back(k);
           if (rays.empty()) continue;
           // One list per group of rays (the tile's, or its halves where too many triangles).
-          const auto count_group = [&](const auto& self, std::span<std::size_t> rays) -> void {
-            Vec3 lo = point_boxes[rays.front()][0], hi = point_boxes[rays.front()][1];
-            for (std::size_t k : rays)
+          const auto count_group = [&](const auto& self, std::span<std::size_t> group) -> void {
+            Vec3 lo = point_boxes[group.front()][0], hi = point_boxes[group.front()][1];
+            for (std::size_t k : group)
               for (int a = 0; a < 3; ++a) {
                 lo[a] = std::min(lo[a], point_boxes[k][0][a]);
                 hi[a] = std::max(hi[a], point_boxes[k][1][a]);
@@ -2270,32 +2270,32 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
                                                   lo[2] <= l[2] && l[2] <= hi[2]);
             const TileCandidates list =
                 light_tile_candidates(g, light, lo, hi, local, filtered ? kFilteredCountCandidates : kTileCandidates);
-            if (!list.listed && filtered && rays.size() > kLeastCountGroup) {
+            if (!list.listed && filtered && group.size() > kLeastCountGroup) {
               // Too many for one list (hit points far apart, as across a silhouette): the halves
               // of the group across its box's longest axis, each with its own list.
               int axis = 0;
               for (int a = 1; a < 3; ++a)
                 if (hi[a] - lo[a] > hi[axis] - lo[axis]) axis = a;
               const double cut = lo[axis] / 2 + hi[axis] / 2;
-              auto middle = std::partition(rays.begin(), rays.end(), [&](std::size_t k) {
+              auto middle = std::partition(group.begin(), group.end(), [&](std::size_t k) {
                 return point_boxes[k][0][axis] / 2 + point_boxes[k][1][axis] / 2 < cut;
               });
-              if (middle == rays.begin() || middle == rays.end()) middle = rays.begin() + static_cast<std::ptrdiff_t>(rays.size() / 2);
-              const auto split = static_cast<std::size_t>(middle - rays.begin());
-              self(self, rays.first(split));
-              self(self, rays.subspan(split));
+              if (middle == group.begin() || middle == group.end()) middle = group.begin() + static_cast<std::ptrdiff_t>(group.size() / 2);
+              const auto split = static_cast<std::size_t>(middle - group.begin());
+              self(self, group.first(split));
+              self(self, group.subspan(split));
               return;
             }
             if (!list.listed) {
-              for (std::size_t k : rays) counts[k] = count_at(g, light, grid.ray(k), hits[k], point_boxes[k]);
+              for (std::size_t k : group) counts[k] = count_at(g, light, grid.ray(k), hits[k], point_boxes[k]);
               return;
             }
             if (filtered) {
               // The box middles x and the radius R around them that count_at's boxes give.
               Vec3 mlo{}, mhi{}, R{};
-              if (local.middles.size() < rays.size()) local.middles.resize(rays.size());
-              for (std::size_t i = 0; i < rays.size(); ++i) {
-                const PointBox& box = point_boxes[rays[i]];
+              if (local.middles.size() < group.size()) local.middles.resize(group.size());
+              for (std::size_t i = 0; i < group.size(); ++i) {
+                const PointBox& box = point_boxes[group[i]];
                 Vec3& x = local.middles[i];
                 for (int a = 0; a < 3; ++a) {
                   x[a] = std::clamp(box[0][a] / 2 + box[1][a] / 2, box[0][a], box[1][a]);
@@ -2304,15 +2304,15 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
                   mhi[a] = i == 0 ? x[a] : std::max(mhi[a], x[a]);
                 }
               }
-              for (double& r : R) r *= 1.0 + 0x1p-50;
+              for (double& radius : R) radius *= 1.0 + 0x1p-50;
               segment_crossing_filters(g, light, list.ids, mlo, mhi, R, local.crossing);
             }
             // Per hit triangle h, the list without h and the triangles in h's plane: P lies on
             // that plane, so count_at passes them by (P on their plane); an empty rest counts 0.
             // With the filters only the candidates they leave are checked (per h, remembered).
             std::uint32_t cached_h = kNoHit;
-            for (std::size_t i = 0; i < rays.size(); ++i) {
-              const std::size_t k = rays[i];
+            for (std::size_t i = 0; i < group.size(); ++i) {
+              const std::size_t k = group[i];
               const std::uint32_t h = hits[k].triangle;
               if (filtered) {
                 if (h != local.side_of) {
@@ -2324,10 +2324,10 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
               }
               if (h != cached_h) {
                 cached_h = h;
-                const HomogeneousPoint a = finite_point(g.vertex(h, 0)), b = finite_point(g.vertex(h, 1)),
-                                       c = finite_point(g.vertex(h, 2));
+                const HomogeneousPoint ha = finite_point(g.vertex(h, 0)), hb = finite_point(g.vertex(h, 1)),
+                                       hc = finite_point(g.vertex(h, 2));
                 const auto on_plane = [&](std::uint32_t v) {
-                  return detail::orient_unchecked(a, b, c, finite_point(g.soup.vertices[v])) == Sign::zero;
+                  return detail::orient_unchecked(ha, hb, hc, finite_point(g.soup.vertices[v])) == Sign::zero;
                 };
                 rest.clear();
                 for (std::uint32_t id : list.ids)

@@ -151,7 +151,7 @@ ExactLightTally summed(const ExactImage& image) {
       const bool defined = l.counts[p] != kNoHit && l.counts[p] != kUndefinedCount;
       tally.defined[p] += defined ? 1 : 0;
       tally.lit[p] += l.lit[p] != 0 ? 1 : 0;
-      tally.terminator[p] |= (l.ambiguity[p] & kTerminator) != 0 ? 1 : 0;
+      if ((l.ambiguity[p] & kTerminator) != 0) tally.terminator[p] = 1;
     }
   return tally;
 }

@@ -130,17 +130,17 @@ TEST(HardScene, EveryScene_PartsOverTheFloorALightCloseToOneAndAllInView) {
       // The eye within 1e-4 (relative to its distance from the light) of the plane through the
       // light and an edge of a part, at a floor point of that plane, above the floor.
       ++edge_on;
-      const Vec3 l{s.lights[0].position[0], s.lights[0].position[1], s.lights[0].position[2]};
-      const Vec3 e = difference(s.camera.eye, l);
+      const Vec3 light_point{s.lights[0].position[0], s.lights[0].position[1], s.lights[0].position[2]};
+      const Vec3 e = difference(s.camera.eye, light_point);
       bool near_a_plane = false;
       for (std::size_t m = 1; m < s.meshes.size() && !near_a_plane; ++m)
         for (const Triangle& t : s.meshes[m].soup.triangles)
           for (int k = 0; k < 3 && !near_a_plane; ++k) {
-            const Vec3 n = cross(difference(s.meshes[m].soup.vertices[t[k]], l),
-                                 difference(s.meshes[m].soup.vertices[t[(k + 1) % 3]], l));
+            const Vec3 n = cross(difference(s.meshes[m].soup.vertices[t[k]], light_point),
+                                 difference(s.meshes[m].soup.vertices[t[(k + 1) % 3]], light_point));
             const double nn = std::sqrt(dot(n, n));
             near_a_plane = nn > 0.0 && std::fabs(dot(e, n)) / nn <= 1.001e-4 * std::sqrt(dot(e, e)) &&
-                           std::fabs(dot(difference(s.camera.target, l), n)) / nn <= 1e-9 * std::sqrt(dot(e, e));
+                           std::fabs(dot(difference(s.camera.target, light_point), n)) / nn <= 1e-9 * std::sqrt(dot(e, e));
           }
       EXPECT_TRUE(near_a_plane);
       EXPECT_GT(s.camera.eye[1], 0.0);

@@ -435,7 +435,7 @@ INSTANTIATE_TEST_SUITE_P(
                       RealMeshCounts{"edge_cases/trimesh_featuretype.STL", 3476, 0},
                       RealMeshCounts{"edge_cases/trimesh_shared.STL", 24, 0},
                       RealMeshCounts{"edge_cases/teapot.obj", 6320, 0}),
-    [](const ::testing::TestParamInfo<RealMeshCounts>& info) { return test::mesh_test_name(info.param.file); });
+    [](const ::testing::TestParamInfo<RealMeshCounts>& mesh) { return test::mesh_test_name(mesh.param.file); });
 
 // The bundled meshes are byte-identical to their sources: the sizes data/meshes/README.md's
 // checksums were taken of (a cheap guard against an editor's or git's line-ending rewrite).

@@ -42,7 +42,9 @@ TEST(SilhouetteVolumes, BundledScenes_EveryMethodEveryLightClosed) {
 
 TEST(SilhouetteVolumes, NonManifoldMesh_IsCastByTheRobustChainAndSaysWhy) {
   Scene scene;
-  scene.meshes = {{"fan", nonmanifold_fan(4)}};
+  SceneMesh& fan = scene.meshes.emplace_back();
+  fan.name = "fan";
+  fan.soup = nonmanifold_fan(4);
   scene.lights = {Light{{0.3, 5.0, 0.2, 1.0}}};
   const SilhouetteVolumes v = silhouette_volumes(scene.meshes, scene.lights, gpu::ShadowMethod::smooth);
   ASSERT_EQ(v.casters.size(), 1u);

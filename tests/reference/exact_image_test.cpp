@@ -317,7 +317,9 @@ TEST(ExactImage, TriangleBetweenTheRaysOfAnEmptyPixel_MakesItAmbiguous) {
   EXPECT_EQ(light.ambiguity[pixel(image, 2, 0)], kFootprintTriangles);
   for (std::uint32_t r = 0; r < image.height; ++r)
     for (std::uint32_t i = 0; i < image.width; ++i)
-      if (i != 2 || r != 0) EXPECT_EQ(light.ambiguity[pixel(image, i, r)], 0) << i << ", " << r;
+      if (i != 2 || r != 0) {
+        EXPECT_EQ(light.ambiguity[pixel(image, i, r)], 0) << i << ", " << r;
+      }
 }
 
 // With a depth band (ExactImageOptions::depth_band), surfaces and volume faces that pass within
@@ -592,7 +594,7 @@ TEST(ExactImage, WithoutLightImages_TallyIsTheLightImagesSummed) {
     for (const ExactLightImage& l : full.lights) {
       defined += l.counts[p] != kNoHit && l.counts[p] != kUndefinedCount ? 1 : 0;
       lit += l.lit[p] != 0 ? 1 : 0;
-      terminator |= (l.ambiguity[p] & kTerminator) != 0 ? 1 : 0;
+      if ((l.ambiguity[p] & kTerminator) != 0) terminator = 1;
     }
     EXPECT_EQ(tallied.tally.defined[p], defined) << "pixel " << p;
     EXPECT_EQ(tallied.tally.lit[p], lit) << "pixel " << p;

@@ -18,7 +18,11 @@ namespace {
 
 Scene scene_of(std::vector<Soup> soups) {
   Scene scene;
-  for (std::size_t i = 0; i < soups.size(); ++i) scene.meshes.push_back({"mesh " + std::to_string(i), soups[i]});
+  for (std::size_t i = 0; i < soups.size(); ++i) {
+    SceneMesh& mesh = scene.meshes.emplace_back();
+    mesh.name = "mesh " + std::to_string(i);
+    mesh.soup = soups[i];
+  }
   return scene;
 }
 
