@@ -8,6 +8,8 @@
 
 #include <cmath>
 #include <cstdio>
+#include <iostream>
+#include <map>
 #include <random>
 #include <stdexcept>
 #include <vector>
@@ -139,6 +141,81 @@ TEST(CertifyClosure, RandomSoups_ConsistentMethodsAlwaysClosed) {
                                        : point_light(coordinate(rng), coordinate(rng), coordinate(rng));
     expect_closed_for_consistent_methods(soup, light, "round " + std::to_string(round));
   }
+}
+
+// The certificate by definition: every directed use counted in a map, the edges whose uses
+// do not balance, sorted by (from, to).
+std::vector<UnbalancedEdge> naive_unbalanced(const ShadowVolumeChain& chain) {
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::int64_t> excess;
+  const auto use = [&](std::uint32_t a, std::uint32_t b) {
+    if (a == b) return;
+    excess[{std::min(a, b), std::max(a, b)}] += a < b ? 1 : -1;
+  };
+  for (const auto& t : chain.triangles)
+    for (int k = 0; k < 3; ++k) use(t[k], t[(k + 1) % 3]);
+  for (const auto& q : chain.quads)
+    for (int k = 0; k < 4; ++k) use(q[k], q[(k + 1) % 4]);
+  std::vector<UnbalancedEdge> out;
+  for (const auto& [edge, e] : excess)
+    if (e != 0) out.push_back({edge.first, edge.second, e});
+  return out;
+}
+
+// Property: random chains (faces in random order, on few vertices so that edges repeat in both
+// directions, near each other in face order and far apart, within one chunk of faces and across
+// chunks) report exactly the naive count's unbalanced edges. The closure cancels a use against
+// its reverse as it meets them (exact/closure_certificate.cpp): this checks that nothing is lost
+// or counted twice on the way.
+TEST(CertifyClosure, RandomChains_ReportTheNaiveCount) {
+  const std::uint64_t seed = 0x5eed0c10;
+  std::cout << "seed " << seed << "\n";
+  std::mt19937_64 rng(seed);
+  for (const std::size_t faces : {std::size_t{50}, std::size_t{3000}, std::size_t{150000}}) {
+    for (int round = 0; round < 4; ++round) {
+      const std::uint32_t n = round % 2 == 0 ? 12 : 900;
+      std::uniform_int_distribution<std::uint32_t> id(0, 2 * n - 1);
+      ShadowVolumeChain chain = chain_of(n, {});
+      for (std::size_t f = 0; f < faces; ++f) {
+        if (f % 5 == 4) {
+          chain.quads.push_back({id(rng), id(rng), id(rng), id(rng)});
+          continue;
+        }
+        std::array<std::uint32_t, 3> t{id(rng), id(rng), id(rng)};
+        chain.triangles.push_back(t);
+        // Often its reverse soon after (a closed surface's neighbour), sometimes twice.
+        if (rng() % 3 == 0) chain.triangles.push_back({t[0], t[2], t[1]});
+        if (rng() % 17 == 0) chain.triangles.push_back({t[1], t[0], t[2]});
+      }
+      const ClosureCertificate c = certify_closure(chain);
+      const std::vector<UnbalancedEdge> expected = naive_unbalanced(chain);
+      ASSERT_EQ(c.unbalanced.size(), expected.size()) << faces << " faces, round " << round;
+      for (std::size_t i = 0; i < expected.size(); ++i) {
+        EXPECT_EQ(c.unbalanced[i].from, expected[i].from) << i;
+        EXPECT_EQ(c.unbalanced[i].to, expected[i].to) << i;
+        EXPECT_EQ(c.unbalanced[i].excess, expected[i].excess) << i;
+      }
+      EXPECT_EQ(c.closed, expected.empty());
+    }
+  }
+}
+
+// A closed surface whose faces come in an order that keeps each edge's two uses far apart (every
+// face, then every reversed face: no pair within the cancelling table's reach early on) is still
+// closed, and drops one face to be open exactly there.
+TEST(CertifyClosure, ReversedCopyFarApart_ClosedAndOpenWhereAFaceIsMissing) {
+  std::mt19937_64 rng(7);
+  std::uniform_int_distribution<std::uint32_t> id(0, 4999);
+  ShadowVolumeChain chain = chain_of(5000, {});
+  for (int f = 0; f < 100000; ++f) chain.triangles.push_back({id(rng), id(rng), id(rng)});
+  for (int f = 0; f < 100000; ++f) {
+    const auto t = chain.triangles[static_cast<std::size_t>(f)];
+    chain.triangles.push_back({t[0], t[2], t[1]});
+  }
+  EXPECT_TRUE(certify_closure(chain).closed);
+  chain.triangles.pop_back();
+  const ClosureCertificate open = certify_closure(chain);
+  EXPECT_EQ(open.unbalanced.size(), naive_unbalanced(chain).size());
+  EXPECT_FALSE(open.closed);
 }
 
 // ---- kim in float versus refedge in float ---------------------------------------------------
