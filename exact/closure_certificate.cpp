@@ -60,6 +60,9 @@ std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) {
   return std::uint64_t{std::min(a, b)} << 33 | std::uint64_t{std::max(a, b)} << 1 | (a > b ? 1u : 0u);
 }
 
+// The block of a key's lower id.
+std::size_t block_of(std::uint64_t key) { return static_cast<std::size_t>(key >> (33 + kBlockBits)); }
+
 [[noreturn, gnu::noinline, gnu::cold]] void throw_out_of_range(std::uint64_t id, std::uint64_t ids) {
   throw std::invalid_argument("certify_closure: vertex id " + std::to_string(id) + " but the chain has " +
                               std::to_string(ids) + " ids");
@@ -77,8 +80,10 @@ constexpr std::size_t kChunkFaces = std::size_t{1} << 16;
 // cap's triangles, then its sides), where an edge's two uses by neighbouring faces are close
 // together: a small direct-mapped table of the uses not yet matched finds most pairs as they
 // come, and only the rest are written, laid out and sorted (on the 1M-triangle sphere grid's
-// chain, 2.0M faces: 482K of its 6.1M uses; the closure 30-35 ms -> 14 ms, docs/certificates.md). A use whose slot is taken evicts the one there (which is kept), so every use is either
-// cancelled with its reverse or kept: nothing is lost.
+// chain, 2.0M faces: 496K of its 6.1M uses; the closure 30-35 ms -> 14 ms, docs/certificates.md).
+// A use whose slot is taken evicts the one there (which is kept), so every use is either
+// cancelled with its reverse or kept: nothing is lost. The slot is a hash of the undirected
+// edge (key >> 1), which a use and its reverse share.
 constexpr unsigned kCancelBits = 12;
 constexpr std::uint64_t kNoKey = 0;  // no key is 0: that would be the self-loop 0 -> 0
 
@@ -100,8 +105,7 @@ ChunkKeys chunk_keys(const ShadowVolumeChain& chain, std::size_t first, std::siz
     }
     if (a == b) return;
     const std::uint64_t key = edge_key(a, b);
-    const std::uint32_t lo = std::min(a, b), hi = std::max(a, b);
-    std::uint64_t& slot = pending[(lo * 0x9e3779b1u + hi * 0x85ebca77u) >> (32 - kCancelBits)];
+    std::uint64_t& slot = pending[((key >> 1) * 0x9e3779b97f4a7c15u) >> (64 - kCancelBits)];
     if (slot == (key ^ 1u)) {
       slot = kNoKey;  // the reverse use: the pair cancels
       return;
@@ -126,7 +130,7 @@ BlockLayout block_layout(const std::vector<ChunkKeys>& chunks, std::uint64_t ids
   layout.cursor.assign(chunks.size() * layout.blocks, 0);
   tbb::parallel_for(std::size_t{0}, chunks.size(), [&](std::size_t c) {
     std::size_t* count = layout.cursor.data() + c * layout.blocks;
-    for (const std::uint64_t key : chunks[c].keys) ++count[key >> (33 + kBlockBits)];
+    for (const std::uint64_t key : chunks[c].keys) ++count[block_of(key)];
   });
   layout.start.assign(layout.blocks + 1, 0);
   std::size_t offset = 0;
@@ -143,7 +147,7 @@ HugePageBuffer<std::uint64_t> keys_by_block(const std::vector<ChunkKeys>& chunks
   HugePageBuffer<std::uint64_t> keys(layout.start.back());
   tbb::parallel_for(std::size_t{0}, chunks.size(), [&](std::size_t c) {
     std::size_t* cursor = layout.cursor.data() + c * layout.blocks;
-    for (const std::uint64_t key : chunks[c].keys) keys[cursor[key >> (33 + kBlockBits)]++] = key;
+    for (const std::uint64_t key : chunks[c].keys) keys[cursor[block_of(key)]++] = key;
   });
   return keys;
 }
