@@ -23,11 +23,14 @@ namespace {
 // unsigned integer that orders exactly as the doubles do (order_key). The input index makes
 // every vertex distinct, so the sorted order is unique and any correct sort produces it.
 //
-// The sort is a stable radix sort of (key of x, input index) records, which leaves each run of
-// equal x in input order; such runs (few, and short, on real meshes) are then sorted by
-// (y, z, input index). The radix passes run in parallel over fixed chunks of records whose
+// The sort has two steps. A radix sort orders (key of x, input index) records by the leading
+// bits of the x key: the kRadixKeyBits highest of those that differ between two keys anywhere
+// (radix_low_bit). Records equal on those bits (the same x, or an x within about 2^-20 of it
+// relatively: few, and short, on real meshes) form runs, which a second step sorts by the full
+// (x, y, z, input index). The radix passes run in parallel over fixed chunks of records whose
 // histograms are laid out chunk after chunk within each digit, so every pass writes exactly
-// what a sequential pass writes, on any number of threads.
+// what a sequential pass writes, on any number of threads; the runs are sorted in full, so
+// their order depends on nothing else.
 
 // Monotone map of finite doubles to unsigned integers: x < y iff key(x) < key(y), and
 // key(-0) == key(+0) (both map to +0's pattern), exactly as double comparison treats them.
@@ -47,16 +50,27 @@ struct XRecord {
 constexpr std::size_t kGrain = std::size_t{1} << 16;
 constexpr unsigned kDigitBits = 11;
 constexpr std::size_t kDigits = std::size_t{1} << kDigitBits;
+// Three passes of kDigitBits. Sorting all 64 bits took six on the 1M sphere grid's 500K
+// vertices (9 ms of issue 24's 100 ms pipeline), though below these bits hardly any keys tie.
+constexpr unsigned kRadixKeyBits = 3 * kDigitBits;
 
 std::size_t chunk_count(std::size_t n) { return (n + kGrain - 1) / kGrain; }
 
-// Stable LSD radix sort of `records` by x_key; `scratch` has the same size. Passes whose digit
-// is the same in every key move nothing and are skipped.
-void radix_sort_by_x(HugePageBuffer<XRecord>& records, HugePageBuffer<XRecord>& scratch) {
+// The lowest bit of the x keys the radix passes sort by: bits [low, 64) hold the kRadixKeyBits
+// highest bits in which some two keys differ (every key lies between the least and the
+// greatest, so the bits above bit_width(least ^ greatest) are the same in all).
+unsigned radix_low_bit(std::uint64_t least, std::uint64_t greatest) {
+  const auto differing = static_cast<unsigned>(std::bit_width(least ^ greatest));
+  return differing > kRadixKeyBits ? differing - kRadixKeyBits : 0;
+}
+
+// Stable LSD radix sort of `records` by bits [low, 64) of x_key; `scratch` has the same size.
+// Passes whose digit is the same in every key move nothing and are skipped.
+void radix_sort_by_x(HugePageBuffer<XRecord>& records, HugePageBuffer<XRecord>& scratch, unsigned low) {
   const std::size_t n = records.size();
   const std::size_t chunks = chunk_count(n);
   std::vector<std::size_t> offset(chunks * kDigits);
-  for (unsigned shift = 0; shift < 64; shift += kDigitBits) {
+  for (unsigned shift = low; shift < 64; shift += kDigitBits) {
     std::fill(offset.begin(), offset.end(), 0);
     tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t c) {
       std::size_t* count = offset.data() + c * kDigits;
@@ -82,24 +96,36 @@ void radix_sort_by_x(HugePageBuffer<XRecord>& records, HugePageBuffer<XRecord>& 
   }
 }
 
-// Sorts each run of equal x by (y, z, input index) and marks where each position group starts
-// (new_group[i] != 0 iff record i's position differs from record i - 1's). Runs are
-// independent: each chunk of records takes the runs that begin in it, in parallel. A run's
-// (y, z) keys are gathered once into a local array and sorted there by integers.
-struct YzRecord {
-  std::uint64_t y_key, z_key;
+// Sorts each run of records equal on bits [low, 64) of x by (x, y, z, input index) and marks
+// where each position group starts (new_group[i] != 0 iff record i's position differs from
+// record i - 1's). Runs are independent: each chunk of records takes the runs that begin in it,
+// in parallel. A run's keys are gathered once into a local array and sorted there by integers.
+struct RunRecord {
+  std::uint64_t x_key, y_key, z_key;
   std::uint32_t input_index;
-  auto operator<=>(const YzRecord&) const = default;
 };
 
-std::vector<char> sort_runs_and_mark_groups(const std::vector<Vec3>& vertices, HugePageBuffer<XRecord>& records) {
+bool same_position(const RunRecord& a, const RunRecord& b) {
+  return a.x_key == b.x_key && a.y_key == b.y_key && a.z_key == b.z_key;
+}
+
+std::vector<char> sort_runs_and_mark_groups(const std::vector<Vec3>& vertices, HugePageBuffer<XRecord>& records,
+                                            unsigned low) {
   const std::size_t n = records.size();
   std::vector<char> new_group;
   resize_huge(new_group, n);
   std::fill(new_group.begin(), new_group.end(), char{1});
-  const auto run_begins = [&](std::size_t i) { return i == 0 || records[i].x_key != records[i - 1].x_key; };
+  const auto run_begins = [&](std::size_t i) {
+    return i == 0 || (records[i].x_key >> low) != (records[i - 1].x_key >> low);
+  };
+  const auto before = [](const RunRecord& a, const RunRecord& b) {
+    if (a.x_key != b.x_key) return a.x_key < b.x_key;
+    if (a.y_key != b.y_key) return a.y_key < b.y_key;
+    if (a.z_key != b.z_key) return a.z_key < b.z_key;
+    return a.input_index < b.input_index;
+  };
   tbb::parallel_for(std::size_t{0}, chunk_count(n), [&](std::size_t c) {
-    std::vector<YzRecord> run;
+    std::vector<RunRecord> run;
     std::size_t i = c * kGrain;
     const std::size_t last = std::min(n, (c + 1) * kGrain);
     while (i < last && !run_begins(i)) ++i;  // that run belongs to an earlier chunk
@@ -110,13 +136,12 @@ std::vector<char> sort_runs_and_mark_groups(const std::vector<Vec3>& vertices, H
         run.clear();
         for (std::size_t j = i; j < end; ++j) {
           const Vec3& p = vertices[records[j].input_index];
-          run.push_back({order_key(p[1]), order_key(p[2]), records[j].input_index});
+          run.push_back({records[j].x_key, order_key(p[1]), order_key(p[2]), records[j].input_index});
         }
-        std::sort(run.begin(), run.end());
+        std::sort(run.begin(), run.end(), before);
         for (std::size_t j = i; j < end; ++j) {
-          const YzRecord& r = run[j - i];
-          records[j].input_index = r.input_index;
-          if (j > i) new_group[j] = r.y_key != run[j - i - 1].y_key || r.z_key != run[j - i - 1].z_key;
+          records[j].input_index = run[j - i].input_index;
+          if (j > i) new_group[j] = !same_position(run[j - i], run[j - i - 1]);
         }
       }
       i = end;
@@ -153,13 +178,25 @@ CanonicalSoup canonical_soup(const Soup& soup) {
                                 std::to_string(v) + " but the soup has " + std::to_string(n) + " vertices");
   }
 
+  // The records, and the least and greatest x key.
   HugePageBuffer<XRecord> records(n), scratch(n);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kGrain), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t i = r.begin(); i < r.end(); ++i)
-      records[i] = {order_key(soup.vertices[i][0]), static_cast<std::uint32_t>(i)};
-  });
-  radix_sort_by_x(records, scratch);
-  const std::vector<char> new_group = sort_runs_and_mark_groups(soup.vertices, records);
+  using KeyRange = std::pair<std::uint64_t, std::uint64_t>;
+  const KeyRange keys = tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, n, kGrain), KeyRange{~std::uint64_t{0}, 0},
+      [&](const tbb::blocked_range<std::size_t>& r, KeyRange range) {
+        for (std::size_t i = r.begin(); i < r.end(); ++i) {
+          const std::uint64_t key = order_key(soup.vertices[i][0]);
+          records[i] = {key, static_cast<std::uint32_t>(i)};
+          range = {std::min(range.first, key), std::max(range.second, key)};
+        }
+        return range;
+      },
+      [](const KeyRange& a, const KeyRange& b) {
+        return KeyRange{std::min(a.first, b.first), std::max(a.second, b.second)};
+      });
+  const unsigned low = n == 0 ? 0 : radix_low_bit(keys.first, keys.second);
+  radix_sort_by_x(records, scratch, low);
+  const std::vector<char> new_group = sort_runs_and_mark_groups(soup.vertices, records, low);
 
   // Group g's first record has the smallest input index of its position, whose coordinates (and
   // normal) are kept verbatim (a -0 stays -0), as weld_soup keeps them. In parallel: each chunk

@@ -153,13 +153,18 @@ void sort_by_upper(EdgeUse* first, EdgeUse* last) {
 
 bool same_edge(const EdgeUse& a, const EdgeUse& b) { return a.lower == b.lower && a.upper == b.upper; }
 
-// Sorts the uses of one coarse bucket, whose lower vertices lie in [base, base + 2^shift), in
-// place: a local counting sort by lower vertex, then by upper. Returns its number of edges.
+// Sorts the uses of one coarse bucket, whose lower vertices lie in [base, base + 2^shift), and
+// writes its rows' opposite entries straight into the table: a local counting sort by lower
+// vertex, then by upper. The bucket's edges are left compacted at the front of its own range of
+// uses (lower, upper, and the index of the edge's first use in `opposite`), for build_edge_table
+// to copy once their global numbers are known: the uses are not written back, so the last pass
+// reads the edges (half as many, on a manifold mesh) rather than every use again.
+// Returns the bucket's number of edges.
 class BucketSorter {
  public:
   explicit BucketSorter(unsigned shift) : count_((std::size_t{1} << shift) + 1) {}
 
-  std::uint32_t sort(EdgeUse* first, EdgeUse* last, std::uint32_t base) {
+  std::uint32_t sort(EdgeUse* first, EdgeUse* last, std::uint32_t base, std::uint32_t first_use, EdgeTable& table) {
     std::fill(count_.begin(), count_.end(), 0u);
     for (const EdgeUse* e = first; e < last; ++e) ++count_[e->lower - base + 1];
     for (std::size_t i = 1; i < count_.size(); ++i) count_[i] += count_[i - 1];
@@ -172,9 +177,15 @@ class BucketSorter {
       begin = count_[i];
     }
     std::uint32_t edges = 0;
+    std::uint32_t* opposite_vertex = table.opposite_vertex.data() + first_use;
+    std::uint32_t* opposite_triangle = table.opposite_triangle.data() + first_use;
     for (std::size_t j = 0; j < sorted_.size(); ++j) {
-      edges += j == 0 || !same_edge(sorted_[j], sorted_[j - 1]);
-      first[j] = sorted_[j];
+      const EdgeUse& e = sorted_[j];
+      // Edge k's entry overwrites use k <= j, already copied into sorted_.
+      if (j == 0 || !same_edge(e, sorted_[j - 1]))
+        first[edges++] = {e.lower, e.upper, first_use + static_cast<std::uint32_t>(j), 0};
+      opposite_vertex[j] = e.opposite;
+      opposite_triangle[j] = e.triangle;
     }
     return edges;
   }
@@ -191,7 +202,12 @@ EdgeTable build_edge_table(const Soup& canonical) {
   HugePageBuffer<EdgeUse> uses = scatter_coarse(canonical, buckets);
   const std::size_t bucket_count = buckets.count;
 
-  // Each bucket sorted in place; edge_start[b] its number of edges, then (prefix) its first.
+  EdgeTable table;
+  // Each resize zero-fills (and first touches) its storage on one thread: side by side.
+  tbb::parallel_invoke([&] { resize_huge(table.opposite_vertex, uses.size()); },
+                       [&] { resize_huge(table.opposite_triangle, uses.size()); });
+  // Each bucket sorted, its opposite entries written; edge_start[b + 1] its number of edges,
+  // then (prefix) edge_start[b] its first.
   std::vector<std::uint32_t> edge_start(bucket_count + 1, 0);
   tbb::enumerable_thread_specific<BucketSorter> sorters(buckets.shift);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, bucket_count, 1), [&](const tbb::blocked_range<std::size_t>& r) {
@@ -199,28 +215,18 @@ EdgeTable build_edge_table(const Soup& canonical) {
     for (std::size_t b = r.begin(); b < r.end(); ++b)
       if (buckets.start[b] < buckets.start[b + 1])
         edge_start[b + 1] = sorter.sort(uses.data() + buckets.start[b], uses.data() + buckets.start[b + 1],
-                                        static_cast<std::uint32_t>(b << buckets.shift));
+                                        static_cast<std::uint32_t>(b << buckets.shift), buckets.start[b], table);
   });
   for (std::size_t b = 1; b <= bucket_count; ++b) edge_start[b] += edge_start[b - 1];
 
-  EdgeTable table;
-  // Each resize zero-fills (and first touches) its storage on one thread: side by side.
-  tbb::parallel_invoke([&] { resize_huge(table.opposite_vertex, uses.size()); },
-                       [&] { resize_huge(table.opposite_triangle, uses.size()); },
-                       [&] { resize_huge(table.edges, edge_start.back()); },
+  tbb::parallel_invoke([&] { resize_huge(table.edges, edge_start.back()); },
                        [&] { resize_huge(table.first_opposite, edge_start.back() + 1); });
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, bucket_count, 1), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t b = r.begin(); b < r.end(); ++b) {
-      std::uint32_t edge = edge_start[b];
-      for (std::uint32_t j = buckets.start[b]; j < buckets.start[b + 1]; ++j) {
-        const EdgeUse& e = uses[j];
-        if (j == buckets.start[b] || !same_edge(e, uses[j - 1])) {
-          table.edges[edge] = {e.lower, e.upper};
-          table.first_opposite[edge] = j;
-          ++edge;
-        }
-        table.opposite_vertex[j] = e.opposite;
-        table.opposite_triangle[j] = e.triangle;
+      const EdgeUse* compacted = uses.data() + buckets.start[b];
+      for (std::uint32_t edge = edge_start[b]; edge < edge_start[b + 1]; ++edge, ++compacted) {
+        table.edges[edge] = {compacted->lower, compacted->upper};
+        table.first_opposite[edge] = compacted->opposite;  // the edge's first use (BucketSorter::sort)
       }
     }
   });
