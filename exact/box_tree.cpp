@@ -10,6 +10,7 @@
 #include "exact/box_tree.h"
 
 #include "core/huge_page_advice.h"
+#include "core/outward_float.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <tbb/parallel_invoke.h>
@@ -98,20 +99,6 @@ struct Node4 {
   std::array<Child, 4> child;
   std::uint32_t size = 0;  // children in lanes [0, size)
 };
-
-// Outward roundings of a double to float, down(x) <= x <= up(x), in arithmetic (no libm call,
-// no comparison): the nearest float d moved out by |d| 2^-22 + 2^-149, more than its rounding
-// (2^-24 |x| for a normal float, 2^-150 for a subnormal) and the step's own. Were the round trip
-// through float folded away (GCC has been seen to, core/float_rounding.h), the move in double
-// and its final rounding to float (2^-24) would still stay outside x.
-inline float round_down(double x) {
-  const float d = static_cast<float>(x);
-  return d - (std::fabs(d) * 0x1p-22f + 0x1p-149f);
-}
-inline float round_up(double x) {
-  const float d = static_cast<float>(x);
-  return d + (std::fabs(d) * 0x1p-22f + 0x1p-149f);
-}
 
 // Where the float test applies: box coordinates, the query's origin and slack, and its inverse
 // directions within 2^40 in magnitude (and the inverses at least 2^-100, so that none rounds to
@@ -525,8 +512,8 @@ void BoxTree::Impl::fill4(std::uint32_t index, std::uint32_t at, const std::vect
     const std::size_t c = std::min(i, e.size - 1);  // unused lanes repeat a child (masked)
     node.child[i] = e.child[c].count != 0 ? e.child[c] : Child{first[c], 0};
     for (int k = 0; k < 3; ++k) {
-      node.lo[k][i] = round_down(e.box[c].lo[k]);
-      node.hi[k][i] = round_up(e.box[c].hi[k]);
+      node.lo[k][i] = round_down_to_float(e.box[c].lo[k]);
+      node.hi[k][i] = round_up_to_float(e.box[c].hi[k]);
     }
   }
   const auto fill_child = [&](std::size_t i) {

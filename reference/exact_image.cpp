@@ -43,6 +43,7 @@
 #include "exact/light_orientation_filter.h"
 #include "exact/orient_unchecked.h"
 #include "reference/detail/eye_tile.h"
+#include "reference/detail/hit_point_boxes.h"
 #include "reference/detail/plane_through_filter.h"
 #include "reference/detail/pixel_footprint.h"
 #include "reference/detail/ray_hit.h"
@@ -68,9 +69,10 @@ struct RayHit {
 
 // A box enclosing a ray's hit point ({lo, hi}: detail::semi_static_hit_box's, else HitPoint's
 // own; every test on P is exact whatever the box, which only filters), computed once per ray for
-// every countable hit: the centre's count, and each corner's count and its four pixels' eye and
-// light pyramids read it (was recomputed for each, up to nine times per ray).
-using PointBox = std::array<Vec3, 2>;
+// every countable hit and kept in detail::HitPointBoxes: the centre's count, and each corner's
+// count and its four pixels' eye and light pyramids read it (was recomputed for each, up to nine
+// times per ray).
+using PointBox = detail::HitPointBoxes::Box;
 
 // A light's silhouette edges: the edges of nonzero multiplicity (docs/definitions.md#counts), whose side
 // faces are the shadow volume chain's only finite faces besides the casters themselves.
@@ -1370,7 +1372,7 @@ struct CornerHits {
 };
 
 CornerHits corner_hits(const ImageGeometry& g, const RayGrid& grid, const std::vector<RayHit>& hits,
-                       const PointBox* point_boxes, std::uint32_t i, std::uint32_t r) {
+                       const detail::HitPointBoxes& point_boxes, std::uint32_t i, std::uint32_t r) {
   const std::array<std::size_t, 4> corners{grid.corner(i, r), grid.corner(i + 1, r), grid.corner(i + 1, r + 1),
                                            grid.corner(i, r + 1)};
   const auto at = [&](std::size_t k) {
@@ -1974,11 +1976,18 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
   // 100 MB, whose 4 KiB first-touch faults cost this virtual machine about 0.1 s of CPU.
   std::vector<RayHit> hits;
   resize_huge(hits, grid.size());
+  Vec3 scene_lo{}, scene_hi{};  // the box of every vertex: where the tiles' cones end
+  if (!soup.vertices.empty()) scene_lo = scene_hi = soup.vertices.front();
+  for (const Vec3& v : soup.vertices)
+    for (int k = 0; k < 3; ++k) {
+      scene_lo[k] = std::min(scene_lo[k], v[k]);
+      scene_hi[k] = std::max(scene_hi[k], v[k]);
+    }
   // Every countable hit's point box, once, as its ray is traced (the centres' for their counts;
   // the corners' for theirs and for the pyramids of the four pixels around each).
-  // Not value-initialised (zeroing 48 bytes per ray costs more than the boxes): only the
-  // countable hits' entries are written, and only those are read.
-  HugePageBuffer<PointBox> point_boxes(grid.size());
+  // Not initialised (zeroing each ray's box costs more than the boxes): only the countable
+  // hits' entries are written, and only those are read.
+  detail::HitPointBoxes point_boxes(grid.size(), scene_lo, scene_hi);
   const auto trace = [&](std::size_t k, const std::vector<std::uint32_t>* list,
                          const std::vector<CandidateRaySigns>& signs, TileScratch& local) {
     const PixelRay ray = grid.ray(k);
@@ -2000,11 +2009,11 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
     if (!countable(hit)) return;
     const std::uint32_t h = hit.triangle;
     if (const auto box = detail::semi_static_hit_box(ray, {g.vertex(h, 0), g.vertex(h, 1), g.vertex(h, 2)})) {
-      point_boxes[k] = *box;
+      point_boxes.set(k, *box);
       return;
     }
     const detail::HitPoint p(detail::RayParameter(ray, g.vertex(h, 0), g.vertex(h, 1), g.vertex(h, 2), hit.direction_side));
-    point_boxes[k] = {p.lo(), p.hi()};
+    point_boxes.set(k, {p.lo(), p.hi()});
   };
   // Tile by tile: the tile's list (TileCandidates), then its centre rays and (for the
   // footprints) the corner rays it owns.
@@ -2012,13 +2021,6 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
   std::vector<TileCandidates> tile_lists(tiles.count());
   tbb::enumerable_thread_specific<TileScratch> tile_scratch;
   {
-    Vec3 scene_lo{}, scene_hi{};  // the box of every vertex: where the tiles' cones end
-    if (!soup.vertices.empty()) scene_lo = scene_hi = soup.vertices.front();
-    for (const Vec3& v : soup.vertices)
-      for (int k = 0; k < 3; ++k) {
-        scene_lo[k] = std::min(scene_lo[k], v[k]);
-        scene_hi[k] = std::max(scene_hi[k], v[k]);
-      }
     const std::size_t centre_rays = std::size_t{window.width} * window.height;
     const std::size_t corner_rays = footprints ? std::size_t{window.width + 1} * (window.height + 1) : 0;
     Progress progress(options, "hits", centre_rays + corner_rays);
@@ -2114,7 +2116,7 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
           }
           const bool sees_more = [&] {
             if (list != nullptr && cached_alone) return false;
-            const CornerHits corners = corner_hits(g, grid, hits, point_boxes.data(), i, row);
+            const CornerHits corners = corner_hits(g, grid, hits, point_boxes, i, row);
             const EyePyramidFilter filter(grid.frame.eye, corners, {g.vertex(h, 0), g.vertex(h, 1), g.vertex(h, 2)},
                                           hits[pixel].eye_side);
             return footprint_sees_more(g, grid.frame.eye, corners, h, &filter, list);
@@ -2257,12 +2259,15 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
           if (rays.empty()) continue;
           // One list per group of rays (the tile's, or its halves where too many triangles).
           const auto count_group = [&](const auto& self, std::span<std::size_t> group) -> void {
-            Vec3 lo = point_boxes[group.front()][0], hi = point_boxes[group.front()][1];
-            for (std::size_t k : group)
+            const PointBox front = point_boxes[group.front()];
+            Vec3 lo = front[0], hi = front[1];
+            for (std::size_t k : group) {
+              const PointBox box = point_boxes[k];
               for (int a = 0; a < 3; ++a) {
-                lo[a] = std::min(lo[a], point_boxes[k][0][a]);
-                hi[a] = std::max(hi[a], point_boxes[k][1][a]);
+                lo[a] = std::min(lo[a], box[0][a]);
+                hi[a] = std::max(hi[a], box[1][a]);
               }
+            }
             // A point light outside the box: the filters decide most candidates per hit point,
             // so the tile may list more of them.
             const HomogeneousPoint& l = g.lights[light];
@@ -2278,7 +2283,8 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
                 if (hi[a] - lo[a] > hi[axis] - lo[axis]) axis = a;
               const double cut = lo[axis] / 2 + hi[axis] / 2;
               auto middle = std::partition(group.begin(), group.end(), [&](std::size_t k) {
-                return point_boxes[k][0][axis] / 2 + point_boxes[k][1][axis] / 2 < cut;
+                const PointBox box = point_boxes[k];
+                return box[0][axis] / 2 + box[1][axis] / 2 < cut;
               });
               if (middle == group.begin() || middle == group.end()) middle = group.begin() + static_cast<std::ptrdiff_t>(group.size() / 2);
               const auto split = static_cast<std::size_t>(middle - group.begin());
@@ -2295,7 +2301,7 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
               Vec3 mlo{}, mhi{}, R{};
               if (local.middles.size() < group.size()) local.middles.resize(group.size());
               for (std::size_t i = 0; i < group.size(); ++i) {
-                const PointBox& box = point_boxes[group[i]];
+                const PointBox box = point_boxes[group[i]];
                 Vec3& x = local.middles[i];
                 for (int a = 0; a < 3; ++a) {
                   x[a] = std::clamp(box[0][a] / 2 + box[1][a] / 2, box[0][a], box[1][a]);
@@ -2362,9 +2368,10 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
             for (std::uint32_t x = b.x0; x <= b.x1; ++x) {
               const std::size_t k = grid.corner(x, y);
               if (!countable(hits[k])) continue;
+              const PointBox box = point_boxes[k];
               for (int a = 0; a < 3; ++a) {
-                lo[a] = any ? std::min(lo[a], point_boxes[k][0][a]) : point_boxes[k][0][a];
-                hi[a] = any ? std::max(hi[a], point_boxes[k][1][a]) : point_boxes[k][1][a];
+                lo[a] = any ? std::min(lo[a], box[0][a]) : box[0][a];
+                hi[a] = any ? std::max(hi[a], box[1][a]) : box[1][a];
               }
               any = true;
             }
@@ -2398,7 +2405,7 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
               }
             // The corners agree: n must still be constant between them (a shadow sliver).
             if (bits == 0 && footprints &&
-                footprint_shadow_varies(g, light, corner_hits(g, grid, hits, point_boxes.data(), i, row),
+                footprint_shadow_varies(g, light, corner_hits(g, grid, hits, point_boxes, i, row),
                                         silhouette_lists[tiles.of(i, row)].list()))
               bits |= kFootprintCounts;
             if (bits == 0 && footprints && options.depth_band) {

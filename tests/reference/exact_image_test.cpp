@@ -238,6 +238,31 @@ TEST(ExactImage, Translation_WithTheCamera_LeavesEveryImageUnchanged) {
   expect_same_images(exact_image(s.soup, s.lights, s.camera), exact_image(moved.soup, moved.lights, moved.camera));
 }
 
+// Scaling every coordinate by 2^200 is exact and keeps every sign, so the images are the same.
+// The hit points then lie far beyond float range: the per-ray point boxes must keep them exactly
+// (reference/detail/hit_point_boxes.h), not as infinite float boxes.
+TEST(ExactImage, ScaledByTwoTo200_WithTheCamera_LeavesEveryImageUnchanged) {
+  const InvarianceScene s = invariance_scene();
+  InvarianceScene scaled = s;
+  const auto scale = [](double x) { return std::ldexp(x, 200); };
+  for (Vec3& v : scaled.soup.vertices)
+    for (double& x : v) x = scale(x);
+  for (int k = 0; k < 3; ++k) {
+    scaled.camera.eye[k] = scale(scaled.camera.eye[k]);
+    scaled.camera.target[k] = scale(scaled.camera.target[k]);
+    if (!scaled.lights[0].directional()) scaled.lights[0].position[k] = scale(scaled.lights[0].position[k]);
+  }
+  const ExactImage a = exact_image(s.soup, s.lights, s.camera);
+  const ExactImage b = exact_image(scaled.soup, scaled.lights, scaled.camera);
+  expect_same_images(a, b);
+  // Not a vacuous agreement: the scene shows lit and shadowed pixels.
+  const auto lit = std::count(a.lights[0].lit.begin(), a.lights[0].lit.end(), std::uint8_t{255});
+  const auto shadowed = std::count_if(a.lights[0].counts.begin(), a.lights[0].counts.end(),
+                                      [](std::uint32_t n) { return n != 0 && n != kNoHit && n != kUndefinedCount; });
+  EXPECT_GT(lit, 0);
+  EXPECT_GT(shadowed, 0);
+}
+
 // --- zero signs and the terminator -----------------------------------------------------------
 
 // A camera straight above the origin, looking down, 3x3 pixels of equal aspect: the rays of
