@@ -25,7 +25,7 @@ namespace {
 //
 // The sort has two steps. A radix sort orders (key of x, input index) records by the leading
 // bits of the x key: the kRadixKeyBits highest of those that differ between two keys anywhere
-// (radix_low_bit). Records equal on those bits (the same x, or an x within about 2^-20 of it
+// (radix_low_bit). Records equal on those bits (the same x, or an x within about 2^-21 of it
 // relatively: few, and short, on real meshes) form runs, which a second step sorts by the full
 // (x, y, z, input index). The radix passes run in parallel over fixed chunks of records whose
 // histograms are laid out chunk after chunk within each digit, so every pass writes exactly
@@ -65,12 +65,13 @@ unsigned radix_low_bit(std::uint64_t least, std::uint64_t greatest) {
 }
 
 // Stable LSD radix sort of `records` by bits [low, 64) of x_key; `scratch` has the same size.
-// Passes whose digit is the same in every key move nothing and are skipped.
+// The bits from low + kRadixKeyBits up are the same in every key (radix_low_bit), so no pass
+// reads them; passes whose digit is the same in every key move nothing and are skipped.
 void radix_sort_by_x(HugePageBuffer<XRecord>& records, HugePageBuffer<XRecord>& scratch, unsigned low) {
   const std::size_t n = records.size();
   const std::size_t chunks = chunk_count(n);
   std::vector<std::size_t> offset(chunks * kDigits);
-  for (unsigned shift = low; shift < 64; shift += kDigitBits) {
+  for (unsigned shift = low; shift < 64 && shift < low + kRadixKeyBits; shift += kDigitBits) {
     std::fill(offset.begin(), offset.end(), 0);
     tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t c) {
       std::size_t* count = offset.data() + c * kDigits;

@@ -72,29 +72,40 @@ TEST(CanonicalSoup, IndexOutOfRange_ThrowsNamingFunction) {
 
 // The radix passes sort by the leading bits of x alone (scene/canonical_soup.cpp): x values a few
 // ulps apart tie there and must still come out in full (x, y, z) order and weld exactly. Runs of
-// such ties cross the sort's 65,536-record chunks, and the wide x range (both signs) keeps the
-// radix's bits far above the ulps that tell these x apart.
+// such ties cross the sort's 65,536-record chunks. With x of both signs every key bit differs
+// somewhere and the radix reads the top 33; with x all in [1, 2) the sign and exponent agree, so
+// it reads 33 bits lower down, and the ties are still a few ulps apart below them.
 TEST(CanonicalSoup, XTiedInTheRadixBits_SortedAndWeldedByFullPosition) {
-  const std::uint64_t seed = 24;
-  SCOPED_TRACE("seed " + std::to_string(seed));
-  std::mt19937_64 rng(seed);
-  Soup s;
-  const std::size_t n = 150'000;
-  for (std::size_t i = 0; i < n; ++i) {
-    const double base = i % 3 == 0 ? 1.0 : i % 3 == 1 ? -3.0 : std::ldexp(static_cast<double>(rng() % 2001) - 1000.0, -6);
-    const double x = base == 1.0 || base == -3.0 ? std::nextafter(base, 10.0) + std::ldexp(static_cast<double>(rng() % 64), -50) : base;
-    s.vertices.push_back({x, static_cast<double>(rng() % 7), static_cast<double>(rng() % 5) - 2.0});
-  }
-  for (std::size_t t = 0; t < n / 3; ++t)
-    s.triangles.push_back({static_cast<std::uint32_t>(rng() % n), static_cast<std::uint32_t>(rng() % n),
-                           static_cast<std::uint32_t>(rng() % n)});
-  std::vector<shadowcert::Vec3> expected = s.vertices;
-  std::sort(expected.begin(), expected.end());
-  expected.erase(std::unique(expected.begin(), expected.end()), expected.end());
+  for (const bool both_signs : {true, false}) {
+    const std::uint64_t seed = both_signs ? 24 : 25;
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    std::mt19937_64 rng(seed);
+    Soup s;
+    const std::size_t n = 150'000;
+    // Two clusters of x a few ulps apart, and x spread over the range between them.
+    const double first = both_signs ? 1.0 : 1.25, second = both_signs ? -3.0 : 1.75;
+    for (std::size_t i = 0; i < n; ++i) {
+      double x = 0.0;
+      if (i % 3 == 2) {
+        x = both_signs ? std::ldexp(static_cast<double>(rng() % 2001) - 1000.0, -6)
+                       : 1.0 + std::ldexp(static_cast<double>(rng() % 1024), -10);
+      } else {
+        const double base = i % 3 == 0 ? first : second;
+        x = std::nextafter(base, 10.0) + std::ldexp(static_cast<double>(rng() % 64), -50);
+      }
+      s.vertices.push_back({x, static_cast<double>(rng() % 7), static_cast<double>(rng() % 5) - 2.0});
+    }
+    for (std::size_t t = 0; t < n / 3; ++t)
+      s.triangles.push_back({static_cast<std::uint32_t>(rng() % n), static_cast<std::uint32_t>(rng() % n),
+                             static_cast<std::uint32_t>(rng() % n)});
+    std::vector<shadowcert::Vec3> expected = s.vertices;
+    std::sort(expected.begin(), expected.end());
+    expected.erase(std::unique(expected.begin(), expected.end()), expected.end());
 
-  const auto c = canonical_soup(s);
-  EXPECT_EQ(c.soup.vertices, expected);
-  for (std::size_t i = 0; i < n; ++i) ASSERT_EQ(c.soup.vertices[c.canonical_id[i]], s.vertices[i]) << "vertex " << i;
-  for (std::size_t t = 0; t < s.triangles.size(); ++t)
-    for (int k = 0; k < 3; ++k) ASSERT_EQ(c.soup.triangles[t][k], c.canonical_id[s.triangles[t][k]]);
+    const auto c = canonical_soup(s);
+    EXPECT_EQ(c.soup.vertices, expected);
+    for (std::size_t i = 0; i < n; ++i) ASSERT_EQ(c.soup.vertices[c.canonical_id[i]], s.vertices[i]) << "vertex " << i;
+    for (std::size_t t = 0; t < s.triangles.size(); ++t)
+      for (int k = 0; k < 3; ++k) ASSERT_EQ(c.soup.triangles[t][k], c.canonical_id[s.triangles[t][k]]);
+  }
 }
