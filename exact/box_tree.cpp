@@ -540,9 +540,10 @@ Child BoxTree::Impl::build(std::uint32_t first, std::uint32_t count, const Bound
   std::array<Bounds, 2> side_box, centre_box;
   bool sides_known = false;
   if (depth < kMaxSahDepth) {
+    // Each bin's box and count, for the SAH; the sides' centre bounds (which only scale the
+    // children's bins) are found by one pass over the chosen split, not per bin on every axis.
     struct Bin {
       Bounds box;
-      Bounds centres;
       std::uint32_t count = 0;
     };
     std::array<std::array<Bin, kBins>, 3> bins{};
@@ -569,7 +570,6 @@ Child BoxTree::Impl::build(std::uint32_t first, std::uint32_t count, const Bound
         if (!(scale[axis] > 0.0)) continue;
         Bin& bin = bins[axis][bin_of(*it, axis)];
         bin.box.grow(it->box);
-        bin.centres.grow(it->centre);
         ++bin.count;
       }
     int best_axis = -1, best_bin = 0;
@@ -600,11 +600,8 @@ Child BoxTree::Impl::build(std::uint32_t first, std::uint32_t count, const Bound
     if (best_axis >= 0) {
       const auto split = std::partition(begin, end, [&](const Primitive& p) { return bin_of(p, best_axis) <= best_bin; });
       middle = static_cast<std::uint32_t>(split - prims);
-      for (int b = 0; b < kBins; ++b) {
-        const int side = b <= best_bin ? 0 : 1;
-        side_box[side].grow(bins[best_axis][b].box);
-        centre_box[side].grow(bins[best_axis][b].centres);
-      }
+      for (int b = 0; b < kBins; ++b) side_box[b <= best_bin ? 0 : 1].grow(bins[best_axis][b].box);
+      for (std::uint32_t i = first; i < first + count; ++i) centre_box[i < middle ? 0 : 1].grow(prims[i].centre);
       sides_known = true;
     }
   } else {

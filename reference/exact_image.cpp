@@ -2403,10 +2403,13 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
                 if (light_counts[rays[k]] == kUndefinedCount) bits |= kZeroSign;
                 else if (light_counts[rays[k]] != n) bits |= kFootprintCounts;
               }
-            // The corners agree: n must still be constant between them (a shadow sliver).
-            if (bits == 0 && footprints &&
-                footprint_shadow_varies(g, light, corner_hits(g, grid, hits, point_boxes, i, row),
-                                        silhouette_lists[tiles.of(i, row)].list()))
+            // The corners agree: n must still be constant between them (a shadow sliver). A
+            // tile whose list holds no silhouette edge has none to meet: its corners' parameters
+            // are not built (footprint_shadow_varies would test no candidate).
+            const std::vector<std::uint32_t>* silhouettes_near =
+                footprints ? silhouette_lists[tiles.of(i, row)].list() : nullptr;
+            if (bits == 0 && footprints && !(silhouettes_near != nullptr && silhouettes_near->empty()) &&
+                footprint_shadow_varies(g, light, corner_hits(g, grid, hits, point_boxes, i, row), silhouettes_near))
               bits |= kFootprintCounts;
             if (bits == 0 && footprints && options.depth_band) {
               const DepthBand band = depth_band(g, grid.frame, grid.ray(pixel), centre, options.depth_band);
