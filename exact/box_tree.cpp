@@ -365,16 +365,16 @@ struct BoxTree::Impl {
   // is read, and huge pages it never reaches (the binary tree's array is sized for the worst
   // case, n - 1 inner nodes) are never faulted in. On ogre's 124K boxes that cut the build's
   // page faults from about 1,300-2,300 to 165, and its growth of the resident set from 25 MB to 19.
-  HugePageBuffer<Bounds> boxes;        // in leaf order
-  HugePageBuffer<std::uint32_t> ids;   // the caller's id of each, in leaf order
-  HugePageBuffer<Node> nodes;       // the binary tree (freed once collapsed into nodes4)
-  std::uint32_t node_count = 0;     // the inner nodes built, nodes[0, node_count)
+  HugePageBuffer<Bounds> boxes;       // in leaf order
+  HugePageBuffer<std::uint32_t> ids;  // the caller's id of each, in leaf order
+  HugePageBuffer<Node> nodes;         // the binary tree (freed once collapsed into nodes4)
+  std::uint32_t node_count = 0;       // the inner nodes built, nodes[0, node_count)
   Bounds root_box;
-  Child root{};                     // count == 0 and no nodes: empty
-  bool tame = true;                 // every box coordinate within kTame (Slab::entry_pair)
-  HugePageBuffer<Node4> nodes4;     // the same tree, 4 children per node (Node4)
+  Child root{};                       // count == 0 and no nodes: empty
+  bool tame = true;                   // every box coordinate within kTame (Slab::entry_pair)
+  HugePageBuffer<Node4> nodes4;       // the same tree, 4 children per node (Node4)
   Child root4{};
-  bool tame32 = false;              // every box coordinate within kTame32 (Slab::entry4)
+  bool tame32 = false;                // every box coordinate within kTame32 (Slab::entry4)
 
   Impl(const std::vector<Box>& closed, LeafTest test);
 
@@ -403,7 +403,7 @@ BoxTree::Impl::Impl(const std::vector<Box>& closed, LeafTest test) : leaf_test(t
     throw std::invalid_argument("BoxTree: more than 2^32 boxes");
   const auto n = static_cast<std::uint32_t>(closed.size());
   if (n == 0) return;
-  // The build's arrays (about 280 bytes per box) on huge pages (core/huge_page_advice.h): a
+  // The build's records on huge pages (core/huge_page_advice.h), as every array of the tree: a
   // 124K-box tree spent a third of its build in first-touch page faults.
   HugePageBuffer<Primitive> prims(n);
   Bounds centres;
@@ -533,15 +533,15 @@ Child BoxTree::Impl::build(std::uint32_t first, std::uint32_t count, const Bound
   Primitive* const begin = prims + first;
   Primitive* const end = begin + count;
   // Binned SAH on the centres along each axis (one pass bins all three); the cheapest split
-  // wins, and its sides' boxes and centre bounds come from the bins. Past kMaxSahDepth (centres
+  // wins, and its sides' boxes come from the bins. Past kMaxSahDepth (centres
   // spread so unevenly that the SAH keeps cutting off a few boxes) the median of the longest
   // axis, so that the depth stays logarithmic.
   std::uint32_t middle = first + count / 2;
   std::array<Bounds, 2> side_box, centre_box;
-  bool sides_known = false;
+  bool sides_known = false;  // side_box from the bins
   if (depth < kMaxSahDepth) {
     // Each bin's box and count, for the SAH; the sides' centre bounds (which only scale the
-    // children's bins) are found by one pass over the chosen split, not per bin on every axis.
+    // children's bins) come from one pass over the chosen split below, not per bin and axis.
     struct Bin {
       Bounds box;
       std::uint32_t count = 0;
@@ -601,7 +601,6 @@ Child BoxTree::Impl::build(std::uint32_t first, std::uint32_t count, const Bound
       const auto split = std::partition(begin, end, [&](const Primitive& p) { return bin_of(p, best_axis) <= best_bin; });
       middle = static_cast<std::uint32_t>(split - prims);
       for (int b = 0; b < kBins; ++b) side_box[b <= best_bin ? 0 : 1].grow(bins[best_axis][b].box);
-      for (std::uint32_t i = first; i < first + count; ++i) centre_box[i < middle ? 0 : 1].grow(prims[i].centre);
       sides_known = true;
     }
   } else {
@@ -611,14 +610,12 @@ Child BoxTree::Impl::build(std::uint32_t first, std::uint32_t count, const Bound
     std::nth_element(begin, prims + middle, end,
                      [axis](const Primitive& a, const Primitive& b) { return a.centre[axis] < b.centre[axis]; });
   }
-  if (!sides_known) {
-    // Every centre alike (or the median split): halves by count, bounds by a pass.
-    if (middle == first || middle == first + count) middle = first + count / 2;
-    for (std::uint32_t i = first; i < first + count; ++i) {
-      const int side = i < middle ? 0 : 1;
-      side_box[side].grow(prims[i].box);
-      centre_box[side].grow(prims[i].centre);
-    }
+  // Every centre alike (or the median split): halves by count, their boxes by the same pass.
+  if (!sides_known && (middle == first || middle == first + count)) middle = first + count / 2;
+  for (std::uint32_t i = first; i < first + count; ++i) {
+    const int side = i < middle ? 0 : 1;
+    if (!sides_known) side_box[side].grow(prims[i].box);
+    centre_box[side].grow(prims[i].centre);
   }
 
   const std::uint32_t index = next_node.fetch_add(1);

@@ -1300,11 +1300,13 @@ int side_beside(const ImageGeometry& g, std::uint32_t h, std::uint32_t id,
 
 // count_at's count for one hit point P of a filtered count tile (`ids`: the tile's list,
 // local.crossing its filters; `middle`: P's box middle): the crossings the filters certify, P's
-// side taken from the hit triangle where it decides (side_beside), plus count_at's verdict on
-// the candidates left. local.side_of/side_known must hold the answers for this hit's triangle.
-std::uint32_t filtered_count(const ImageGeometry& g, std::size_t light, const PixelRay& ray, const RayHit& hit,
-                             const PointBox& box, const std::vector<std::uint32_t>& ids, const Vec3& middle,
-                             TileScratch& local) {
+// side taken from the hit triangle where it decides (side_beside), plus count_rest(candidates
+// left), count_at's verdict on them, called only when some are left (P's ray and box are built
+// there: at most a few hundred of ogre's 910K hit points need them). local.side_of/side_known
+// must hold the answers for this hit's triangle.
+template <typename CountRest>
+std::uint32_t filtered_count(const ImageGeometry& g, const RayHit& hit, const std::vector<std::uint32_t>& ids,
+                             const Vec3& middle, TileScratch& local, CountRest&& count_rest) {
   const std::uint32_t h = hit.triangle;
   std::uint32_t crossed = 0;
   local.undecided.clear();
@@ -1321,7 +1323,7 @@ std::uint32_t filtered_count(const ImageGeometry& g, std::size_t light, const Pi
     if (verdict == FilteredCrossing::undecided) local.undecided.push_back(id);
   }
   if (local.undecided.empty()) return crossed;
-  const std::uint32_t more = count_at(g, light, ray, hit, box, &local.undecided);
+  const std::uint32_t more = count_rest(local.undecided);
   return more == kUndefinedCount ? kUndefinedCount : crossed + more;
 }
 
@@ -1976,18 +1978,13 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
   // 100 MB, whose 4 KiB first-touch faults cost this virtual machine about 0.1 s of CPU.
   std::vector<RayHit> hits;
   resize_huge(hits, grid.size());
-  Vec3 scene_lo{}, scene_hi{};  // the box of every vertex: where the tiles' cones end
-  if (!soup.vertices.empty()) scene_lo = scene_hi = soup.vertices.front();
-  for (const Vec3& v : soup.vertices)
-    for (int k = 0; k < 3; ++k) {
-      scene_lo[k] = std::min(scene_lo[k], v[k]);
-      scene_hi[k] = std::max(scene_hi[k], v[k]);
-    }
+  // The box of every vertex: where the tiles' cones end, and what each hit-point box is cut to.
+  const Box scene = soup.vertices.empty() ? Box{} : bounding_box(soup.vertices);
   // Every countable hit's point box, once, as its ray is traced (the centres' for their counts;
   // the corners' for theirs and for the pyramids of the four pixels around each).
   // Not initialised (zeroing each ray's box costs more than the boxes): only the countable
   // hits' entries are written, and only those are read.
-  detail::HitPointBoxes point_boxes(grid.size(), scene_lo, scene_hi);
+  detail::HitPointBoxes point_boxes(grid.size(), scene);
   const auto trace = [&](std::size_t k, const std::vector<std::uint32_t>* list,
                          const std::vector<CandidateRaySigns>& signs, TileScratch& local) {
     const PixelRay ray = grid.ray(k);
@@ -2029,7 +2026,7 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
       for (std::uint32_t t = r.begin(); t != r.end(); ++t) {
         const TileGrid::Bounds b = tiles.bounds(t);
         tile_lists[t] = tile_candidates(
-            g, detail::eye_tile_cone(grid.frame, b.x0, b.x1, b.y0, b.y1, scene_lo, scene_hi), local);
+            g, detail::eye_tile_cone(grid.frame, b.x0, b.x1, b.y0, b.y1, scene.lo, scene.hi), local);
         if (tile_lists[t].listed) order_by_distance(g, grid.frame.eye, tile_lists[t].ids, local.near);
         const std::vector<std::uint32_t>* list = tile_lists[t].list();
         const std::vector<CandidateRaySigns> signs =
@@ -2325,7 +2322,10 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
                   local.side_of = h;
                   local.side_known.clear();
                 }
-                counts[k] = filtered_count(g, light, grid.ray(k), hits[k], point_boxes[k], list.ids, local.middles[i], local);
+                counts[k] = filtered_count(g, hits[k], list.ids, local.middles[i], local,
+                                           [&](const std::vector<std::uint32_t>& rest_of_list) {
+                                             return count_at(g, light, grid.ray(k), hits[k], point_boxes[k], &rest_of_list);
+                                           });
                 continue;
               }
               if (h != cached_h) {

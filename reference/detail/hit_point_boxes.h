@@ -19,9 +19,9 @@
 #include <cmath>
 #include <cstddef>
 
+#include "core/box.h"
 #include "core/huge_page_advice.h"
 #include "core/outward_float.h"
-#include "core/soup.h"
 
 namespace shadowcert::detail {
 
@@ -32,10 +32,10 @@ class HitPointBoxes {
  public:
   using Box = std::array<Vec3, 2>;  // {lo, hi}, lo <= hi axis by axis
 
-  // `rays` entries, none set; [scene_lo, scene_hi]: the box of the scene's vertices.
-  HitPointBoxes(std::size_t rays, const Vec3& scene_lo, const Vec3& scene_hi) : scene_lo_(scene_lo), scene_hi_(scene_hi) {
+  // `rays` entries, none set; `scene`: the box of the scene's vertices.
+  HitPointBoxes(std::size_t rays, const shadowcert::Box& scene) : scene_(scene) {
     double scale = 0.0;
-    for (int a = 0; a < 3; ++a) scale = std::max({scale, std::fabs(scene_lo[a]), std::fabs(scene_hi[a])});
+    for (std::size_t a = 0; a < 3; ++a) scale = std::max({scale, std::fabs(scene.lo[a]), std::fabs(scene.hi[a])});
     in_float_ = kLeastFloatScale <= scale && scale <= kMostFloatScale;
     if (in_float_)
       floats_ = HugePageBuffer<FloatBox>(rays);
@@ -52,8 +52,8 @@ class HitPointBoxes {
     }
     FloatBox& f = floats_[ray];
     for (std::size_t a = 0; a < 3; ++a) {
-      f.lo[a] = round_down_to_float(std::max(box[0][a], scene_lo_[a]));
-      f.hi[a] = round_up_to_float(std::min(box[1][a], scene_hi_[a]));
+      f.lo[a] = round_down_to_float(std::max(box[0][a], scene_.lo[a]));
+      f.hi[a] = round_up_to_float(std::min(box[1][a], scene_.hi[a]));
     }
   }
 
@@ -70,7 +70,7 @@ class HitPointBoxes {
   struct FloatBox {
     std::array<float, 3> lo, hi;
   };
-  Vec3 scene_lo_, scene_hi_;
+  shadowcert::Box scene_;
   bool in_float_ = false;
   HugePageBuffer<FloatBox> floats_;
   HugePageBuffer<Box> doubles_;

@@ -25,7 +25,7 @@ TEST(HitPointBoxes, ModerateScene_FloatBoxesEncloseEveryPointAndStayTight) {
   SCOPED_TRACE("seed " + std::to_string(seed));
   std::mt19937_64 rng(seed);
   const Vec3 lo{-3.0, 0.0, -1e-3}, hi{5.0, 2.5, 7e4};
-  HitPointBoxes boxes(1000, lo, hi);
+  HitPointBoxes boxes(1000, {lo, hi});
   ASSERT_TRUE(boxes.in_float());
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   std::vector<Vec3> points(1000);
@@ -62,7 +62,7 @@ TEST(HitPointBoxes, SceneBeyondFloatRange_KeepsTheDoublesExactly) {
   for (const double scale : {0x1p200, 0x1p-200}) {
     SCOPED_TRACE("scale " + std::to_string(std::log2(scale)));
     const Vec3 lo{-scale, -scale, 0.0}, hi{scale, scale, scale};
-    HitPointBoxes boxes(3, lo, hi);
+    HitPointBoxes boxes(3, {lo, hi});
     EXPECT_FALSE(boxes.in_float());
     const HitPointBoxes::Box b{Vec3{0.25 * scale, -0.5 * scale, 0.125 * scale},
                                Vec3{std::nextafter(0.25 * scale, 1e308), -0.5 * scale, 0.125 * scale}};
