@@ -44,6 +44,7 @@
 #include "exact/orient_unchecked.h"
 #include "reference/detail/eye_tile.h"
 #include "reference/detail/hit_point_boxes.h"
+#include "reference/detail/light_grid.h"
 #include "reference/detail/plane_through_filter.h"
 #include "reference/detail/pixel_footprint.h"
 #include "reference/detail/ray_hit.h"
@@ -1013,6 +1014,14 @@ inline constexpr std::size_t kFilteredCountCandidates = 128;
 // Groups of hit points with too many candidates are halved down to this many (fewer: each walks
 // the tree).
 inline constexpr std::size_t kLeastCountGroup = 4;
+// A light grid is built where there are at least this many rays to count per listed triangle:
+// its build costs about 70 ns a triangle, and on ogre over a floor at 1024x768 (124K triangles,
+// 910K rays) it saved about 37 ns a ray over the tree's walks; with 1M or 4M triangles at
+// 1024x768 it cost more than it saved (docs/diff.md, "The light grid").
+inline constexpr std::size_t kGridRaysPerTriangle = 2;
+// With a light grid, groups whose box meets more cells than this are halved (down to
+// kLeastCountGroup): their filters would be drawn for hit points far apart.
+inline constexpr std::size_t kGridGroupCells = 256;
 
 // The tiles of `window`, row-major. Tile t covers pixels [x0, x1) x [y0, y1) and owns the
 // corners [x0, cx1) x [y0, cy1): its pixels' upper-left corners, and the window's last corner
@@ -1065,6 +1074,25 @@ struct TileScratch {
   std::vector<std::uint32_t> undecided;
   std::uint32_t side_of = std::numeric_limits<std::uint32_t>::max();
   std::vector<std::pair<std::uint32_t, std::int8_t>> side_known;
+  // The grid counts': per triangle its filter's index in `crossing` (where `seen` holds this
+  // generation), per filter its triangle, and one hit point's filters.
+  std::vector<std::uint32_t> slot;
+  std::vector<std::uint32_t> crossing_ids;
+  std::vector<std::uint32_t> point_slots;
+  std::vector<std::pair<float, std::uint32_t>> cell_slots;  // one cell's entries: key, filter
+
+  // A fresh generation of `seen` (and `slot`), each sized `ids`: no id is marked in it.
+  std::uint32_t next_generation(std::size_t ids) {
+    if (seen.size() != ids) {
+      seen.assign(ids, 0);
+      slot.assign(ids, 0);
+    }
+    if (++generation == 0) {
+      std::fill(seen.begin(), seen.end(), 0u);
+      generation = 1;
+    }
+    return generation;
+  }
 };
 
 // Per candidate of a tile's list, ray_meets_triangle's signs as far as the tile knows them: the
@@ -1130,15 +1158,11 @@ TileCandidates tile_candidates(const ImageGeometry& g, const std::optional<detai
                                TileScratch& scratch) {
   TileCandidates out;
   if (!cone) return out;
-  if (scratch.seen.size() != g.soup.triangles.size()) scratch.seen.assign(g.soup.triangles.size(), 0);
-  if (++scratch.generation == 0) {
-    std::fill(scratch.seen.begin(), scratch.seen.end(), 0u);
-    scratch.generation = 1;
-  }
+  const std::uint32_t generation = scratch.next_generation(g.soup.triangles.size());
   bool overflow = false;
   const auto collect = [&](std::uint32_t id) {
-    if (scratch.seen[id] == scratch.generation) return true;
-    scratch.seen[id] = scratch.generation;
+    if (scratch.seen[id] == generation) return true;
+    scratch.seen[id] = generation;
     out.ids.push_back(id);
     overflow = out.ids.size() > kEyeTileCandidates;
     return !overflow;
@@ -1197,15 +1221,11 @@ TileCandidates light_cone_candidates(const detail::BoxTree& tree, std::size_t id
                                      const Vec3& lo, const Vec3& hi, Keep&& keep, TileScratch& scratch,
                                      std::size_t cap = kTileCandidates) {
   TileCandidates out;
-  if (scratch.seen.size() != ids) scratch.seen.assign(ids, 0);
-  if (++scratch.generation == 0) {
-    std::fill(scratch.seen.begin(), scratch.seen.end(), 0u);
-    scratch.generation = 1;
-  }
+  const std::uint32_t generation = scratch.next_generation(ids);
   bool overflow = false;
   light_cone_query(tree, l, lo, hi, [&](std::uint32_t id) {
-    if (scratch.seen[id] == scratch.generation) return true;
-    scratch.seen[id] = scratch.generation;
+    if (scratch.seen[id] == generation) return true;
+    scratch.seen[id] = generation;
     if (!keep(id)) return true;
     out.ids.push_back(id);
     overflow = out.ids.size() > cap;
@@ -1298,39 +1318,39 @@ int side_beside(const ImageGeometry& g, std::uint32_t h, std::uint32_t id,
   return side;
 }
 
-// count_at's count for one hit point P of a filtered count tile (`ids`: the tile's list,
-// local.crossing its filters; `middle`: P's box middle): the crossings the filters certify, P's
+// count_at's count for one hit point P of a filtered count group (candidates(visit) calls
+// visit(id, filter) for each candidate of P, a list holding every casting triangle P's segment
+// can meet, with its filter; `middle`: P's box middle): the crossings the filters certify, P's
 // side taken from the hit triangle where it decides (side_beside), plus count_rest(candidates
 // left), count_at's verdict on them, called only when some are left (P's ray and box are built
 // there: at most a few hundred of ogre's 910K hit points need them). local.side_of/side_known
 // must hold the answers for this hit's triangle.
-template <typename CountRest>
-std::uint32_t filtered_count(const ImageGeometry& g, const RayHit& hit, const std::vector<std::uint32_t>& ids,
-                             const Vec3& middle, TileScratch& local, CountRest&& count_rest) {
+template <typename Candidates, typename CountRest>
+std::uint32_t filtered_count(const ImageGeometry& g, const RayHit& hit, Candidates&& candidates, const Vec3& middle,
+                             TileScratch& local, CountRest&& count_rest) {
   const std::uint32_t h = hit.triangle;
   std::uint32_t crossed = 0;
   local.undecided.clear();
-  for (std::size_t c = 0; c < ids.size(); ++c) {
-    const std::uint32_t id = ids[c];
-    if (id == h) continue;
-    FilteredCrossing verdict = filtered_crossing(local.crossing[c], middle);
+  candidates([&](std::uint32_t id, const SegmentCrossingFilter& filter) {
+    if (id == h) return;
+    FilteredCrossing verdict = filtered_crossing(filter, middle);
     if (verdict == FilteredCrossing::undecided) {
       const int start = side_beside(g, h, id, local.side_known);
-      if (start == 0) continue;  // in h's plane: count_at passes it by
-      if (start != kUnknownSide) verdict = filtered_crossing(local.crossing[c], middle, start);
+      if (start == 0) return;  // in h's plane: count_at passes it by
+      if (start != kUnknownSide) verdict = filtered_crossing(filter, middle, start);
     }
     if (verdict == FilteredCrossing::crosses) ++crossed;
     if (verdict == FilteredCrossing::undecided) local.undecided.push_back(id);
-  }
+  });
   if (local.undecided.empty()) return crossed;
   const std::uint32_t more = count_rest(local.undecided);
   return more == kUndefinedCount ? kUndefinedCount : crossed + more;
 }
 
-// The filters of a tile's list (`ids`) for the point light L and hit points whose box middles
-// lie in [lo, hi] within R of the hit points themselves.
-void segment_crossing_filters(const ImageGeometry& g, std::size_t light, const std::vector<std::uint32_t>& ids,
-                              const Vec3& lo, const Vec3& hi, const Vec3& R, std::vector<SegmentCrossingFilter>& out) {
+// The filters of candidate `id` for the point light L and hit points whose box middles lie in
+// [lo, hi] within R of the hit points themselves.
+SegmentCrossingFilter segment_crossing_filter(const ImageGeometry& g, std::size_t light, std::uint32_t id,
+                                              const Vec3& lo, const Vec3& hi, const Vec3& R) {
   const HomogeneousPoint& l = g.lights[light];
   const Vec3 L{l[0], l[1], l[2]};
   // |x - o| <= max(|lo - o|, |hi - o|) per axis, rounded up.
@@ -1340,15 +1360,13 @@ void segment_crossing_filters(const ImageGeometry& g, std::size_t light, const s
     return w;
   };
   const Vec3 WL = reach(L);
-  out.clear();
-  for (std::uint32_t id : ids) {
-    const Vec3 &a = g.vertex(id, 0), &b = g.vertex(id, 1), &c = g.vertex(id, 2);
-    SegmentCrossingFilter f;
-    f.plane = detail::PlaneThroughFilter(a, b, c, reach(a), R);
-    f.edges = {detail::PlaneThroughFilter(L, a, b, WL, R), detail::PlaneThroughFilter(L, b, c, WL, R), detail::PlaneThroughFilter(L, c, a, WL, R)};
-    f.side = static_cast<int>(g.light_sides[light][id]);
-    out.push_back(f);
-  }
+  const Vec3 &a = g.vertex(id, 0), &b = g.vertex(id, 1), &c = g.vertex(id, 2);
+  SegmentCrossingFilter f;
+  f.plane = detail::PlaneThroughFilter(a, b, c, reach(a), R);
+  f.edges = {detail::PlaneThroughFilter(L, a, b, WL, R), detail::PlaneThroughFilter(L, b, c, WL, R),
+             detail::PlaneThroughFilter(L, c, a, WL, R)};
+  f.side = static_cast<int>(g.light_sides[light][id]);
+  return f;
 }
 
 // The light-independent ambiguity of a pixel: a zero sign on a footprint ray, or footprint
@@ -2236,6 +2254,21 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
           if (footprints && geometric[rays[0]] == 0 && !terminator(g, light, centre))
             for (std::size_t k = 1; k < rays.size(); ++k) needed[rays[k]] = 1;
         }
+      // A point light with the scene strictly on one side of it, and few casting triangles beside
+      // the rays to count: the count lists come from its grid (reference/detail/light_grid.h),
+      // not from walks of the tree.
+      std::optional<detail::LightGrid> light_grid;
+      if (const HomogeneousPoint& l = g.lights[light]; l[3] != 0.0) {
+        std::vector<std::uint8_t> listed(g.soup.triangles.size());
+        std::size_t listed_count = 0;
+        for (std::uint32_t id = 0; id < listed.size(); ++id) {  // as light_tile_candidates keeps
+          listed[id] = g.casting(id) && g.light_sides[light][id] != Sign::zero ? 1 : 0;
+          listed_count += listed[id];
+        }
+        const auto rays_to_count = static_cast<std::size_t>(std::count(needed.begin(), needed.end(), std::uint8_t{1}));
+        if (listed_count * kGridRaysPerTriangle <= rays_to_count)
+          light_grid = detail::LightGrid::build(g.soup, {l[0], l[1], l[2]}, scene, listed);
+      }
       // Tile by tile (the hits' tiles): the box of the needed rays' hit points and the light
       // give one list (light_tile_candidates) that each of them counts.
       std::atomic<std::uint64_t> work{0};
@@ -2265,16 +2298,8 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
                 hi[a] = std::max(hi[a], box[1][a]);
               }
             }
-            // A point light outside the box: the filters decide most candidates per hit point,
-            // so the tile may list more of them.
-            const HomogeneousPoint& l = g.lights[light];
-            const bool filtered = l[3] != 0.0 && !(lo[0] <= l[0] && l[0] <= hi[0] && lo[1] <= l[1] && l[1] <= hi[1] &&
-                                                  lo[2] <= l[2] && l[2] <= hi[2]);
-            const TileCandidates list =
-                light_tile_candidates(g, light, lo, hi, local, filtered ? kFilteredCountCandidates : kTileCandidates);
-            if (!list.listed && filtered && group.size() > kLeastCountGroup) {
-              // Too many for one list (hit points far apart, as across a silhouette): the halves
-              // of the group across its box's longest axis, each with its own list.
+            // The halves of the group across its box's longest axis, each counted on its own.
+            const auto halve = [&] {
               int axis = 0;
               for (int a = 1; a < 3; ++a)
                 if (hi[a] - lo[a] > hi[axis] - lo[axis]) axis = a;
@@ -2287,15 +2312,11 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
               const auto split = static_cast<std::size_t>(middle - group.begin());
               self(self, group.first(split));
               self(self, group.subspan(split));
-              return;
-            }
-            if (!list.listed) {
-              for (std::size_t k : group) counts[k] = count_at(g, light, grid.ray(k), hits[k], point_boxes[k]);
-              return;
-            }
-            if (filtered) {
-              // The box middles x and the radius R around them that count_at's boxes give.
-              Vec3 mlo{}, mhi{}, R{};
+            };
+            // The box middles x and the radius R around them that count_at's boxes give, and the
+            // box of the middles: what the filters of the group's candidates are drawn for.
+            const auto middles = [&](Vec3& mlo, Vec3& mhi, Vec3& R) {
+              mlo = mhi = R = Vec3{};
               if (local.middles.size() < group.size()) local.middles.resize(group.size());
               for (std::size_t i = 0; i < group.size(); ++i) {
                 const PointBox box = point_boxes[group[i]];
@@ -2308,7 +2329,97 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
                 }
               }
               for (double& radius : R) radius *= 1.0 + 0x1p-50;
-              segment_crossing_filters(g, light, list.ids, mlo, mhi, R, local.crossing);
+            };
+            const auto count_filtered = [&](std::size_t i, auto&& candidates) {
+              const std::size_t k = group[i];
+              const std::uint32_t h = hits[k].triangle;
+              if (h != local.side_of) {
+                local.side_of = h;
+                local.side_known.clear();
+              }
+              return filtered_count(g, hits[k], candidates, local.middles[i], local,
+                                    [&](const std::vector<std::uint32_t>& rest_of_list) {
+                                      return count_at(g, light, grid.ray(k), hits[k], point_boxes[k], &rest_of_list);
+                                    });
+            };
+            if (light_grid) {
+              // Each hit point reads the lists of its own box's cells; the group only shares
+              // the candidates' filters, each drawn when a point first meets it. A group whose
+              // box meets many cells (hit points far apart: loose filters) is halved.
+              const std::optional<detail::LightGrid::Reach> group_reach = light_grid->reach(lo, hi);
+              if (group_reach &&
+                  std::size_t{group_reach->c1 - group_reach->c0 + 1} * (group_reach->r1 - group_reach->r0 + 1) > kGridGroupCells &&
+                  group.size() > kLeastCountGroup)
+                return halve();
+              Vec3 mlo{}, mhi{}, R{};
+              middles(mlo, mhi, R);
+              const std::uint32_t generation = local.next_generation(g.soup.triangles.size());
+              local.crossing.clear();
+              local.crossing_ids.clear();
+              const auto slot_of = [&](std::uint32_t id) {
+                if (local.seen[id] != generation) {
+                  local.seen[id] = generation;
+                  local.slot[id] = static_cast<std::uint32_t>(local.crossing.size());
+                  local.crossing.push_back(segment_crossing_filter(g, light, id, mlo, mhi, R));
+                  local.crossing_ids.push_back(id);
+                }
+                return local.slot[id];
+              };
+              // Neighbouring hit points mostly reach one and the same cell: its list's filters
+              // are kept for the last cell read (no entry at or below the group's threshold is
+              // read by any of its points).
+              const double group_threshold = group_reach ? group_reach->threshold : -std::numeric_limits<double>::infinity();
+              std::uint64_t cached_cell = std::numeric_limits<std::uint64_t>::max();
+              for (std::size_t i = 0; i < group.size(); ++i) {
+                const std::size_t k = group[i];
+                const PointBox box = point_boxes[k];
+                const std::optional<detail::LightGrid::Reach> reach = light_grid->reach(box[0], box[1]);
+                if (!reach) {
+                  counts[k] = count_at(g, light, grid.ray(k), hits[k], box);
+                  continue;
+                }
+                local.point_slots.clear();
+                for (const std::uint32_t id : light_grid->big())
+                  if (light_grid->key(id) > reach->threshold) local.point_slots.push_back(slot_of(id));
+                if (reach->one_cell()) {
+                  if (const std::uint64_t cell = std::uint64_t{reach->r0} << 32 | reach->c0; cell != cached_cell) {
+                    cached_cell = cell;
+                    local.cell_slots.clear();
+                    for (const std::uint32_t id : light_grid->list(reach->c0, reach->r0))
+                      if (light_grid->key(id) > group_threshold) local.cell_slots.emplace_back(light_grid->key(id), slot_of(id));
+                  }
+                  for (const auto& [key, slot] : local.cell_slots)
+                    if (key > reach->threshold) local.point_slots.push_back(slot);
+                } else {
+                  light_grid->visit(*reach, [&](std::uint32_t id) { local.point_slots.push_back(slot_of(id)); });
+                  // A triangle listed in two of its cells (or wide and in big()) comes twice.
+                  std::sort(local.point_slots.begin(), local.point_slots.end());
+                  local.point_slots.erase(std::unique(local.point_slots.begin(), local.point_slots.end()), local.point_slots.end());
+                }
+                counts[k] = count_filtered(i, [&](auto&& visit) {
+                  for (const std::uint32_t slot : local.point_slots) visit(local.crossing_ids[slot], local.crossing[slot]);
+                });
+              }
+              return;
+            }
+            // A point light outside the box: the filters decide most candidates per hit point,
+            // so the tile may list more of them.
+            const HomogeneousPoint& l = g.lights[light];
+            const bool filtered = l[3] != 0.0 && !(lo[0] <= l[0] && l[0] <= hi[0] && lo[1] <= l[1] && l[1] <= hi[1] &&
+                                                  lo[2] <= l[2] && l[2] <= hi[2]);
+            const TileCandidates list =
+                light_tile_candidates(g, light, lo, hi, local, filtered ? kFilteredCountCandidates : kTileCandidates);
+            // Too many for one list (hit points far apart, as across a silhouette): the halves.
+            if (!list.listed && filtered && group.size() > kLeastCountGroup) return halve();
+            if (!list.listed) {
+              for (std::size_t k : group) counts[k] = count_at(g, light, grid.ray(k), hits[k], point_boxes[k]);
+              return;
+            }
+            if (filtered) {
+              Vec3 mlo{}, mhi{}, R{};
+              middles(mlo, mhi, R);
+              local.crossing.clear();
+              for (const std::uint32_t id : list.ids) local.crossing.push_back(segment_crossing_filter(g, light, id, mlo, mhi, R));
             }
             // Per hit triangle h, the list without h and the triangles in h's plane: P lies on
             // that plane, so count_at passes them by (P on their plane); an empty rest counts 0.
@@ -2318,14 +2429,9 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
               const std::size_t k = group[i];
               const std::uint32_t h = hits[k].triangle;
               if (filtered) {
-                if (h != local.side_of) {
-                  local.side_of = h;
-                  local.side_known.clear();
-                }
-                counts[k] = filtered_count(g, hits[k], list.ids, local.middles[i], local,
-                                           [&](const std::vector<std::uint32_t>& rest_of_list) {
-                                             return count_at(g, light, grid.ray(k), hits[k], point_boxes[k], &rest_of_list);
-                                           });
+                counts[k] = count_filtered(i, [&](auto&& visit) {
+                  for (std::size_t c = 0; c < list.ids.size(); ++c) visit(list.ids[c], local.crossing[c]);
+                });
                 continue;
               }
               if (h != cached_h) {
