@@ -2020,7 +2020,8 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
       }
       return !(apart && s.direction_side && *s.direction_side != Sign::zero);
     };
-    const RayHit hit = hits[k] = first_hit(g, ray, local.in_plane, list, local.near.data(), known);
+    const RayHit hit = first_hit(g, ray, local.in_plane, list, local.near.data(), known);
+    hits[k] = hit;  // (not read back from hits[k]: its two narrow stores would stall an 8-byte load)
     if (!countable(hit)) return;
     const std::uint32_t h = hit.triangle;
     if (const auto box = detail::semi_static_hit_box(ray, {g.vertex(h, 0), g.vertex(h, 1), g.vertex(h, 2)})) {
