@@ -1014,11 +1014,14 @@ inline constexpr std::size_t kFilteredCountCandidates = 128;
 // Groups of hit points with too many candidates are halved down to this many (fewer: each walks
 // the tree).
 inline constexpr std::size_t kLeastCountGroup = 4;
-// A light grid is built where there are at least this many rays to count per listed triangle:
-// its build costs about 70 ns a triangle, and on ogre over a floor at 1024x768 (124K triangles,
-// 910K rays) it saved about 37 ns a ray over the tree's walks; with 1M or 4M triangles at
-// 1024x768 it cost more than it saved (docs/diff.md, "The light grid").
-inline constexpr std::size_t kGridRaysPerTriangle = 2;
+// A light grid is built where there are at least this many traced rays (centres and corners,
+// each of which may be counted) per listed triangle. Its build costs about 70 ns a triangle and
+// its lists 30-40 bytes (ogre: 124K triangles, 8 ms); on ogre over a floor at 1024x768 (12.7
+// traced rays a triangle, 910K of 1.57M counted) it saved about 37 ns a counted ray over the
+// tree's walks. The 1M-triangle sphere grid at 1920x1080 (4.1 rays a triangle) gained 3-5% for
+// 82 MB more at its peak, at 1024x768 (1.6) nothing: they walk the tree (docs/diff.md, "The
+// light grid").
+inline constexpr std::size_t kGridRaysPerTriangle = 5;
 // With a light grid, groups whose box meets more cells than this are halved (down to
 // kLeastCountGroup): their filters would be drawn for hit points far apart.
 inline constexpr std::size_t kGridGroupCells = 256;
@@ -1956,6 +1959,15 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
   std::vector<HomogeneousPoint> light_points;
   std::vector<std::vector<Sign>> sides_of_lights;
   std::vector<std::unique_ptr<Silhouette>> silhouettes, edges_of_casters;
+  // The box of every vertex: where the tiles' cones end, what each hit-point box is cut to, and
+  // what the light grids project.
+  const Box scene = soup.vertices.empty() ? Box{} : bounding_box(soup.vertices);
+  // Per light, its grid of count lists (reference/detail/light_grid.h) where one pays: a point
+  // light with the scene strictly on one side of it, counted light by light (not the beam), and
+  // at least kGridRaysPerTriangle traced rays (all that may be counted) per casting triangle.
+  std::vector<std::optional<detail::LightGrid>> light_grids(lights.size());
+  const std::size_t traced_rays = std::size_t{window.width} * window.height +
+                                  (footprints ? std::size_t{window.width + 1} * (window.height + 1) : 0);
   tbb::parallel_invoke(
       [&] { tree = std::make_unique<detail::BoxTree>(triangle_boxes(soup), detail::LeafTest::exact); },
       [&] {
@@ -1971,6 +1983,17 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
           const Light& light = lights[k];
           light_points.push_back(light.position);
           if (!point_lights) sides_of_lights.push_back(light_sides(soup, light));
+          if (light.position[3] != 0.0 && !(point_lights && !footprints)) {
+            std::vector<std::uint8_t> listed(soup.triangles.size());
+            std::size_t listed_count = 0;
+            for (std::uint32_t id = 0; id < listed.size(); ++id) {  // what light_tile_candidates keeps
+              listed[id] = (options.casts.empty() || options.casts[id] != 0) && sides_of_lights[k][id] != Sign::zero;
+              listed_count += listed[id];
+            }
+            if (listed_count * kGridRaysPerTriangle <= traced_rays)
+              light_grids[k] = detail::LightGrid::build(soup, {light.position[0], light.position[1], light.position[2]},
+                                                        scene, listed);
+          }
           if (!footprints) continue;
           silhouettes.push_back(silhouette(canonical.soup, table, light));
           if (options.depth_band)
@@ -1996,8 +2019,6 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
   // 100 MB, whose 4 KiB first-touch faults cost this virtual machine about 0.1 s of CPU.
   std::vector<RayHit> hits;
   resize_huge(hits, grid.size());
-  // The box of every vertex: where the tiles' cones end, and what each hit-point box is cut to.
-  const Box scene = soup.vertices.empty() ? Box{} : bounding_box(soup.vertices);
   // Every countable hit's point box, once, as its ray is traced (the centres' for their counts;
   // the corners' for theirs and for the pyramids of the four pixels around each).
   // Not initialised (zeroing each ray's box costs more than the boxes): only the countable
@@ -2255,21 +2276,8 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
           if (footprints && geometric[rays[0]] == 0 && !terminator(g, light, centre))
             for (std::size_t k = 1; k < rays.size(); ++k) needed[rays[k]] = 1;
         }
-      // A point light with the scene strictly on one side of it, and few casting triangles beside
-      // the rays to count: the count lists come from its grid (reference/detail/light_grid.h),
-      // not from walks of the tree.
-      std::optional<detail::LightGrid> light_grid;
-      if (const HomogeneousPoint& l = g.lights[light]; l[3] != 0.0) {
-        std::vector<std::uint8_t> listed(g.soup.triangles.size());
-        std::size_t listed_count = 0;
-        for (std::uint32_t id = 0; id < listed.size(); ++id) {  // as light_tile_candidates keeps
-          listed[id] = g.casting(id) && g.light_sides[light][id] != Sign::zero ? 1 : 0;
-          listed_count += listed[id];
-        }
-        const auto rays_to_count = static_cast<std::size_t>(std::count(needed.begin(), needed.end(), std::uint8_t{1}));
-        if (listed_count * kGridRaysPerTriangle <= rays_to_count)
-          light_grid = detail::LightGrid::build(g.soup, {l[0], l[1], l[2]}, scene, listed);
-      }
+      // The count lists of a light with a grid come from it, not from walks of the tree.
+      const std::optional<detail::LightGrid>& light_grid = light_grids[light];
       // Tile by tile (the hits' tiles): the box of the needed rays' hit points and the light
       // give one list (light_tile_candidates) that each of them counts.
       std::atomic<std::uint64_t> work{0};
