@@ -11,6 +11,8 @@
 #include <atomic>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <string>
 #include <utility>
 
 namespace shadowcert::detail {
@@ -88,6 +90,9 @@ std::optional<LightGrid::Reach> LightGrid::reach(const Vec3& lo, const Vec3& hi)
 
 std::optional<LightGrid> LightGrid::build(const Soup& soup, const Vec3& light, const Box& scene,
                                           std::span<const std::uint8_t> listed) {
+  if (listed.size() != soup.triangles.size())
+    throw std::invalid_argument("LightGrid::build: `listed` has " + std::to_string(listed.size()) +
+                                " entries for " + std::to_string(soup.triangles.size()) + " triangles");
   LightGrid grid;
   grid.light_ = light;
   // The axis with the scene strictly on one side of the light and the widest gap beside the

@@ -57,7 +57,8 @@ class LightGrid {
   // the point light `light`; `scene`: a box holding every vertex of `soup`. nullopt where no axis
   // has `scene` strictly on one side of the light, where a projection is not finite (coordinates
   // near the double range's ends), or where its lists would be long (kMostBigTriangles,
-  // kMostEntriesPerTriangle): the caller then walks its box tree.
+  // kMostEntriesPerTriangle): the caller then walks its box tree. Throws std::invalid_argument
+  // when `listed` has not one entry per triangle.
   static std::optional<LightGrid> build(const Soup& soup, const Vec3& light, const Box& scene,
                                         std::span<const std::uint8_t> listed);
 

@@ -1,7 +1,8 @@
 // The count lists of a point light's grid (reference/detail/light_grid.h): every listed triangle
 // that the open segment from a point of a box to the light meets (an exact test) is in the
 // box's reach with a key above its threshold, for lights on each of the six sides of random
-// soups; no grid where no axis separates the light from the scene; a wide floor listed apart.
+// soups; no grid where no axis separates the light from the scene; a wide floor listed apart;
+// `listed` of the wrong size refused.
 #include "reference/detail/light_grid.h"
 
 #include <gtest/gtest.h>
@@ -10,6 +11,7 @@
 #include <cstdint>
 #include <random>
 #include <set>
+#include <stdexcept>
 #include <span>
 #include <string>
 #include <vector>
@@ -187,6 +189,13 @@ TEST(LightGrid, NothingListed_EmptyReach) {
   const std::optional<LightGrid::Reach> reach = grid->reach({0.0, 0.0, 0.0}, {1.0, 1.0, 1.0});
   ASSERT_TRUE(reach.has_value());
   EXPECT_TRUE(reached(*grid, *reach).empty());
+}
+
+TEST(LightGrid, ListedOfAnotherSize_Throws) {
+  std::mt19937_64 rng(17);
+  const Soup soup = random_soup(rng, 10);
+  const std::vector<std::uint8_t> listed(soup.triangles.size() - 1, 1);
+  EXPECT_THROW((void)LightGrid::build(soup, {0.5, 4.0, 0.5}, bounding_box(soup.vertices), listed), std::invalid_argument);
 }
 
 }  // namespace
