@@ -2279,7 +2279,8 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
       // The count lists of a light with a grid come from it, not from walks of the tree.
       const std::optional<detail::LightGrid>& light_grid = light_grids[light];
       // Tile by tile (the hits' tiles): the box of the needed rays' hit points and the light
-      // give one list (light_tile_candidates) that each of them counts.
+      // give one list (light_tile_candidates) that each of them counts; with a grid, each reads
+      // its own cells' lists and the tile shares their filters.
       std::atomic<std::uint64_t> work{0};
       Progress progress(options, "counts", tiles.count());
       tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, tiles.count(), 1), [&](const auto& r) {
@@ -2296,7 +2297,8 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
             for (std::uint32_t x = b.x0; x < b.cx1; ++x)
               if (const std::size_t k = grid.corner(x, y); needed[k] != 0) rays.push_back(k);
           if (rays.empty()) continue;
-          // One list per group of rays (the tile's, or its halves where too many triangles).
+          // One group of rays per tile, halved where too many triangles (or, with a grid, cells)
+          // lie between its hit points and the light.
           const auto count_group = [&](const auto& self, std::span<std::size_t> group) -> void {
             const PointBox front = point_boxes[group.front()];
             Vec3 lo = front[0], hi = front[1];
