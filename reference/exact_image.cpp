@@ -1239,16 +1239,21 @@ TileCandidates light_cone_candidates(const detail::BoxTree& tree, std::size_t id
   return out;
 }
 
+// Whether triangle `id` can change a count for a light whose sides are `sides`: a caster
+// (`casts` empty: every triangle) that the light is off the plane of; count_at passes the rest
+// by (docs/definitions.md#orientation).
+bool countable_caster(std::span<const std::uint8_t> casts, const std::vector<Sign>& sides, std::uint32_t id) {
+  return (casts.empty() || casts[id] != 0) && sides[id] != Sign::zero;
+}
+
 // A tile's list for light number `light` (count_at's candidates): every casting triangle that
 // the light does not lie on and that a segment from [lo, hi] (the box of the tile's hit points
 // to count) to the light can meet.
 TileCandidates light_tile_candidates(const ImageGeometry& g, std::size_t light, const Vec3& lo, const Vec3& hi,
                                      TileScratch& scratch, std::size_t cap) {
-  const std::vector<Sign>& sides = g.light_sides[light];
   return light_cone_candidates(
       g.tree, g.soup.triangles.size(), g.lights[light], lo, hi,
-      [&](std::uint32_t id) { return g.casting(id) && sides[id] != Sign::zero; },  // count_at passes the rest by
-      scratch, cap);
+      [&](std::uint32_t id) { return countable_caster(g.casts, g.light_sides[light], id); }, scratch, cap);
 }
 
 // count_at's test of one candidate, filtered for a tile's hit points towards a point light L:
@@ -1350,24 +1355,29 @@ std::uint32_t filtered_count(const ImageGeometry& g, const RayHit& hit, Candidat
   return more == kUndefinedCount ? kUndefinedCount : crossed + more;
 }
 
-// The filters of candidate `id` for the point light L and hit points whose box middles lie in
-// [lo, hi] within R of the hit points themselves.
-SegmentCrossingFilter segment_crossing_filter(const ImageGeometry& g, std::size_t light, std::uint32_t id,
-                                              const Vec3& lo, const Vec3& hi, const Vec3& R) {
-  const HomogeneousPoint& l = g.lights[light];
-  const Vec3 L{l[0], l[1], l[2]};
-  // |x - o| <= max(|lo - o|, |hi - o|) per axis, rounded up.
-  const auto reach = [&](const Vec3& o) {
+// What the filters of one group of hit points share: the point light L, the box [lo, hi] of the
+// points' box middles and the radius R around them, and the bound on |x - L| over that box.
+struct CrossingFrame {
+  Vec3 L, lo, hi, R, WL;
+  CrossingFrame(const HomogeneousPoint& l, const Vec3& middles_lo, const Vec3& middles_hi, const Vec3& radius)
+      : L{l[0], l[1], l[2]}, lo(middles_lo), hi(middles_hi), R(radius), WL(reach(L)) {}
+  // |x - o| <= max(|lo - o|, |hi - o|) per axis, rounded up, for every x in [lo, hi].
+  [[nodiscard]] Vec3 reach(const Vec3& o) const {
     Vec3 w{};
     for (int a = 0; a < 3; ++a) w[a] = std::max(std::fabs(lo[a] - o[a]), std::fabs(hi[a] - o[a])) * (1.0 + 0x1p-50);
     return w;
-  };
-  const Vec3 WL = reach(L);
+  }
+};
+
+// The filters of candidate `id` for light number `light` in `frame`.
+SegmentCrossingFilter segment_crossing_filter(const ImageGeometry& g, std::size_t light, std::uint32_t id,
+                                              const CrossingFrame& frame) {
   const Vec3 &a = g.vertex(id, 0), &b = g.vertex(id, 1), &c = g.vertex(id, 2);
   SegmentCrossingFilter f;
-  f.plane = detail::PlaneThroughFilter(a, b, c, reach(a), R);
-  f.edges = {detail::PlaneThroughFilter(L, a, b, WL, R), detail::PlaneThroughFilter(L, b, c, WL, R),
-             detail::PlaneThroughFilter(L, c, a, WL, R)};
+  f.plane = detail::PlaneThroughFilter(a, b, c, frame.reach(a), frame.R);
+  f.edges = {detail::PlaneThroughFilter(frame.L, a, b, frame.WL, frame.R),
+             detail::PlaneThroughFilter(frame.L, b, c, frame.WL, frame.R),
+             detail::PlaneThroughFilter(frame.L, c, a, frame.WL, frame.R)};
   f.side = static_cast<int>(g.light_sides[light][id]);
   return f;
 }
@@ -1987,7 +1997,7 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
             std::vector<std::uint8_t> listed(soup.triangles.size());
             std::size_t listed_count = 0;
             for (std::uint32_t id = 0; id < listed.size(); ++id) {  // what light_tile_candidates keeps
-              listed[id] = (options.casts.empty() || options.casts[id] != 0) && sides_of_lights[k][id] != Sign::zero;
+              listed[id] = countable_caster(options.casts, sides_of_lights[k], id) ? 1 : 0;
               listed_count += listed[id];
             }
             if (listed_count * kGridRaysPerTriangle <= traced_rays)
@@ -2358,12 +2368,10 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
               // the candidates' filters, each drawn when a point first meets it. A group whose
               // box meets many cells (hit points far apart: loose filters) is halved.
               const std::optional<detail::LightGrid::Reach> group_reach = light_grid->reach(lo, hi);
-              if (group_reach &&
-                  std::size_t{group_reach->c1 - group_reach->c0 + 1} * (group_reach->r1 - group_reach->r0 + 1) > kGridGroupCells &&
-                  group.size() > kLeastCountGroup)
-                return halve();
+              if (group_reach && group_reach->cells() > kGridGroupCells && group.size() > kLeastCountGroup) return halve();
               Vec3 mlo{}, mhi{}, R{};
               middles(mlo, mhi, R);
+              const CrossingFrame frame(g.lights[light], mlo, mhi, R);
               const std::uint32_t generation = local.next_generation(g.soup.triangles.size());
               local.crossing.clear();
               local.crossing_ids.clear();
@@ -2371,7 +2379,7 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
                 if (local.seen[id] != generation) {
                   local.seen[id] = generation;
                   local.slot[id] = static_cast<std::uint32_t>(local.crossing.size());
-                  local.crossing.push_back(segment_crossing_filter(g, light, id, mlo, mhi, R));
+                  local.crossing.push_back(segment_crossing_filter(g, light, id, frame));
                   local.crossing_ids.push_back(id);
                 }
                 return local.slot[id];
@@ -2430,7 +2438,8 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
               Vec3 mlo{}, mhi{}, R{};
               middles(mlo, mhi, R);
               local.crossing.clear();
-              for (const std::uint32_t id : list.ids) local.crossing.push_back(segment_crossing_filter(g, light, id, mlo, mhi, R));
+              const CrossingFrame frame(g.lights[light], mlo, mhi, R);
+              for (const std::uint32_t id : list.ids) local.crossing.push_back(segment_crossing_filter(g, light, id, frame));
             }
             // Per hit triangle h, the list without h and the triangles in h's plane: P lies on
             // that plane, so count_at passes them by (P on their plane); an empty rest counts 0.

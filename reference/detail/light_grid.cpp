@@ -158,7 +158,7 @@ std::optional<LightGrid> LightGrid::build(const Soup& soup, const Vec3& light, c
   const auto cell_rect = [&](const Rect& r) {
     return Reach{grid.column(r.ulo), grid.column(r.uhi), grid.row(r.vlo), grid.row(r.vhi), 0.0};
   };
-  const auto wide = [&](const Reach& r) { return 2 * std::size_t{r.c1 - r.c0 + 1} * (r.r1 - r.r0 + 1) > grid.cells(); };
+  const auto wide = [&](const Reach& r) { return 2 * r.cells() > grid.cells(); };
   // Its key: its nearest coordinate along the axis (negated above the light), rounded up.
   const auto key_of = [&](std::size_t t) -> float {
     const Triangle& tri = soup.triangles[t];
@@ -240,8 +240,7 @@ std::optional<LightGrid> LightGrid::build(const Soup& soup, const Vec3& light, c
         big[j].push_back(order[k]);
         continue;
       }
-      for (std::uint32_t y = r.r0; y <= r.r1; ++y)
-        for (std::uint32_t x = r.c0; x <= r.c1; ++x) ++cursor[j][std::size_t{y} * grid.columns_ + x];
+      grid.for_each_cell(r, [&](std::size_t cell) { ++cursor[j][cell]; });
     }
   });
   for (const std::vector<std::uint32_t>& some : big) grid.big_.insert(grid.big_.end(), some.begin(), some.end());
@@ -265,8 +264,7 @@ std::optional<LightGrid> LightGrid::build(const Soup& soup, const Vec3& light, c
     for (std::size_t k = chunk_begin(j); k != chunk_begin(j + 1); ++k) {
       const Reach r = cell_rect(rect_of(order[k]));
       if (wide(r)) continue;
-      for (std::uint32_t y = r.r0; y <= r.r1; ++y)
-        for (std::uint32_t x = r.c0; x <= r.c1; ++x) grid.entries_[cursor[j][std::size_t{y} * grid.columns_ + x]++] = order[k];
+      grid.for_each_cell(r, [&](std::size_t cell) { grid.entries_[cursor[j][cell]++] = order[k]; });
     }
   });
   return grid;

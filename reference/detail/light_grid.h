@@ -51,6 +51,7 @@ class LightGrid {
     std::uint32_t c0, c1, r0, r1;
     double threshold;
     [[nodiscard]] bool one_cell() const { return c0 == c1 && r0 == r1; }
+    [[nodiscard]] std::size_t cells() const { return std::size_t{c1 - c0 + 1} * (r1 - r0 + 1); }
   };
 
   // The grid of `soup`'s triangles that `listed` selects (per triangle, nonzero: listed), for
@@ -70,8 +71,7 @@ class LightGrid {
   // The list of the cell in `column` and `row` (within the reach's bounds), and the triangles
   // too wide for the cells, which every reach holds.
   [[nodiscard]] std::span<const std::uint32_t> list(std::uint32_t column, std::uint32_t row) const {
-    const std::size_t cell = std::size_t{row} * columns_ + column;
-    return {entries_.data() + first_[cell], entries_.data() + first_[cell + 1]};
+    return list(std::size_t{row} * columns_ + column);
   }
   [[nodiscard]] std::span<const std::uint32_t> big() const { return big_; }
   // The key of a listed triangle.
@@ -87,8 +87,7 @@ class LightGrid {
       }
     };
     read(big_);
-    for (std::uint32_t r = reach.r0; r <= reach.r1; ++r)
-      for (std::uint32_t c = reach.c0; c <= reach.c1; ++c) read(list(c, r));
+    for_each_cell(reach, [&](std::size_t cell) { read(list(cell)); });
   }
 
   // Triangles whose box of cells covers more than half of the cells (a floor under a mesh) are
@@ -100,9 +99,17 @@ class LightGrid {
   static constexpr std::size_t kMostEntriesPerTriangle = 32;
 
   [[nodiscard]] std::size_t cells() const { return std::size_t{columns_} * rows_; }
-  [[nodiscard]] std::size_t entries() const { return entries_.size(); }
 
  private:
+  // Calls f(cell) for each cell of `r`, row-major (cell: the index into first_).
+  template <typename F>
+  void for_each_cell(const Reach& r, F&& f) const {
+    for (std::uint32_t y = r.r0; y <= r.r1; ++y)
+      for (std::uint32_t x = r.c0; x <= r.c1; ++x) f(std::size_t{y} * columns_ + x);
+  }
+  [[nodiscard]] std::span<const std::uint32_t> list(std::size_t cell) const {
+    return {entries_.data() + first_[cell], entries_.data() + first_[cell + 1]};
+  }
   [[nodiscard]] std::uint32_t column(double u) const;
   [[nodiscard]] std::uint32_t row(double v) const;
 

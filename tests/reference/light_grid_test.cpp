@@ -169,11 +169,17 @@ TEST(LightGrid, LightInsideTheScenesBox_NoGrid) {
   EXPECT_FALSE(LightGrid::build(soup, {0.5, 1.0, 0.5}, bounding_box(soup.vertices), listed).has_value());
 }
 
-TEST(LightGrid, BoxReachingTheLightsPlane_NoReach) {
-  std::mt19937_64 rng(11);
+// The grid of a random soup of 50 triangles (seed) under a light at (0.5, 4, 0.5), with every
+// triangle listed (`listed` 1) or none (0).
+std::optional<LightGrid> grid_under_light(std::uint64_t seed, std::uint8_t listed) {
+  std::mt19937_64 rng(seed);
   const Soup soup = random_soup(rng, 50);
-  const std::vector<std::uint8_t> listed(soup.triangles.size(), 1);
-  const std::optional<LightGrid> grid = LightGrid::build(soup, {0.5, 4.0, 0.5}, bounding_box(soup.vertices), listed);
+  return LightGrid::build(soup, {0.5, 4.0, 0.5}, bounding_box(soup.vertices),
+                          std::vector<std::uint8_t>(soup.triangles.size(), listed));
+}
+
+TEST(LightGrid, BoxReachingTheLightsPlane_NoReach) {
+  const std::optional<LightGrid> grid = grid_under_light(11, 1);
   ASSERT_TRUE(grid.has_value());
   EXPECT_TRUE(grid->reach({0.0, 0.0, 0.0}, {1.0, 3.9, 1.0}).has_value());
   EXPECT_FALSE(grid->reach({0.0, 0.0, 0.0}, {1.0, 4.0, 1.0}).has_value());
@@ -181,10 +187,7 @@ TEST(LightGrid, BoxReachingTheLightsPlane_NoReach) {
 }
 
 TEST(LightGrid, NothingListed_EmptyReach) {
-  std::mt19937_64 rng(13);
-  const Soup soup = random_soup(rng, 50);
-  const std::vector<std::uint8_t> listed(soup.triangles.size(), 0);
-  const std::optional<LightGrid> grid = LightGrid::build(soup, {0.5, 4.0, 0.5}, bounding_box(soup.vertices), listed);
+  const std::optional<LightGrid> grid = grid_under_light(13, 0);
   ASSERT_TRUE(grid.has_value());
   const std::optional<LightGrid::Reach> reach = grid->reach({0.0, 0.0, 0.0}, {1.0, 1.0, 1.0});
   ASSERT_TRUE(reach.has_value());
