@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <compare>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -104,6 +105,7 @@ void radix_sort_by_x(HugePageBuffer<XRecord>& records, HugePageBuffer<XRecord>& 
 struct RunRecord {
   std::uint64_t x_key, y_key, z_key;
   std::uint32_t input_index;
+  auto operator<=>(const RunRecord&) const = default;  // (x, y, z, input index)
 };
 
 bool same_position(const RunRecord& a, const RunRecord& b) {
@@ -119,12 +121,6 @@ std::vector<char> sort_runs_and_mark_groups(const std::vector<Vec3>& vertices, H
   const auto run_begins = [&](std::size_t i) {
     return i == 0 || (records[i].x_key >> low) != (records[i - 1].x_key >> low);
   };
-  const auto before = [](const RunRecord& a, const RunRecord& b) {
-    if (a.x_key != b.x_key) return a.x_key < b.x_key;
-    if (a.y_key != b.y_key) return a.y_key < b.y_key;
-    if (a.z_key != b.z_key) return a.z_key < b.z_key;
-    return a.input_index < b.input_index;
-  };
   tbb::parallel_for(std::size_t{0}, chunk_count(n), [&](std::size_t c) {
     std::vector<RunRecord> run;
     std::size_t i = c * kGrain;
@@ -139,7 +135,7 @@ std::vector<char> sort_runs_and_mark_groups(const std::vector<Vec3>& vertices, H
           const Vec3& p = vertices[records[j].input_index];
           run.push_back({records[j].x_key, order_key(p[1]), order_key(p[2]), records[j].input_index});
         }
-        std::sort(run.begin(), run.end(), before);
+        std::sort(run.begin(), run.end());
         for (std::size_t j = i; j < end; ++j) {
           records[j].input_index = run[j - i].input_index;
           if (j > i) new_group[j] = !same_position(run[j - i], run[j - i - 1]);
