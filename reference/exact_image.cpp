@@ -183,11 +183,13 @@ std::unique_ptr<Silhouette> casting_edges(const Soup& canonical, const EdgeTable
 // `near` (or nullptr): per candidate, ascending, a lower bound on its distance from the ray's
 // origin; the scan stops at the first candidate that can only be met beyond the best meeting's
 // parameter (t >= near / |d|), as the walk prunes its boxes, so the answer is the same.
+// `best`: the nearest meeting's parameter (of the hit triangle where the hit is countable).
 template <typename Known>
 RayHit first_hit(const ImageGeometry& g, const PixelRay& ray, std::vector<std::uint32_t>& in_plane,
-                 const std::vector<std::uint32_t>* candidates, const double* near, Known&& known) {
+                 const std::vector<std::uint32_t>* candidates, const double* near, Known&& known,
+                 std::optional<detail::RayParameter>& best) {
   in_plane.clear();
-  std::optional<detail::RayParameter> best;
+  best.reset();
   RayHit hit;
   double bound = std::numeric_limits<double>::infinity();
   const detail::KnownRaySigns* known_signs = nullptr;  // the visited candidate's, when known
@@ -223,15 +225,18 @@ RayHit first_hit(const ImageGeometry& g, const PixelRay& ray, std::vector<std::u
     return true;
   };
   if (candidates != nullptr) {
-    // |d| rounded up (a few roundings of relative 2^-53 each; 2^-40 taken), and the lower bound
-    // near / |d| rounded down the same way. Without a usable |d| no candidate is skipped.
+    // A candidate is met, if at all, at t >= near / |d|; the scan stops where that exceeds
+    // bound, tested without a division: length >= |d| (1 + 2^-41) (its few roundings of relative
+    // 2^-53 each, 2^-40 added), so near > fl(bound * length) + 2^-1000 (the product's rounding,
+    // relative 2^-53, and its underflow, 2^-1074 at most, absorbed) gives near > bound |d|. An
+    // infinite bound prunes nothing. Without a usable |d| no candidate is skipped.
     const Vec3& d = ray.direction;
     const double length = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) * (1.0 + 0x1p-40);
     const bool prune = near != nullptr && length > 0x1p-500 && std::isfinite(length);
     detail::KnownRaySigns signs;
     known_signs = &signs;
     for (std::size_t k = 0; k < candidates->size(); ++k) {
-      if (prune && near[k] / length * (1.0 - 0x1p-40) > bound) break;
+      if (prune && near[k] > bound * length + 0x1p-1000) break;
       if (known(k, signs)) visit((*candidates)[k]);
     }
   } else {
@@ -1069,6 +1074,7 @@ struct TileScratch {
   std::vector<std::uint32_t> seen;  // per triangle: the generation that collected it
   std::uint32_t generation = 0;
   std::vector<std::uint32_t> in_plane;  // first_hit's
+  std::optional<detail::RayParameter> best;  // first_hit's nearest meeting
   std::vector<double> near;  // per candidate of the eye tile, a lower bound on its distance from the eye
   // The count tiles': per candidate its filters, per ray its box middle and the candidates the
   // filters leave; P's side of the candidates' planes that hit triangle side_of decides (side_beside).
@@ -2051,15 +2057,16 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
       }
       return !(apart && s.direction_side && *s.direction_side != Sign::zero);
     };
-    const RayHit hit = first_hit(g, ray, local.in_plane, list, local.near.data(), known);
+    std::optional<detail::RayParameter>& best = local.best;
+    const RayHit hit = first_hit(g, ray, local.in_plane, list, local.near.data(), known, best);
     hits[k] = hit;  // (not read back from hits[k]: its two narrow stores would stall an 8-byte load)
     if (!countable(hit)) return;
-    const std::uint32_t h = hit.triangle;
-    if (const auto box = detail::semi_static_hit_box(ray, {g.vertex(h, 0), g.vertex(h, 1), g.vertex(h, 2)})) {
+    // A countable hit's nearest meeting is its triangle's: its semi-static stage gives the box.
+    if (const auto box = best->semi_static_hit_box()) {
       point_boxes.set(k, *box);
       return;
     }
-    const detail::HitPoint p(detail::RayParameter(ray, g.vertex(h, 0), g.vertex(h, 1), g.vertex(h, 2), hit.direction_side));
+    const detail::HitPoint p(*best);
     point_boxes.set(k, {p.lo(), p.hi()});
   };
   // Tile by tile: the tile's list (TileCandidates), then its centre rays and (for the

@@ -142,11 +142,8 @@ std::optional<Sign> box_filtered_sign(const std::array<double, 3>& x, const std:
   return std::nullopt;
 }
 
-}  // namespace
-
-std::optional<std::array<Vec3, 2>> semi_static_hit_box(const PixelRay& ray, const std::array<Vec3, 3>& triangle) {
-  const std::optional<SemiStaticParameter> s = semi_static_parameter(ray, triangle);
-  if (!s) return std::nullopt;
+// The box of semi_static_hit_box (below) from the semi-static stage's q and rho on `ray`.
+std::optional<std::array<Vec3, 2>> hit_box_of(const PixelRay& ray, const SemiStaticParameter& s) {
   // P_k = e_k + t d_k, computed P~ = fl(e_k + y), y = fl(q d_k). t d_k = q d_k (1 + eps), so
   // |t d_k - y| <= |q d_k| (rho + u) <= 1.01 |y| (rho + u), and the sum adds u |P~| / (1 - u):
   // |P~ - P_k| <= 1.01 (|y| (rho + 2u) + u |P~|). The margin m below is twice that, times
@@ -154,14 +151,27 @@ std::optional<std::array<Vec3, 2>> semi_static_hit_box(const PixelRay& ray, cons
   // at most u (|P~| + m), which the doubling covers.
   std::array<Vec3, 2> box;
   for (int k = 0; k < 3; ++k) {
-    const double y = s->q * ray.direction[k];
+    const double y = s.q * ray.direction[k];
     const double p = ray.origin[k] + y;
-    const double m = (2.0 * std::fabs(y) * (s->rho + 2.0 * kUnit) + 4.0 * kUnit * std::fabs(p)) * (1.0 + 0x1p-40) + kTiny;
+    const double m = (2.0 * std::fabs(y) * (s.rho + 2.0 * kUnit) + 4.0 * kUnit * std::fabs(p)) * (1.0 + 0x1p-40) + kTiny;
     box[0][k] = p - m;
     box[1][k] = p + m;
     if (!std::isfinite(box[0][k]) || !std::isfinite(box[1][k])) return std::nullopt;
   }
   return box;
+}
+
+}  // namespace
+
+std::optional<std::array<Vec3, 2>> semi_static_hit_box(const PixelRay& ray, const std::array<Vec3, 3>& triangle) {
+  const std::optional<SemiStaticParameter> s = semi_static_parameter(ray, triangle);
+  if (!s) return std::nullopt;
+  return hit_box_of(ray, *s);
+}
+
+std::optional<std::array<Vec3, 2>> RayParameter::semi_static_hit_box() const {
+  if (!semi_static_) return std::nullopt;
+  return hit_box_of(ray_, SemiStaticParameter{q_, rho_});
 }
 
 RayMeeting ray_meets_triangle(const PixelRay& ray, const Vec3& a, const Vec3& b, const Vec3& c) {
@@ -204,6 +214,9 @@ RayParameter::RayParameter(const PixelRay& ray, const Vec3& a, const Vec3& b, co
   if (direction_side == Sign::zero)
     throw std::invalid_argument("RayParameter: the ray is parallel to the triangle's plane");
   if (const std::optional<SemiStaticParameter> s = semi_static_parameter(ray_, triangle_)) {
+    semi_static_ = true;
+    q_ = s->q;
+    rho_ = s->rho;
     // t in q (1 -+ rho): the margin doubled covers the roundings of its product and of the
     // sums (each a relative u of a value below 2 |q|; rho >= 8u).
     const double m = 2.0 * std::fabs(s->q) * s->rho + kTiny;

@@ -64,6 +64,11 @@ class RayParameter {
   // An upper bound of t (+infinity when the enclosure is unbounded).
   [[nodiscard]] double upper() const { return hi_; }
 
+  // semi_static_hit_box(ray(), triangle()) (below), from the semi-static stage this parameter's
+  // enclosure already ran (the same values, not computed twice); nullopt also for an Unenclosed
+  // parameter, which ran none.
+  [[nodiscard]] std::optional<std::array<Vec3, 2>> semi_static_hit_box() const;
+
   // sign(t - other.t), exact. Both on the same ray.
   [[nodiscard]] Sign compare(const RayParameter& other) const;
 
@@ -79,6 +84,9 @@ class RayParameter {
   PixelRay ray_;
   std::array<Vec3, 3> triangle_;
   Sign direction_side_;
+  bool semi_static_ = false;  // q_ and rho_ hold the semi-static stage's t = q (1 + eps), |eps| <= rho
+  double q_ = 0.0;
+  double rho_ = 0.0;
   double lo_;
   double hi_;
 };
