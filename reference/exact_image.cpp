@@ -389,6 +389,12 @@ class EdgePlaneFilter {
     return std::nullopt;
   }
 
+  // sign_along's terms, for callers that evaluate many directions at once: its normal n(m) and
+  // its bound B (sign_along(d) is positive where fl(d . n) > B, negative where fl(d . n) < -B,
+  // the dot product summed in axis order), B = +infinity where the filter is not usable.
+  [[nodiscard]] const Vec3& normal() const { return n_; }
+  [[nodiscard]] double along_bound() const { return usable_ ? bound_ : std::numeric_limits<double>::infinity(); }
+
   // The sign for light L (|L - m| <= W), or nullopt where the filter cannot decide.
   [[nodiscard]] std::optional<Sign> sign(const HomogeneousPoint& light) const {
     if (!usable_) return std::nullopt;
@@ -1109,22 +1115,42 @@ struct TileScratch {
 // |d_i| <= W_i over the tile, filters of orient(a, b, c, d) = d . ((b - a) x (c - a)) and of
 // orient(e, d, p, q) = d . ((p - e) x (q - e)) per edge (EdgePlaneFilter::sign_along): one dot
 // product each per ray, the exact sign where they cannot decide.
+// Each filter is kept as its normal and bound alone (32 bytes, not EdgePlaneFilter's 80): the
+// scan reads a candidate's four per ray, and decides "apart" without a branch per sign.
 struct CandidateRaySigns {
+  // Plane 0 the triangle's (the direction's side), planes 1-3 its edges' through the eye.
+  struct Plane {
+    Vec3 n;
+    double bound;  // EdgePlaneFilter::along_bound
+  };
   Sign eye_side;
-  EdgePlaneFilter direction;
-  std::array<EdgePlaneFilter, 3> edges;
+  double side;  // eye_side as -1, 0 or +1
+  std::array<Plane, 4> planes;
+
+  // fl(d . n) of plane p, as EdgePlaneFilter::sign_along forms it.
+  [[nodiscard]] double along(std::size_t p, const Vec3& d) const {
+    return d[0] * planes[p].n[0] + d[1] * planes[p].n[1] + d[2] * planes[p].n[2];
+  }
+  // The sign the filter certifies from v = along(p, d), or nullopt.
+  [[nodiscard]] std::optional<Sign> sign_of(std::size_t p, double v) const {
+    if (v > planes[p].bound) return Sign::positive;
+    if (v < -planes[p].bound) return Sign::negative;
+    return std::nullopt;
+  }
 };
 
 std::vector<CandidateRaySigns> candidate_ray_signs(const ImageGeometry& g, const std::vector<std::uint32_t>& ids,
                                                    const Vec3& eye, const Vec3& W) {
   std::vector<CandidateRaySigns> out;
   out.reserve(ids.size());
+  const auto plane = [](const EdgePlaneFilter& f) { return CandidateRaySigns::Plane{f.normal(), f.along_bound()}; };
   for (std::uint32_t id : ids) {
     const Vec3 &a = g.vertex(id, 0), &b = g.vertex(id, 1), &c = g.vertex(id, 2);
-    out.push_back({detail::orient_unchecked(finite_point(a), finite_point(b), finite_point(c), finite_point(eye)),
-                   EdgePlaneFilter(a, Vec3{}, W, b, c),
-                   {EdgePlaneFilter(eye, Vec3{}, W, a, b), EdgePlaneFilter(eye, Vec3{}, W, b, c),
-                    EdgePlaneFilter(eye, Vec3{}, W, c, a)}});
+    const Sign eye_side = detail::orient_unchecked(finite_point(a), finite_point(b), finite_point(c), finite_point(eye));
+    out.push_back({eye_side,
+                   eye_side == Sign::zero ? 0.0 : eye_side == Sign::positive ? 1.0 : -1.0,
+                   {plane(EdgePlaneFilter(a, Vec3{}, W, b, c)), plane(EdgePlaneFilter(eye, Vec3{}, W, a, b)),
+                    plane(EdgePlaneFilter(eye, Vec3{}, W, b, c)), plane(EdgePlaneFilter(eye, Vec3{}, W, c, a))}});
   }
   return out;
 }
@@ -2045,17 +2071,22 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
     const PixelRay ray = grid.ray(k);
     // The candidates the filters show apart (the plane behind the eye, or the crossing strictly
     // outside an edge line: ray_meets_triangle's own verdicts) are skipped.
+    // With the eye off the plane (side s = +-1), the candidate is apart where the direction's
+    // sign is certain and either it is s (the plane behind the eye) or some edge's is s (X
+    // outside that edge line). s v > B is "certainly s" for either s; the filters never certify
+    // a zero. Evaluated without a branch per sign (they vary from ray to ray).
     const auto known = [&](std::size_t c, detail::KnownRaySigns& s) {
-      s.eye_side = signs[c].eye_side;
-      s.direction_side = signs[c].direction.sign_along(ray.direction);
-      if (s.direction_side && *s.direction_side != Sign::zero && *s.direction_side == *s.eye_side) return false;
-      bool apart = false;
-      for (std::size_t e = 0; e < 3; ++e) {
-        s.edges[e] = signs[c].edges[e].sign_along(ray.direction);
-        // With the eye off the plane, s = eye_side: an edge sign of s puts X outside.
-        apart = apart || (*s.eye_side != Sign::zero && s.edges[e] && *s.edges[e] == *s.eye_side);
-      }
-      return !(apart && s.direction_side && *s.direction_side != Sign::zero);
+      const CandidateRaySigns& f = signs[c];
+      const Vec3& d = ray.direction;
+      const double v0 = f.along(0, d), v1 = f.along(1, d), v2 = f.along(2, d), v3 = f.along(3, d);
+      const bool direction_known = (v0 > f.planes[0].bound) | (v0 < -f.planes[0].bound);
+      const bool some_side_s = (f.side * v0 > f.planes[0].bound) | (f.side * v1 > f.planes[1].bound) |
+                               (f.side * v2 > f.planes[2].bound) | (f.side * v3 > f.planes[3].bound);
+      if (f.side != 0.0 && direction_known && some_side_s) return false;
+      s.eye_side = f.eye_side;
+      s.direction_side = f.sign_of(0, v0);
+      s.edges = {f.sign_of(1, v1), f.sign_of(2, v2), f.sign_of(3, v3)};
+      return true;
     };
     std::optional<detail::RayParameter>& best = local.best;
     const RayHit hit = first_hit(g, ray, local.in_plane, list, local.near.data(), known, best);
