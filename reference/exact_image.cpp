@@ -2435,9 +2435,6 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
                   counts[k] = count_at(g, light, grid.ray(k), hits[k], box);
                   continue;
                 }
-                local.point_slots.clear();
-                for (const std::uint32_t id : light_grid->big())
-                  if (light_grid->key(id) > reach->threshold) local.point_slots.push_back(slot_of(id));
                 if (reach->one_cell()) {
                   if (const std::uint64_t cell = std::uint64_t{reach->r0} << 32 | reach->c0; cell != cached_cell) {
                     cached_cell = cell;
@@ -2445,14 +2442,24 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
                     for (const std::uint32_t id : light_grid->list(reach->c0, reach->r0))
                       if (light_grid->key(id) > group_threshold) local.cell_slots.emplace_back(light_grid->key(id), slot_of(id));
                   }
-                  for (const auto& [key, slot] : local.cell_slots)
-                    if (key > reach->threshold) local.point_slots.push_back(slot);
-                } else {
-                  light_grid->visit(*reach, [&](std::uint32_t id) { local.point_slots.push_back(slot_of(id)); });
-                  // A triangle listed in two of its cells (or wide and in big()) comes twice.
-                  std::sort(local.point_slots.begin(), local.point_slots.end());
-                  local.point_slots.erase(std::unique(local.point_slots.begin(), local.point_slots.end()), local.point_slots.end());
+                  // The point's candidates read straight from big() and the cached cell (each
+                  // filter used at once, before slot_of may grow local.crossing again).
+                  const double threshold = reach->threshold;
+                  counts[k] = count_filtered(i, [&](auto&& visit) {
+                    for (const std::uint32_t id : light_grid->big())
+                      if (light_grid->key(id) > threshold) visit(id, local.crossing[slot_of(id)]);
+                    for (const auto& [key, slot] : local.cell_slots)
+                      if (key > threshold) visit(local.crossing_ids[slot], local.crossing[slot]);
+                  });
+                  continue;
                 }
+                local.point_slots.clear();
+                for (const std::uint32_t id : light_grid->big())
+                  if (light_grid->key(id) > reach->threshold) local.point_slots.push_back(slot_of(id));
+                light_grid->visit(*reach, [&](std::uint32_t id) { local.point_slots.push_back(slot_of(id)); });
+                // A triangle listed in two of its cells (or wide and in big()) comes twice.
+                std::sort(local.point_slots.begin(), local.point_slots.end());
+                local.point_slots.erase(std::unique(local.point_slots.begin(), local.point_slots.end()), local.point_slots.end());
                 counts[k] = count_filtered(i, [&](auto&& visit) {
                   for (const std::uint32_t slot : local.point_slots) visit(local.crossing_ids[slot], local.crossing[slot]);
                 });
