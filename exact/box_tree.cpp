@@ -13,7 +13,10 @@
 #include "core/outward_float.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
+#include <tbb/parallel_reduce.h>
 
 #include <algorithm>
 #include <array>
@@ -120,14 +123,20 @@ struct Primitive {
   Bounds box;
   std::array<double, 3> centre;
   std::uint32_t id;
+  // The node's binning pass leaves here the box's bin on each axis it bins (4 bits per axis, at
+  // bit 4 * axis: kBins <= 16), which its partition then reads (in the record's padding).
+  std::uint32_t bins;
 };
 
 inline constexpr std::uint32_t kLeafSize = 4;
 inline constexpr int kBins = 12;
+static_assert(kBins <= 16, "Primitive::bins holds 4 bits per axis");
 // Past this depth the build splits at the median (depth below 2 * 48 + log2 n).
 inline constexpr int kMaxSahDepth = 48;
 // Up to this many boxes a node bins all three axes.
 inline constexpr std::uint32_t kAllAxes = 256;
+// The grain of the parallel loops over every box (filling the build's records, copying them out).
+inline constexpr std::uint32_t kParallelFill = 16384;
 // Below this many boxes a subtree is built on the calling thread.
 inline constexpr std::uint32_t kParallelBuild = 4096;
 
@@ -406,28 +415,47 @@ BoxTree::Impl::Impl(const std::vector<Box>& closed, LeafTest test) : leaf_test(t
   // The build's records on huge pages (core/huge_page_advice.h), as every array of the tree: a
   // 124K-box tree spent a third of its build in first-touch page faults.
   HugePageBuffer<Primitive> prims(n);
-  Bounds centres;
-  for (std::uint32_t i = 0; i < n; ++i) {
-    Primitive& p = prims[i];
-    for (int k = 0; k < 3; ++k) {
-      p.box.lo[k] = closed[i].lo[k];
-      p.box.hi[k] = closed[i].hi[k];
-      p.centre[k] = closed[i].lo[k] / 2 + closed[i].hi[k] / 2;
-    }
-    p.id = i;
-    root_box.grow(p.box);
-    centres.grow(p.centre);
-  }
+  // Filled in parallel: the first touch of the records' fresh pages (a page fault each) is most
+  // of this loop's time, and is then shared by the threads.
+  struct Extent {
+    Bounds boxes, centres;
+  };
+  const Extent extent = tbb::parallel_reduce(
+      tbb::blocked_range<std::uint32_t>(0, n, kParallelFill), Extent{},
+      [&](const tbb::blocked_range<std::uint32_t>& r, Extent e) {
+        for (std::uint32_t i = r.begin(); i != r.end(); ++i) {
+          Primitive& p = prims[i];
+          for (int k = 0; k < 3; ++k) {
+            p.box.lo[k] = closed[i].lo[k];
+            p.box.hi[k] = closed[i].hi[k];
+            p.centre[k] = closed[i].lo[k] / 2 + closed[i].hi[k] / 2;
+          }
+          p.id = i;
+          p.bins = 0;
+          e.boxes.grow(p.box);
+          e.centres.grow(p.centre);
+        }
+        return e;
+      },
+      [](Extent a, const Extent& b) {
+        a.boxes.grow(b.boxes);
+        a.centres.grow(b.centres);
+        return a;
+      });
+  root_box = extent.boxes;
+  const Bounds& centres = extent.centres;
   nodes = HugePageBuffer<Node>(n);  // a binary tree over n >= 1 leaves has fewer than n inner nodes
   std::atomic<std::uint32_t> next_node{0};
   root = build(0, n, centres, prims.data(), next_node, 0);
   node_count = next_node.load();
   boxes = HugePageBuffer<Bounds>(n);
   ids = HugePageBuffer<std::uint32_t>(n);
-  for (std::uint32_t i = 0; i < n; ++i) {
-    boxes[i] = prims[i].box;
-    ids[i] = prims[i].id;
-  }
+  tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, n, kParallelFill), [&](const tbb::blocked_range<std::uint32_t>& r) {
+    for (std::uint32_t i = r.begin(); i != r.end(); ++i) {
+      boxes[i] = prims[i].box;
+      ids[i] = prims[i].id;
+    }
+  });
   prims = HugePageBuffer<Primitive>();  // before the collapse: the peak of memory is the build's
   for (int k = 0; k < 3; ++k) tame = tame && shadowcert::detail::tame(root_box.lo[k]) && shadowcert::detail::tame(root_box.hi[k]);
   tame32 = true;
@@ -561,17 +589,25 @@ Child BoxTree::Impl::build(std::uint32_t first, std::uint32_t count, const Bound
     }
     const auto bin_of = [&](const Primitive& p, int axis) {
       // Clamped in double before the conversion: a difference that overflows (coordinates near
-      // the double range) or an inf * 0 would make the cast undefined. std::max(0.0, NaN) is 0.
+      // the double range) or an inf * 0 would make the cast undefined; a NaN clamps to 0. As
+      // conditionals of this form (maxsd, minsd: no branch on the box's side of the split).
       const double x = (p.centre[axis] - centres.lo[axis]) * scale[axis];
-      return static_cast<int>(std::min(static_cast<double>(kBins - 1), std::max(0.0, x)));
+      const double above = x > 0.0 ? x : 0.0;
+      const double clamped = above < static_cast<double>(kBins - 1) ? above : static_cast<double>(kBins - 1);
+      return static_cast<int>(clamped);
     };
-    for (auto it = begin; it != end; ++it)
+    for (auto it = begin; it != end; ++it) {
+      std::uint32_t packed = 0;
       for (int axis = 0; axis < 3; ++axis) {
         if (!(scale[axis] > 0.0)) continue;
-        Bin& bin = bins[axis][bin_of(*it, axis)];
+        const int b = bin_of(*it, axis);
+        Bin& bin = bins[axis][b];
         bin.box.grow(it->box);
         ++bin.count;
+        packed |= static_cast<std::uint32_t>(b) << (4 * axis);
       }
+      it->bins = packed;
+    }
     int best_axis = -1, best_bin = 0;
     double best_cost = kInfinity;
     for (int axis = 0; axis < 3; ++axis) {
@@ -598,7 +634,10 @@ Child BoxTree::Impl::build(std::uint32_t first, std::uint32_t count, const Bound
       }
     }
     if (best_axis >= 0) {
-      const auto split = std::partition(begin, end, [&](const Primitive& p) { return bin_of(p, best_axis) <= best_bin; });
+      const unsigned shift = 4 * static_cast<unsigned>(best_axis);
+      const auto split = std::partition(begin, end, [&](const Primitive& p) {
+        return static_cast<int>((p.bins >> shift) & 15u) <= best_bin;  // bin_of(p, best_axis), as binned
+      });
       middle = static_cast<std::uint32_t>(split - prims);
       for (int b = 0; b < kBins; ++b) side_box[b <= best_bin ? 0 : 1].grow(bins[best_axis][b].box);
       sides_known = true;
