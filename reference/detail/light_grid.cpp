@@ -171,17 +171,25 @@ std::optional<LightGrid> LightGrid::build(const Soup& soup, const Vec3& light, c
     grid.first_.assign(2, 0);
     return grid;
   }
+  // The listed triangles, in order, and each one's projection box, computed once for the
+  // passes below (every one of them reads it).
+  std::vector<std::uint32_t> order;
+  order.reserve(listed_count);
+  for (std::size_t t = 0; t < triangles; ++t)
+    if (listed[t] != 0) order.push_back(static_cast<std::uint32_t>(t));
+  std::vector<Rect> rects(order.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, order.size(), 8192), [&](const auto& r) {
+    for (std::size_t k = r.begin(); k != r.end(); ++k) rects[k] = rect_of(order[k]);
+  });
   // The box of the listed triangles' projections (`only_narrow`: of those that the grid as it
   // stands finds not wide).
   const auto domain = [&](bool only_narrow) {
     return tbb::parallel_reduce(
-        tbb::blocked_range<std::size_t>(0, triangles, 8192), std::pair<Rect, std::size_t>{},
+        tbb::blocked_range<std::size_t>(0, rects.size(), 8192), std::pair<Rect, std::size_t>{},
         [&](const auto& r, std::pair<Rect, std::size_t> acc) {
-          for (std::size_t t = r.begin(); t != r.end(); ++t) {
-            if (listed[t] == 0) continue;
-            const Rect rect = rect_of(t);
-            if (only_narrow && wide(cell_rect(rect))) continue;
-            acc.first.join(rect);
+          for (std::size_t k = r.begin(); k != r.end(); ++k) {
+            if (only_narrow && wide(cell_rect(rects[k]))) continue;
+            acc.first.join(rects[k]);
             ++acc.second;
           }
           return acc;
@@ -220,10 +228,6 @@ std::optional<LightGrid> LightGrid::build(const Soup& soup, const Vec3& light, c
   // (one per thread, each with its own counts): each cell's list comes in triangle order. The
   // wide triangles go to big_ apart.
   grid.keys_.resize(triangles);
-  std::vector<std::uint32_t> order;
-  order.reserve(listed_count);
-  for (std::size_t t = 0; t < triangles; ++t)
-    if (listed[t] != 0) order.push_back(static_cast<std::uint32_t>(t));
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, order.size(), 8192), [&](const auto& r) {
     for (std::size_t k = r.begin(); k != r.end(); ++k) grid.keys_[order[k]] = key_of(order[k]);
   });
@@ -235,7 +239,7 @@ std::optional<LightGrid> LightGrid::build(const Soup& soup, const Vec3& light, c
   tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t j) {
     cursor[j].assign(cells, 0);
     for (std::size_t k = chunk_begin(j); k != chunk_begin(j + 1); ++k) {
-      const Reach r = cell_rect(rect_of(order[k]));
+      const Reach r = cell_rect(rects[k]);
       if (wide(r)) {
         big[j].push_back(order[k]);
         continue;
@@ -262,7 +266,7 @@ std::optional<LightGrid> LightGrid::build(const Soup& soup, const Vec3& light, c
   grid.entries_ = HugePageBuffer<std::uint32_t>(total);
   tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t j) {
     for (std::size_t k = chunk_begin(j); k != chunk_begin(j + 1); ++k) {
-      const Reach r = cell_rect(rect_of(order[k]));
+      const Reach r = cell_rect(rects[k]);
       if (wide(r)) continue;
       grid.for_each_cell(r, [&](std::size_t cell) { grid.entries_[cursor[j][cell]++] = order[k]; });
     }
