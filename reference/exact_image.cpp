@@ -2109,31 +2109,54 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
     const std::size_t centre_rays = std::size_t{window.width} * window.height;
     const std::size_t corner_rays = footprints ? std::size_t{window.width + 1} * (window.height + 1) : 0;
     Progress progress(options, "hits", centre_rays + corner_rays);
+    // The rays of one block of pixels (a tile, or a quarter of one) with `candidates` its list
+    // (or none: each walks the tree): its centres, then the corners it owns.
+    const auto trace_block = [&](const TileGrid::Bounds& b, TileCandidates& candidates, TileScratch& local) {
+      if (candidates.listed) order_by_distance(g, grid.frame.eye, candidates.ids, local.near);
+      const std::vector<std::uint32_t>* list = candidates.list();
+      const std::vector<CandidateRaySigns> signs =
+          list != nullptr && !list->empty()
+              ? candidate_ray_signs(g, *list, grid.frame.eye,
+                                    detail::eye_tile_direction_bound(grid.frame, b.x0, b.x1, b.y0, b.y1))
+              : std::vector<CandidateRaySigns>{};
+      for (std::uint32_t y = b.y0; y < b.y1; ++y)
+        for (std::uint32_t x = b.x0; x < b.x1; ++x) trace(std::size_t{y} * grid.width + x, list, signs, local);
+      std::size_t done = std::size_t{b.x1 - b.x0} * (b.y1 - b.y0);
+      if (footprints) {
+        for (std::uint32_t y = b.y0; y < b.cy1; ++y)
+          for (std::uint32_t x = b.x0; x < b.cx1; ++x) trace(grid.corner(x, y), list, signs, local);
+        done += std::size_t{b.cx1 - b.x0} * (b.cy1 - b.y0);
+      }
+      return done;
+    };
     tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, tiles.count(), 1), [&](const auto& r) {
       TileScratch& local = tile_scratch.local();
       for (std::uint32_t t = r.begin(); t != r.end(); ++t) {
         const TileGrid::Bounds b = tiles.bounds(t);
-        tile_lists[t] = tile_candidates(
-            g, detail::eye_tile_cone(grid.frame, b.x0, b.x1, b.y0, b.y1, scene.lo, scene.hi), local);
-        if (tile_lists[t].listed) order_by_distance(g, grid.frame.eye, tile_lists[t].ids, local.near);
-        const std::vector<std::uint32_t>* list = tile_lists[t].list();
-        const std::vector<CandidateRaySigns> signs =
-            list != nullptr && !list->empty()
-                ? candidate_ray_signs(g, *list, grid.frame.eye,
-                                      detail::eye_tile_direction_bound(grid.frame, b.x0, b.x1, b.y0, b.y1))
-                : std::vector<CandidateRaySigns>{};
-        for (std::uint32_t y = b.y0; y < b.y1; ++y)
-          for (std::uint32_t x = b.x0; x < b.x1; ++x) {
-            trace(std::size_t{y} * grid.width + x, list, signs, local);
-          }
-        std::size_t done = std::size_t{b.x1 - b.x0} * (b.y1 - b.y0);
-        if (footprints) {
-          for (std::uint32_t y = b.y0; y < b.cy1; ++y)
-            for (std::uint32_t x = b.x0; x < b.cx1; ++x) {
-              trace(grid.corner(x, y), list, signs, local);
-            }
-          done += std::size_t{b.cx1 - b.x0} * (b.cy1 - b.y0);
+        const std::optional<detail::EyeTileCone> cone =
+            detail::eye_tile_cone(grid.frame, b.x0, b.x1, b.y0, b.y1, scene.lo, scene.hi);
+        tile_lists[t] = tile_candidates(g, cone, local);
+        if (tile_lists[t].listed || !cone) {
+          progress.advance(trace_block(b, tile_lists[t], local));
+          continue;
         }
+        // The tile's cone holds too many triangles (a dense patch, a grazing view): each quarter
+        // of it lists its own narrower cone where that holds few enough, so that its rays scan
+        // a list rather than each walk the tree (a walk costs several listed rays: ogre at
+        // 1024x768, 56K walking rays took about a quarter of the stage). A quarter owns the
+        // corners of the tile's it covers, those of its last column and row only where the
+        // tile's are (TileGrid::Bounds). Its list serves its rays alone (the footprints keep
+        // the tile's: none).
+        const std::uint32_t xm = b.x0 + (b.x1 - b.x0 + 1) / 2, ym = b.y0 + (b.y1 - b.y0 + 1) / 2;
+        std::size_t done = 0;
+        for (const auto& [qx0, qx1] : {std::pair{b.x0, xm}, std::pair{xm, b.x1}})
+          for (const auto& [qy0, qy1] : {std::pair{b.y0, ym}, std::pair{ym, b.y1}}) {
+            if (qx0 == qx1 || qy0 == qy1) continue;
+            const TileGrid::Bounds q{qx0, qx1, qy0, qy1, qx1 == b.x1 ? b.cx1 : qx1, qy1 == b.y1 ? b.cy1 : qy1};
+            TileCandidates quarter =
+                tile_candidates(g, detail::eye_tile_cone(grid.frame, q.x0, q.x1, q.y0, q.y1, scene.lo, scene.hi), local);
+            done += trace_block(q, quarter, local);
+          }
         progress.advance(done);
       }
     });

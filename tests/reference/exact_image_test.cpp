@@ -555,6 +555,50 @@ TEST(ExactImage, UnambiguousPixels_AgreeWithAFloatRayCasterAndTheOccluderCounter
   EXPECT_GT(counts_checked, 1500u);
 }
 
+// --- tiles too dense to list: their quarters list their own ----------------------------------
+
+// A tile whose cone holds more than the list's cap has its rays traced by quarters, each with
+// the list of its own narrower cone (or, still too many, by walks of the tree). Here most 8x8
+// tiles see too many of the icosphere's 5,120 triangles to list them (51 of 60 in the two
+// images), and about half of their quarters few enough (98 of 204; counted while writing the
+// test, which fails when a quarter's list or its corners are cut short): the centre hits must be those of a float ray
+// caster, and a window whose tiles are cut elsewhere (offset by 3 and 5 pixels, so every ray
+// lands in another tile and quarter) must give every pixel the same answers.
+TEST(ExactImage, DenseTiles_TracedByQuarters_AgreeWithAFloatRayCasterAndAShiftedWindow) {
+  Soup soup = floor_quad(6.0);
+  append(soup, icosphere({0.0, 1.0, 0.0}, 1.0, 4));
+  soup = snapped(soup);
+  const std::vector<Light> lights{point_light(1.0, 8.0, 2.0)};
+  Camera camera;
+  camera.eye = {0.0, 1.4, 2.6};
+  camera.target = {0.0, 1.0, 0.0};
+  camera.width = 48;
+  camera.height = 40;
+  const ExactImage full = exact_image(soup, lights, camera);
+  const CameraFrame frame = camera_frame(camera);
+  std::size_t sphere_hits = 0;
+  for (std::uint32_t r = 0; r < camera.height; ++r)
+    for (std::uint32_t i = 0; i < camera.width; ++i) {
+      const std::size_t p = pixel(full, i, r);
+      if ((full.view_ambiguity[p] & kZeroSign) != 0) continue;
+      EXPECT_EQ(full.hit_triangles[p], float_first_hit(soup, pixel_ray(frame, i + 0.5, r + 0.5)))
+          << "pixel " << i << "," << r;
+      sphere_hits += full.hit_triangles[p] != kNoHit && !floor_hit(full.hit_triangles[p]) ? 1 : 0;
+    }
+  EXPECT_GT(sphere_hits, camera.width * camera.height / 2);
+  ExactImageOptions shifted;
+  shifted.window = PixelWindow{3, 5, camera.width - 3, camera.height - 5};
+  const ExactImage part = exact_image(soup, lights, camera, shifted);
+  for (std::uint32_t r = 5; r < camera.height; ++r)
+    for (std::uint32_t i = 3; i < camera.width; ++i) {
+      const std::size_t p = pixel(full, i, r);
+      ASSERT_EQ(part.hit_triangles[p], full.hit_triangles[p]) << i << "," << r;
+      ASSERT_EQ(part.view_ambiguity[p], full.view_ambiguity[p]) << i << "," << r;
+      ASSERT_EQ(part.lights[0].counts[p], full.lights[0].counts[p]) << i << "," << r;
+      ASSERT_EQ(part.lights[0].ambiguity[p], full.lights[0].ambiguity[p]) << i << "," << r;
+    }
+}
+
 // --- one light at a time gives the same images as all together --------------------------------
 
 TEST(ExactImage, EachLightsImage_IsIndependentOfTheOthers) {
