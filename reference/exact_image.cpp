@@ -22,6 +22,7 @@
 #include <tbb/parallel_invoke.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -1053,6 +1054,9 @@ struct TileGrid {
   struct Bounds {
     std::uint32_t x0, x1, y0, y1, cx1, cy1;
   };
+  // Where a tile's quarters divide its columns [lo, hi) (or rows): [lo, m) and [m, hi) (a tile
+  // one pixel wide or high has two empty quarters).
+  [[nodiscard]] static std::uint32_t middle(std::uint32_t lo, std::uint32_t hi) { return lo + (hi - lo + 1) / 2; }
   [[nodiscard]] Bounds bounds(std::uint32_t t) const {
     Bounds b{};
     b.x0 = window.x + t % columns * kTileSize;
@@ -1575,7 +1579,8 @@ class HitPlaneNeighbours {
 // points: beside each face through the eye and two neighbouring corner rays (d_k, d_k+1), on the
 // side of the next corner ray (the corner rays span a convex cone, R lies in it), and on the
 // eye's side of h's plane (R lies in it). A triangle each of whose edges has both ends
-// certainly strictly outside one of them has no edge in the pyramid: the exact answer of
+// certainly strictly outside one of them (or each end beyond h's plane or at a vertex of h:
+// outcode's bit 5) has no edge in the pyramid: the exact answer of
 // FootprintPolytope::meets_an_edge_of, found with a few filtered determinants of input doubles
 // (most candidates are h's neighbours beside R or triangles behind h's plane). Where a filter
 // is unsure, the polytope decides as before.
@@ -1597,7 +1602,8 @@ class EyePyramidFilter {
   }
 
   // Whether no edge of triangle abc meets the pyramid: each edge has both ends certainly
-  // strictly outside one common half-space (bits of outcode()).
+  // strictly outside one common half-space (bits 0-4 of outcode()), or both beyond h's plane
+  // or at a vertex of h (bit 5).
   [[nodiscard]] bool separates(const Vec3& a, const Vec3& b, const Vec3& c) const {
     const unsigned oa = outcode(a);
     if (oa == 0) return false;
@@ -1610,11 +1616,15 @@ class EyePyramidFilter {
 
  private:
   // Bit k (k < 4): v certainly strictly outside the face through corner rays k, k + 1; bit 4:
-  // certainly strictly beyond h's plane.
+  // certainly strictly beyond h's plane; bit 5: that, or v is a vertex of h (equal coordinates).
+  // Bit 5 is no half-space, but an edge with it at both ends misses the pyramid all the same:
+  // the pyramid lies on the eye's side of h's plane and meets that plane in R alone, strictly
+  // inside h, so an edge beyond the plane but for an end at a vertex of h, or an edge of h
+  // itself, misses it (the neighbours of h behind its plane, on a convex patch all of them).
   [[nodiscard]] unsigned outcode(const Vec3& v) const {
-    unsigned code = 0;
+    unsigned code = v == h_[0] || v == h_[1] || v == h_[2] ? 32u : 0u;
     const std::optional<Sign> beyond = detail::semi_static_light_orientation(h_[0], h_[1], h_[2], {v[0], v[1], v[2], 1.0});
-    if (beyond && *beyond == -eye_side_) code |= 16u;
+    if (beyond && *beyond == -eye_side_) code |= 16u | 32u;
     const Vec3 from_eye = difference(v, eye_);
     for (std::size_t k = 0; k < 4; ++k) {
       if (inside_[k] == Sign::zero) continue;
@@ -2147,7 +2157,7 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
         // corners of the tile's it covers, those of its last column and row only where the
         // tile's are (TileGrid::Bounds). Its list serves its rays alone (the footprints keep
         // the tile's: none).
-        const std::uint32_t xm = b.x0 + (b.x1 - b.x0 + 1) / 2, ym = b.y0 + (b.y1 - b.y0 + 1) / 2;
+        const std::uint32_t xm = TileGrid::middle(b.x0, b.x1), ym = TileGrid::middle(b.y0, b.y1);
         std::size_t done = 0;
         for (const auto& [qx0, qx1] : {std::pair{b.x0, xm}, std::pair{xm, b.x1}})
           for (const auto& [qy0, qy1] : {std::pair{b.y0, ym}, std::pair{ym, b.y1}}) {
