@@ -24,6 +24,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <string>
 #include <utility>
 
 namespace shadowcert::detail {
@@ -376,6 +377,7 @@ struct BoxTree::Impl {
   // page faults from about 1,300-2,300 to 165, and its growth of the resident set from 25 MB to 19.
   HugePageBuffer<Bounds> boxes;       // in leaf order
   HugePageBuffer<std::uint32_t> ids;  // the caller's id of each, in leaf order
+  HugePageBuffer<std::uint32_t> leaf_of;  // leaf_of[id]: where box id lies in leaf order
   HugePageBuffer<Node> nodes;         // the binary tree (freed once collapsed into nodes4)
   std::uint32_t node_count = 0;       // the inner nodes built, nodes[0, node_count)
   Bounds root_box;
@@ -450,10 +452,12 @@ BoxTree::Impl::Impl(const std::vector<Box>& closed, LeafTest test) : leaf_test(t
   node_count = next_node.load();
   boxes = HugePageBuffer<Bounds>(n);
   ids = HugePageBuffer<std::uint32_t>(n);
+  leaf_of = HugePageBuffer<std::uint32_t>(n);
   tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, n, kParallelFill), [&](const tbb::blocked_range<std::uint32_t>& r) {
     for (std::uint32_t i = r.begin(); i != r.end(); ++i) {
       boxes[i] = prims[i].box;
       ids[i] = prims[i].id;
+      leaf_of[prims[i].id] = i;
     }
   });
   prims = HugePageBuffer<Primitive>();  // before the collapse: the peak of memory is the build's
@@ -843,6 +847,23 @@ void BoxTree::dilated_segment_query(const Vec3& from, const Vec3& to, const Vec3
                                     Callback callback) const {
   const Slab slab(from, {to[0] - from[0], to[1] - from[1], to[2] - from[2]}, 1.0, slack);
   visit_slab(*impl_, slab, nullptr, visit, callback);
+}
+
+void BoxTree::dilated_segment_query(const Vec3& from, const Vec3& to, const Vec3& slack,
+                                    std::span<const std::uint32_t> ids, void* visit, Callback callback) const {
+  const Impl& tree = *impl_;
+  const Slab slab(from, {to[0] - from[0], to[1] - from[1], to[2] - from[2]}, 1.0, slack);
+  const bool fast = tree.tame && slab.fast();
+  for (const std::uint32_t id : ids) {
+    if (id >= tree.leaf_of.size())
+      throw std::invalid_argument("BoxTree::dilated_segment_query: id " + std::to_string(id) + " of " +
+                                  std::to_string(tree.leaf_of.size()) + " boxes");
+    // The walk's own leaf test (visit_slab), on the listed boxes only.
+    const Bounds& box = tree.boxes[tree.leaf_of[id]];
+    double t = 0.0;
+    if (!(fast ? slab.entry_fast(box, &t) : slab.entry(box, &t))) continue;
+    if (!callback(visit, id)) return;
+  }
 }
 
 void BoxTree::dilated_ray_query(const Vec3& from, const Vec3& direction, const Vec3& slack, void* visit,

@@ -14,6 +14,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <type_traits>
 #include <vector>
 
@@ -55,6 +56,17 @@ class BoxTree {
   void dilated_segment_query(const Vec3& from, const Vec3& to, const Vec3& slack, Visit&& visit) const {
     dilated_segment_query(from, to, slack, erase(visit), &call<std::remove_reference_t<Visit>>);
   }
+  // The dilated segment query's test of each box, over the boxes `ids` only (each below the
+  // number of boxes), in their order: calls visit(id) for each listed box the query may meet,
+  // until visit returns false. For a caller holding a list known to contain every box the
+  // query meets (a cone's candidates), which would test each entry at a higher cost: the boxes
+  // it passes on are the listed ones the walk would visit, a superset of those the dilated
+  // segment meets. Throws std::invalid_argument for an id out of range.
+  template <typename Visit>
+  void dilated_segment_query(const Vec3& from, const Vec3& to, const Vec3& slack, std::span<const std::uint32_t> ids,
+                             Visit&& visit) const {
+    dilated_segment_query(from, to, slack, ids, erase(visit), &call<std::remove_reference_t<Visit>>);
+  }
   template <typename Visit>
   void dilated_ray_query(const Vec3& from, const Vec3& direction, const Vec3& slack, Visit&& visit) const {
     dilated_ray_query(from, direction, slack, erase(visit), &call<std::remove_reference_t<Visit>>);
@@ -91,6 +103,8 @@ class BoxTree {
   void ray_query(const Vec3& from, const Vec3& direction, void* visit, Callback callback) const;
   void dilated_segment_query(const Vec3& from, const Vec3& to, const Vec3& slack, void* visit,
                              Callback callback) const;
+  void dilated_segment_query(const Vec3& from, const Vec3& to, const Vec3& slack, std::span<const std::uint32_t> ids,
+                             void* visit, Callback callback) const;
   void dilated_ray_query(const Vec3& from, const Vec3& direction, const Vec3& slack, void* visit,
                          Callback callback) const;
   void nearest_first_ray_query(const Vec3& from, const Vec3& direction, const double* bound, void* visit,

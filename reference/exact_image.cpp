@@ -31,6 +31,7 @@
 #include <mutex>
 #include <numeric>
 #include <optional>
+#include <span>
 #include <stdexcept>
 #include <string>
 
@@ -1688,13 +1689,20 @@ bool footprint_shadow_varies(const ImageGeometry& g, std::size_t light, const Co
     varies = true;
     return false;
   };
+  Vec3 from, slack;
+  detail::FootprintPolytope::query_box(corners.boxes, from, slack);
+  if (candidates != nullptr && l[3] != 0.0) {
+    // The tile's list, each entry first through the walk's own box test for this pixel (the
+    // light pyramids of a tile's pixels are far narrower than the tile's cone near R).
+    silhouette.tree.dilated_segment_query(from, {l[0], l[1], l[2]}, slack, std::span<const std::uint32_t>(*candidates),
+                                          visit);
+    return varies;
+  }
   if (candidates != nullptr) {
     for (std::uint32_t id : *candidates)
       if (!visit(id)) break;
     return varies;
   }
-  Vec3 from, slack;
-  detail::FootprintPolytope::query_box(corners.boxes, from, slack);
   if (l[3] == 0.0) {
     silhouette.tree.dilated_ray_query(from, {l[0], l[1], l[2]}, slack, visit);
   } else {

@@ -15,6 +15,8 @@
 #include <cmath>
 #include <random>
 #include <set>
+#include <span>
+#include <stdexcept>
 #include <vector>
 
 namespace {
@@ -263,6 +265,80 @@ TEST(BoxTree, ObliqueLatticeQueries_FloatTraversalLosesNoBox) {
           << "nearest-first query " << i;
     }
   }
+}
+
+// The dilated segment query over a list (a cone's candidates): it reports, in the list's order,
+// exactly the listed boxes the walk reports (so every listed box the dilated segment meets),
+// nothing unlisted, stops when the visitor says so, and refuses an id out of range.
+TEST(BoxTree, ListedDilatedSegment_ReportsTheListedBoxesTheWalkReports) {
+  std::mt19937_64 rng(2026);
+  std::uniform_int_distribution<int> coordinate(-40, 40), size(0, 6), step(-9, 9);
+  for (const Lattice lattice : {Lattice{0.0, 1.0}, Lattice{0x1p30, 1.0}, Lattice{0.0, 0x1p-20}}) {
+    SCOPED_TRACE("offset " + std::to_string(lattice.offset) + " scale " + std::to_string(lattice.scale));
+    std::vector<std::array<std::int64_t, 3>> lo(3000), hi(3000);
+    std::vector<Box> boxes(3000);
+    for (std::size_t i = 0; i < boxes.size(); ++i)
+      for (int k = 0; k < 3; ++k) {
+        lo[i][k] = 2 * coordinate(rng);
+        hi[i][k] = lo[i][k] + 2 * size(rng);
+        boxes[i].lo[k] = lattice.at(lo[i][k]);
+        boxes[i].hi[k] = lattice.at(hi[i][k]);
+      }
+    const BoxTree tree(boxes, LeafTest::exact);
+    const auto point = [&](const std::array<std::int64_t, 3>& p) {
+      return Vec3{lattice.at(p[0]), lattice.at(p[1]), lattice.at(p[2])};
+    };
+    const Vec3 slack{lattice.scale, lattice.scale, lattice.scale};
+    std::size_t met = 0;
+    for (int i = 0; i < 200; ++i) {
+      std::array<std::int64_t, 3> a{}, b{};
+      for (int k = 0; k < 3; ++k) {
+        a[k] = 2 * coordinate(rng);
+        b[k] = a[k] + 2 * step(rng);
+      }
+      if (a == b) b[0] += 2;
+      std::set<std::uint32_t> walk;
+      tree.dilated_segment_query(point(a), point(b), slack, [&](std::uint32_t id) { return walk.insert(id), true; });
+      // A list of about half the boxes, shuffled: those the dilated segment meets among them
+      // (the lattice's exact answer) must come, and in the list's order.
+      std::vector<std::uint32_t> list;
+      for (std::uint32_t j = 0; j < boxes.size(); ++j)
+        if (rng() % 2 == 0) list.push_back(j);
+      std::shuffle(list.begin(), list.end(), rng);
+      std::vector<std::uint32_t> got;
+      tree.dilated_segment_query(point(a), point(b), slack, std::span<const std::uint32_t>(list),
+                                 [&](std::uint32_t id) { return got.push_back(id), true; });
+      std::size_t cursor = 0;
+      for (const std::uint32_t id : got) {
+        while (cursor < list.size() && list[cursor] != id) ++cursor;
+        ASSERT_LT(cursor, list.size()) << "query " << i << ": box " << id << " unlisted or out of order";
+        ++cursor;
+      }
+      const std::set<std::uint32_t> reported(got.begin(), got.end());
+      EXPECT_EQ(reported.size(), got.size()) << "query " << i << ": a box reported twice";
+      for (const std::uint32_t id : list) {
+        // The walk's own leaf test: the listed boxes the walk reports, and no other.
+        EXPECT_EQ(reported.count(id), walk.count(id)) << "query " << i << ": box " << id;
+        if (lattice_meets(a, b, lo[id], hi[id], 1, false)) {
+          EXPECT_EQ(reported.count(id), 1u) << "query " << i << ": box " << id << " met";
+          ++met;
+        }
+      }
+      // The visitor stops it.
+      if (got.size() >= 2) {
+        std::size_t visits = 0;
+        tree.dilated_segment_query(point(a), point(b), slack, std::span<const std::uint32_t>(list),
+                                   [&](std::uint32_t) { return ++visits < 2; });
+        EXPECT_EQ(visits, 2u);
+      }
+    }
+    EXPECT_GT(met, 100u);
+  }
+  const BoxTree tree(std::vector<Box>(3), LeafTest::exact);
+  const std::vector<std::uint32_t> out_of_range{0, 3};
+  EXPECT_THROW(tree.dilated_segment_query({0, 0, 0}, {1, 1, 1}, {0, 0, 0}, std::span<const std::uint32_t>(out_of_range),
+                                          [](std::uint32_t) { return true; }),
+               std::invalid_argument);
 }
 
 TEST(BoxTree, NoBoxes_ReportsNothing) {
