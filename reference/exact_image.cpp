@@ -1094,6 +1094,9 @@ struct TileScratch {
   std::vector<std::uint32_t> undecided;
   std::uint32_t side_of = std::numeric_limits<std::uint32_t>::max();
   std::vector<std::pair<std::uint32_t, std::int8_t>> side_known;
+  // The last candidate side_beside found in side_of's plane (or kNoHit), passed by before its
+  // filter: a floor's other half, for each of its hit points (ogre at 1024x768: 786K visits).
+  std::uint32_t in_plane_of_side_of = kNoHit;
   // The grid counts': per triangle its filter's index in `crossing` (where `seen` holds this
   // generation), per filter its triangle, and one hit point's filters.
   std::vector<std::uint32_t> slot;
@@ -1377,11 +1380,14 @@ std::uint32_t filtered_count(const ImageGeometry& g, const RayHit& hit, Candidat
   std::uint32_t crossed = 0;
   local.undecided.clear();
   candidates([&](std::uint32_t id, const SegmentCrossingFilter& filter) {
-    if (id == h) return;
+    if (id == h || id == local.in_plane_of_side_of) return;
     FilteredCrossing verdict = filtered_crossing(filter, middle);
     if (verdict == FilteredCrossing::undecided) {
       const int start = side_beside(g, h, id, local.side_known);
-      if (start == 0) return;  // in h's plane: count_at passes it by
+      if (start == 0) {  // in h's plane: count_at passes it by
+        local.in_plane_of_side_of = id;
+        return;
+      }
       if (start != kUnknownSide) verdict = filtered_crossing(filter, middle, start);
     }
     if (verdict == FilteredCrossing::crosses) ++crossed;
@@ -2437,6 +2443,7 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
               if (h != local.side_of) {
                 local.side_of = h;
                 local.side_known.clear();
+                local.in_plane_of_side_of = kNoHit;
               }
               return filtered_count(g, hits[k], candidates, local.middles[i], local,
                                     [&](const std::vector<std::uint32_t>& rest_of_list) {
