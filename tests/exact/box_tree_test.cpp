@@ -178,6 +178,27 @@ struct Lattice {
   [[nodiscard]] double at(std::int64_t k) const { return offset + static_cast<double>(k) * scale; }
 };
 
+// `count` random boxes with even lattice coordinates in [-80, 80] (so that half a step, the
+// dilation the tests use, is a lattice step), sides of 0 to 12: their integer corners and the
+// boxes themselves.
+struct LatticeBoxes {
+  std::vector<std::array<std::int64_t, 3>> lo, hi;
+  std::vector<Box> boxes;
+};
+LatticeBoxes lattice_boxes(std::mt19937_64& rng, std::size_t count, const Lattice& lattice) {
+  std::uniform_int_distribution<int> coordinate(-40, 40), size(0, 6);
+  LatticeBoxes out{std::vector<std::array<std::int64_t, 3>>(count), std::vector<std::array<std::int64_t, 3>>(count),
+                   std::vector<Box>(count)};
+  for (std::size_t i = 0; i < count; ++i)
+    for (int k = 0; k < 3; ++k) {
+      out.lo[i][k] = 2 * coordinate(rng);
+      out.hi[i][k] = out.lo[i][k] + 2 * size(rng);
+      out.boxes[i].lo[k] = lattice.at(out.lo[i][k]);
+      out.boxes[i].hi[k] = lattice.at(out.hi[i][k]);
+    }
+  return out;
+}
+
 // Whether the segment a + t (b - a), t in [0, 1] (t >= 0 for a ray), meets the box [lo - s, hi + s]
 // (integer coordinates), exactly.
 bool lattice_meets(const std::array<std::int64_t, 3>& a, const std::array<std::int64_t, 3>& b,
@@ -211,19 +232,10 @@ bool lattice_meets(const std::array<std::int64_t, 3>& a, const std::array<std::i
 
 TEST(BoxTree, ObliqueLatticeQueries_FloatTraversalLosesNoBox) {
   std::mt19937_64 rng(2024);
-  std::uniform_int_distribution<int> coordinate(-40, 40), size(0, 6), step(-9, 9);
+  std::uniform_int_distribution<int> coordinate(-40, 40), step(-9, 9);
   for (const Lattice lattice : {Lattice{0.0, 1.0}, Lattice{0x1p30, 1.0}, Lattice{0x1p39, 1.0}, Lattice{0.0, 0x1p-20}}) {
     SCOPED_TRACE("offset " + std::to_string(lattice.offset) + " scale " + std::to_string(lattice.scale));
-    // Even lattice coordinates, so that half a step (the dilation below) is a lattice step.
-    std::vector<std::array<std::int64_t, 3>> lo(6000), hi(6000);
-    std::vector<Box> boxes(6000);
-    for (std::size_t i = 0; i < boxes.size(); ++i)
-      for (int k = 0; k < 3; ++k) {
-        lo[i][k] = 2 * coordinate(rng);
-        hi[i][k] = lo[i][k] + 2 * size(rng);
-        boxes[i].lo[k] = lattice.at(lo[i][k]);
-        boxes[i].hi[k] = lattice.at(hi[i][k]);
-      }
+    const auto [lo, hi, boxes] = lattice_boxes(rng, 6000, lattice);
     const BoxTree tree(boxes, LeafTest::exact);
     const auto point = [&](const std::array<std::int64_t, 3>& p) {
       return Vec3{lattice.at(p[0]), lattice.at(p[1]), lattice.at(p[2])};
@@ -272,18 +284,10 @@ TEST(BoxTree, ObliqueLatticeQueries_FloatTraversalLosesNoBox) {
 // nothing unlisted, stops when the visitor says so, and refuses an id out of range.
 TEST(BoxTree, ListedDilatedSegment_ReportsTheListedBoxesTheWalkReports) {
   std::mt19937_64 rng(2026);
-  std::uniform_int_distribution<int> coordinate(-40, 40), size(0, 6), step(-9, 9);
+  std::uniform_int_distribution<int> coordinate(-40, 40), step(-9, 9);
   for (const Lattice lattice : {Lattice{0.0, 1.0}, Lattice{0x1p30, 1.0}, Lattice{0.0, 0x1p-20}}) {
     SCOPED_TRACE("offset " + std::to_string(lattice.offset) + " scale " + std::to_string(lattice.scale));
-    std::vector<std::array<std::int64_t, 3>> lo(3000), hi(3000);
-    std::vector<Box> boxes(3000);
-    for (std::size_t i = 0; i < boxes.size(); ++i)
-      for (int k = 0; k < 3; ++k) {
-        lo[i][k] = 2 * coordinate(rng);
-        hi[i][k] = lo[i][k] + 2 * size(rng);
-        boxes[i].lo[k] = lattice.at(lo[i][k]);
-        boxes[i].hi[k] = lattice.at(hi[i][k]);
-      }
+    const auto [lo, hi, boxes] = lattice_boxes(rng, 3000, lattice);
     const BoxTree tree(boxes, LeafTest::exact);
     const auto point = [&](const std::array<std::int64_t, 3>& p) {
       return Vec3{lattice.at(p[0]), lattice.at(p[1]), lattice.at(p[2])};
