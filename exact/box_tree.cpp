@@ -117,25 +117,24 @@ inline constexpr double kTinyInverse32 = 0x1p-100;
 inline constexpr double kTame = 0x1p400;
 [[nodiscard]] inline bool tame(double x) { return std::fabs(x) <= kTame; }
 
-// A box during the build, with its centre (rounded: it only orders the splits, never decides
-// a query) and its id; the build partitions these records themselves, so that every pass
-// reads them in order.
+// A box during the build and its id; the build partitions these records themselves, so that
+// every pass reads them in order. The box's centre (rounded: it only orders the splits, never
+// decides a query) is computed where it is read, not stored: 56 bytes a record, not 80, for
+// passes that stream the records.
 struct Primitive {
   Bounds box;
-  std::array<double, 3> centre;
   std::uint32_t id;
-  // The node's binning pass leaves here the box's bin on each axis it bins (4 bits per axis, at
-  // bit 4 * axis: kBins <= 16), which its partition then reads (in the record's padding).
-  std::uint32_t bins;
+  // The node's binning pass leaves here the box's bin, which its partition then reads.
+  std::uint32_t bin;
+
+  [[nodiscard]] double centre(int axis) const { return box.lo[axis] / 2 + box.hi[axis] / 2; }
+  [[nodiscard]] std::array<double, 3> centre() const { return {centre(0), centre(1), centre(2)}; }
 };
 
 inline constexpr std::uint32_t kLeafSize = 4;
 inline constexpr int kBins = 12;
-static_assert(kBins <= 16, "Primitive::bins holds 4 bits per axis");
 // Past this depth the build splits at the median (depth below 2 * 48 + log2 n).
 inline constexpr int kMaxSahDepth = 48;
-// Up to this many boxes a node bins all three axes.
-inline constexpr std::uint32_t kAllAxes = 256;
 // The grain of the parallel loops over every box (filling the build's records, copying them out).
 inline constexpr std::uint32_t kParallelFill = 16384;
 // Below this many boxes a subtree is built on the calling thread.
@@ -430,12 +429,11 @@ BoxTree::Impl::Impl(const std::vector<Box>& closed, LeafTest test) : leaf_test(t
           for (int k = 0; k < 3; ++k) {
             p.box.lo[k] = closed[i].lo[k];
             p.box.hi[k] = closed[i].hi[k];
-            p.centre[k] = closed[i].lo[k] / 2 + closed[i].hi[k] / 2;
           }
           p.id = i;
-          p.bins = 0;
+          p.bin = 0;
           e.boxes.grow(p.box);
-          e.centres.grow(p.centre);
+          e.centres.grow(p.centre());
         }
         return e;
       },
@@ -564,101 +562,90 @@ Child BoxTree::Impl::build(std::uint32_t first, std::uint32_t count, const Bound
   if (count <= kLeafSize) return {first, count};
   Primitive* const begin = prims + first;
   Primitive* const end = begin + count;
-  // Binned SAH on the centres along each axis (one pass bins all three); the cheapest split
-  // wins, and its sides' boxes come from the bins. Past kMaxSahDepth (centres
-  // spread so unevenly that the SAH keeps cutting off a few boxes) the median of the longest
-  // axis, so that the depth stays logarithmic.
+  // Binned SAH on the centres along their longest axis; the cheapest split wins, and its sides'
+  // boxes come from the bins. Past kMaxSahDepth (centres spread so unevenly that the SAH keeps
+  // cutting off a few boxes) the median of the longest axis, so that the depth stays
+  // logarithmic. One axis at every node: binning all three at nodes of up to 256 boxes took a
+  // quarter of the build (ogre's 124K boxes: 49-52 -> 37-41 ms on one thread) and made no query
+  // of the exact image measurably faster (docs/diff.md, "A lighter tree stage").
   std::uint32_t middle = first + count / 2;
   std::array<Bounds, 2> side_box, centre_box;
   bool sides_known = false;  // side_box from the bins
-  if (depth < kMaxSahDepth) {
+  int axis = 0;
+  for (int k = 1; k < 3; ++k)
+    if (centres.hi[k] - centres.lo[k] > centres.hi[axis] - centres.lo[axis]) axis = k;
+  const double extent = centres.hi[axis] - centres.lo[axis];
+  const double scale = extent > 0.0 && std::isfinite(kBins / extent) ? kBins / extent : 0.0;
+  if (depth < kMaxSahDepth && scale > 0.0) {
     // Each bin's box and count, for the SAH; the sides' centre bounds (which only scale the
-    // children's bins) come from one pass over the chosen split below, not per bin and axis.
+    // children's bins) come from the partition below.
     struct Bin {
       Bounds box;
       std::uint32_t count = 0;
     };
-    std::array<std::array<Bin, kBins>, 3> bins{};
-    std::array<double, 3> scale{};
-    // Above kAllAxes boxes only the longest axis of the centres is binned (a third of the
-    // build's work where it costs most; SAH quality hardly differs there).
-    int longest = 0;
-    for (int k = 1; k < 3; ++k)
-      if (centres.hi[k] - centres.lo[k] > centres.hi[longest] - centres.lo[longest]) longest = k;
-    for (int axis = 0; axis < 3; ++axis) {
-      const double extent = centres.hi[axis] - centres.lo[axis];
-      scale[axis] = extent > 0.0 && std::isfinite(kBins / extent) && (count <= kAllAxes || axis == longest)
-                        ? kBins / extent
-                        : 0.0;
-    }
-    const auto bin_of = [&](const Primitive& p, int axis) {
+    std::array<Bin, kBins> bins{};
+    for (auto it = begin; it != end; ++it) {
       // Clamped in double before the conversion: a difference that overflows (coordinates near
       // the double range) or an inf * 0 would make the cast undefined; a NaN clamps to 0. As
       // conditionals of this form (maxsd, minsd: no branch on the box's side of the split).
-      const double x = (p.centre[axis] - centres.lo[axis]) * scale[axis];
+      const double x = (it->centre(axis) - centres.lo[axis]) * scale;
       const double above = x > 0.0 ? x : 0.0;
       const double clamped = above < static_cast<double>(kBins - 1) ? above : static_cast<double>(kBins - 1);
-      return static_cast<int>(clamped);
-    };
-    for (auto it = begin; it != end; ++it) {
-      std::uint32_t packed = 0;
-      for (int axis = 0; axis < 3; ++axis) {
-        if (!(scale[axis] > 0.0)) continue;
-        const int b = bin_of(*it, axis);
-        Bin& bin = bins[axis][b];
-        bin.box.grow(it->box);
-        ++bin.count;
-        packed |= static_cast<std::uint32_t>(b) << (4 * axis);
-      }
-      it->bins = packed;
+      const auto b = static_cast<std::uint32_t>(clamped);
+      bins[b].box.grow(it->box);
+      ++bins[b].count;
+      it->bin = b;
     }
-    int best_axis = -1, best_bin = 0;
+    int best_bin = -1;
     double best_cost = kInfinity;
-    for (int axis = 0; axis < 3; ++axis) {
-      if (!(scale[axis] > 0.0)) continue;
-      std::array<double, kBins> right_cost{};
-      Bounds right;
-      std::uint32_t right_count = 0;
-      for (int b = kBins - 1; b > 0; --b) {
-        right.grow(bins[axis][b].box);
-        right_count += bins[axis][b].count;
-        right_cost[b] = right.half_area() * right_count;
-      }
-      Bounds left;
-      std::uint32_t left_count = 0;
-      for (int b = 0; b < kBins - 1; ++b) {
-        left.grow(bins[axis][b].box);
-        left_count += bins[axis][b].count;
-        const double cost = left.half_area() * left_count + right_cost[b + 1];
-        if (left_count > 0 && left_count < count && cost < best_cost) {
-          best_cost = cost;
-          best_axis = axis;
-          best_bin = b;
-        }
+    std::array<double, kBins> right_cost{};
+    Bounds right;
+    std::uint32_t right_count = 0;
+    for (int b = kBins - 1; b > 0; --b) {
+      right.grow(bins[b].box);
+      right_count += bins[b].count;
+      right_cost[b] = right.half_area() * right_count;
+    }
+    Bounds left;
+    std::uint32_t left_count = 0;
+    for (int b = 0; b < kBins - 1; ++b) {
+      left.grow(bins[b].box);
+      left_count += bins[b].count;
+      const double cost = left.half_area() * left_count + right_cost[b + 1];
+      if (left_count > 0 && left_count < count && cost < best_cost) {
+        best_cost = cost;
+        best_bin = b;
       }
     }
-    if (best_axis >= 0) {
-      const unsigned shift = 4 * static_cast<unsigned>(best_axis);
-      const auto split = std::partition(begin, end, [&](const Primitive& p) {
-        return static_cast<int>((p.bins >> shift) & 15u) <= best_bin;  // bin_of(p, best_axis), as binned
-      });
-      middle = static_cast<std::uint32_t>(split - prims);
-      for (int b = 0; b < kBins; ++b) side_box[b <= best_bin ? 0 : 1].grow(bins[best_axis][b].box);
+    if (best_bin >= 0) {
+      // A partition by the chosen bin (as binned) that also bounds each side's centres: each
+      // record is read once here, not once more after the split.
+      const auto left_side = [&](const Primitive& p) { return static_cast<int>(p.bin) <= best_bin; };
+      Primitive* lo = begin;
+      Primitive* hi = end;
+      for (;;) {
+        while (lo < hi && left_side(*lo)) centre_box[0].grow((lo++)->centre());
+        while (lo < hi && !left_side(*(hi - 1))) centre_box[1].grow((--hi)->centre());
+        if (hi - lo < 2) break;
+        std::swap(*lo, *(hi - 1));
+      }
+      middle = static_cast<std::uint32_t>(lo - prims);
+      for (int b = 0; b < kBins; ++b) side_box[b <= best_bin ? 0 : 1].grow(bins[b].box);
       sides_known = true;
     }
-  } else {
-    int axis = 0;
-    for (int k = 1; k < 3; ++k)
-      if (centres.hi[k] - centres.lo[k] > centres.hi[axis] - centres.lo[axis]) axis = k;
+  } else if (scale > 0.0) {
     std::nth_element(begin, prims + middle, end,
-                     [axis](const Primitive& a, const Primitive& b) { return a.centre[axis] < b.centre[axis]; });
+                     [axis](const Primitive& a, const Primitive& b) { return a.centre(axis) < b.centre(axis); });
   }
-  // Every centre alike (or the median split): halves by count, their boxes by the same pass.
-  if (!sides_known && (middle == first || middle == first + count)) middle = first + count / 2;
-  for (std::uint32_t i = first; i < first + count; ++i) {
-    const int side = i < middle ? 0 : 1;
-    if (!sides_known) side_box[side].grow(prims[i].box);
-    centre_box[side].grow(prims[i].centre);
+  // Every centre alike (or the median split): halves by count, their boxes and centres by one
+  // pass.
+  if (!sides_known) {
+    if (middle == first || middle == first + count) middle = first + count / 2;
+    for (std::uint32_t i = first; i < first + count; ++i) {
+      const int side = i < middle ? 0 : 1;
+      side_box[side].grow(prims[i].box);
+      centre_box[side].grow(prims[i].centre());
+    }
   }
 
   const std::uint32_t index = next_node.fetch_add(1);
