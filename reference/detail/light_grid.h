@@ -90,6 +90,17 @@ class LightGrid {
     for_each_cell(reach, [&](std::size_t cell) { read(list(cell)); });
   }
 
+  // Whether some cell of `reach` lists a triangle with a key above its threshold: false where
+  // visit(reach) reports big()'s entries alone. The reach of a box inside the box of `reach`
+  // then lists none either (its cells are among these, its threshold no lower).
+  [[nodiscard]] bool cells_list_any(const Reach& reach) const {
+    for (std::uint32_t y = reach.r0; y <= reach.r1; ++y)
+      for (std::uint32_t x = reach.c0; x <= reach.c1; ++x)
+        for (const std::uint32_t id : list(std::size_t{y} * columns_ + x))
+          if (keys_[id] > reach.threshold) return true;
+    return false;
+  }
+
   // Triangles whose box of cells covers more than half of the cells (a floor under a mesh) are
   // listed once, apart (big()), not in each cell; at most kMostBigTriangles of them (each query
   // reads them all).

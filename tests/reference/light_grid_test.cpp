@@ -160,6 +160,60 @@ TEST(LightGrid, WideFloorUnderSmallTriangles_ListedApartAndCellsFitTheRest) {
   EXPECT_LT(grid->list(middle->c0, middle->r0).size(), 60u);
 }
 
+// cells_list_any says whether the reach's cells list anything above its threshold, as visit()
+// finds (big()'s entries apart), and a box inside one whose cells list nothing lists nothing
+// either (the count groups then skip their points' own reaches).
+TEST(LightGrid, BoxesAroundAndInsideOthers_CellsListAnyAgreesWithVisit) {
+  std::mt19937_64 rng(21);
+  Soup soup = random_soup(rng, 300);
+  for (Vec3& v : std::span(soup.vertices).first(4)) {  // a floor wide enough to be listed apart
+    v[0] *= 100.0;
+    v[2] *= 100.0;
+  }
+  const Box scene = bounding_box(soup.vertices);
+  const std::vector<std::uint8_t> listed(soup.triangles.size(), 1);
+  const std::optional<LightGrid> grid = LightGrid::build(soup, {0.5, 3.0, 0.5}, scene, listed);
+  ASSERT_TRUE(grid.has_value());
+  ASSERT_FALSE(grid->big().empty());
+  const std::set<std::uint32_t> big(grid->big().begin(), grid->big().end());
+  const auto lists_beyond_big = [&](const LightGrid::Reach& reach) {
+    const std::set<std::uint32_t> ids = reached(*grid, reach);
+    return std::any_of(ids.begin(), ids.end(), [&](std::uint32_t id) { return big.count(id) == 0; });
+  };
+  std::uniform_real_distribution<double> unit(0.0, 1.0), radius(0.0, 0.2);
+  std::size_t empty = 0, listing = 0;
+  for (int k = 0; k < 400; ++k) {
+    // Boxes at heights from the floor up to above every small triangle (y up to 1.1).
+    const Vec3 p{-0.5 + 2.0 * unit(rng), 1.1 * unit(rng), -0.5 + 2.0 * unit(rng)};
+    Vec3 lo = p, hi = p;
+    for (std::size_t i = 0; i < 3; ++i) {
+      lo[i] = std::max(scene.lo[i], p[i] - radius(rng));
+      hi[i] = std::min(scene.hi[i], p[i] + radius(rng));
+    }
+    const std::optional<LightGrid::Reach> reach = grid->reach(lo, hi);
+    ASSERT_TRUE(reach.has_value());
+    const bool any = grid->cells_list_any(*reach);
+    EXPECT_EQ(any, lists_beyond_big(*reach)) << "box " << k;
+    (any ? listing : empty) += 1;
+    if (any) continue;
+    // Boxes inside it: nothing listed beyond big() either.
+    for (int j = 0; j < 5; ++j) {
+      Vec3 a{}, b{};
+      for (std::size_t i = 0; i < 3; ++i) {
+        const double x = lo[i] + (hi[i] - lo[i]) * unit(rng), y = lo[i] + (hi[i] - lo[i]) * unit(rng);
+        a[i] = std::min(x, y);
+        b[i] = std::max(x, y);
+      }
+      const std::optional<LightGrid::Reach> inner = grid->reach(a, b);
+      ASSERT_TRUE(inner.has_value());
+      EXPECT_FALSE(grid->cells_list_any(*inner));
+      EXPECT_FALSE(lists_beyond_big(*inner)) << "a box inside box " << k;
+    }
+  }
+  EXPECT_GT(empty, 20u) << "boxes above the small triangles list nothing";
+  EXPECT_GT(listing, 20u) << "boxes among or below them do";
+}
+
 TEST(LightGrid, LightInsideTheScenesBox_NoGrid) {
   std::mt19937_64 rng(9);
   const Soup soup = random_soup(rng, 50);
