@@ -1103,6 +1103,9 @@ struct TileScratch {
   std::vector<std::uint32_t> crossing_ids;
   std::vector<std::uint32_t> point_slots;
   std::vector<std::pair<float, std::uint32_t>> cell_slots;  // one cell's entries: key, filter
+  // Pairs (h, t) of triangles found in one plane (t's vertices on h's plane), for the count
+  // groups whose only candidates are big()'s: a floor's two halves.
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> in_plane_pairs;
 
   // A fresh generation of `seen` (and `slot`), each sized `ids`: no id is marked in it.
   std::uint32_t next_generation(std::size_t ids) {
@@ -2456,6 +2459,43 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
               // box meets many cells (hit points far apart: loose filters) is halved.
               const std::optional<detail::LightGrid::Reach> group_reach = light_grid->reach(lo, hi);
               if (group_reach && group_reach->cells() > kGridGroupCells && group.size() > kLeastCountGroup) return halve();
+              const double group_threshold = group_reach ? group_reach->threshold : -std::numeric_limits<double>::infinity();
+              // A group whose cells list no triangle nearer to the light than its farthest point
+              // (the lit floor: 672K of ogre's 910K counted points at 1024x768) has no other
+              // candidates than big()'s entries above its threshold: a point's box lies in the
+              // group's, so its own reach would list nothing more (LightGrid::cells_list_any).
+              const bool big_alone = group_reach && !light_grid->cells_list_any(*group_reach);
+              if (big_alone) {
+                // Where each of those is the point's hit triangle or lies in its plane (the
+                // floor's two halves under a floor point), count_at passes them all by: 0, with
+                // no filter drawn (local.in_plane_pairs remembers the pairs found in one plane).
+                const auto in_plane = [&](std::uint32_t h, std::uint32_t id) {
+                  if (id == h) return true;
+                  const std::pair<std::uint32_t, std::uint32_t> pair{h, id};
+                  if (std::find(local.in_plane_pairs.begin(), local.in_plane_pairs.end(), pair) != local.in_plane_pairs.end())
+                    return true;
+                  const HomogeneousPoint a = finite_point(g.vertex(h, 0)), b = finite_point(g.vertex(h, 1)),
+                                         c = finite_point(g.vertex(h, 2));
+                  for (std::size_t v = 0; v < 3; ++v)
+                    if (detail::orient_unchecked(a, b, c, finite_point(g.vertex(id, v))) != Sign::zero) return false;
+                  local.in_plane_pairs.push_back(pair);
+                  return true;
+                };
+                std::uint32_t last_h = kNoHit;
+                bool all_in_plane = true;
+                for (const std::size_t k : group) {
+                  const std::uint32_t h = hits[k].triangle;
+                  if (h == last_h) continue;
+                  last_h = h;
+                  for (const std::uint32_t id : light_grid->big())
+                    if (light_grid->key(id) > group_threshold && !in_plane(h, id)) all_in_plane = false;
+                  if (!all_in_plane) break;
+                }
+                if (all_in_plane) {
+                  for (const std::size_t k : group) counts[k] = 0;
+                  return;
+                }
+              }
               Vec3 mlo{}, mhi{}, R{};
               middles(mlo, mhi, R);
               const CrossingFrame frame(g.lights[light], mlo, mhi, R);
@@ -2474,14 +2514,10 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
               // Neighbouring hit points mostly reach one and the same cell: its list's filters
               // are kept for the last cell read (no entry at or below the group's threshold is
               // read by any of its points).
-              const double group_threshold = group_reach ? group_reach->threshold : -std::numeric_limits<double>::infinity();
               std::uint64_t cached_cell = std::numeric_limits<std::uint64_t>::max();
-              // A group whose cells list no triangle nearer to the light than its farthest point
-              // (the lit floor: 672K of ogre's 910K counted points at 1024x768) counts every
-              // point against big() alone, without the point's own reach: a point's box lies in
-              // the group's, so its reach would list nothing more (LightGrid::cells_list_any).
-              // big()'s entries above the group's threshold include the point's own.
-              if (group_reach && !light_grid->cells_list_any(*group_reach)) {
+              // The group above with big()'s entries alone: each point counts against those above
+              // the group's threshold (which include those above its own), without its reach.
+              if (big_alone) {
                 for (std::size_t i = 0; i < group.size(); ++i)
                   counts[group[i]] = count_filtered(i, [&](auto&& visit) {
                     for (const std::uint32_t id : light_grid->big())

@@ -555,6 +555,51 @@ TEST(ExactImage, UnambiguousPixels_AgreeWithAFloatRayCasterAndTheOccluderCounter
   EXPECT_GT(counts_checked, 1500u);
 }
 
+// --- count groups whose candidates are the light grid's wide triangles alone ------------------
+
+// A floor under a wide tilted awning, both wide enough for the light grid to list them apart
+// (LightGrid::big()), and a small icosphere above one corner of the awning, whose triangles the
+// grid's cells list. Most count groups' cells then list nothing nearer to the light than their
+// points, which count against big() alone: the floor's other half (in the point's plane,
+// passed by) and the awning above (counted where its shadow falls). Every unambiguous floor
+// pixel's count must be OccluderCounter's, in the awning's shadow and beside it; a group that
+// took the awning for a triangle of the floor's plane would count 0 under it.
+TEST(ExactImage, FloorUnderAWideAwning_CountsFromTheGridsWideTrianglesAgreeWithTheOccluderCounter) {
+  Soup soup = floor_quad(6.0);  // triangles 0 and 1 (floor_hit)
+  const auto awning = static_cast<std::uint32_t>(soup.vertices.size());
+  soup.vertices.push_back({-3.0, 2.0, -2.0});
+  soup.vertices.push_back({3.0, 2.25, -2.0});
+  soup.vertices.push_back({0.0, 2.125, 2.5});
+  soup.triangles.push_back({awning, awning + 1, awning + 2});
+  append(soup, icosphere({2.0, 3.5, 1.5}, 0.25, 2));
+  soup = snapped(soup);
+  const std::vector<Light> lights{point_light(0.5, 7.0, 0.25)};
+  Camera camera;
+  camera.eye = {0.0, 1.0, 4.5};  // below the awning, looking down at the floor under it
+  camera.target = {0.0, 0.0, 0.0};
+  camera.width = 64;
+  camera.height = 48;
+  const ExactImage image = exact_image(soup, lights, camera);
+  const CameraFrame frame = camera_frame(camera);
+  const OccluderCounter counter(soup, lights[0]);
+  std::size_t shadowed = 0, lit = 0;
+  for (std::uint32_t r = 0; r < image.height; ++r)
+    for (std::uint32_t i = 0; i < image.width; ++i) {
+      const std::size_t p = pixel(image, i, r);
+      if (!floor_hit(image.hit_triangles[p]) || image.lights[0].ambiguity[p] != 0) continue;
+      // As in UnambiguousPixels_AgreeWithAFloatRayCasterAndTheOccluderCounter: the double floor
+      // point lifted by 2^-30 sees the occluders P sees.
+      Vec3 x = floor_point(frame, i, r);
+      x[1] = std::ldexp(1.0, -30);
+      const std::optional<std::uint32_t> n = counter.count(x);
+      ASSERT_TRUE(n.has_value()) << "pixel " << i << "," << r;
+      EXPECT_EQ(image.lights[0].counts[p], *n) << "pixel " << i << "," << r;
+      (*n == 0 ? lit : shadowed) += 1;
+    }
+  EXPECT_GT(shadowed, 300u) << "floor pixels in the awning's shadow";
+  EXPECT_GT(lit, 100u) << "floor pixels beside it";
+}
+
 // --- tiles too dense to list: their quarters list their own ----------------------------------
 
 // A tile whose cone holds more than the list's cap has its rays traced by quarters, each with
