@@ -1598,11 +1598,23 @@ class EyePyramidFilter {
  public:
   EyePyramidFilter(const Vec3& eye, const CornerHits& corners, const std::array<Vec3, 3>& h, Sign eye_side)
       : eye_(eye), h_(h), eye_side_(eye_side), neighbours_(eye, h) {
-    for (std::size_t k = 0; k < 4; ++k) directions_[k] = corners.parameters[k].ray().direction;
+    std::array<Vec3, 4> directions;
+    for (std::size_t k = 0; k < 4; ++k) directions[k] = corners.parameters[k].ray().direction;
     for (std::size_t k = 0; k < 4; ++k) {
-      const std::optional<Sign> s =
-          filtered_det_sign(directions_[k], directions_[(k + 1) % 4], directions_[(k + 2) % 4]);
+      const Vec3 &a = directions[k], &b = directions[(k + 1) % 4];
+      const std::optional<Sign> s = filtered_det_sign(a, b, directions[(k + 2) % 4]);
       inside_[k] = s.value_or(Sign::zero);  // zero: this face is not used
+      // The face's normal and its bound's coefficients (FaceFilter); an untame or non-finite
+      // face is not used either.
+      const detail::RoundedCross cross = detail::rounded_cross(a, b);
+      FaceFilter& f = faces_[k];
+      f.n = cross.n;
+      bool usable = true;
+      for (std::size_t i = 0; i < 3; ++i) {
+        f.c[i] = 4.02 * 0x1p-53 * std::fabs(cross.n[i]) + 1.0001 * cross.e[i];
+        usable = usable && std::fabs(a[i]) <= kTameFace && std::fabs(b[i]) <= kTameFace && std::isfinite(f.c[i]);
+      }
+      if (!usable) inside_[k] = Sign::zero;
     }
   }
 
@@ -1635,19 +1647,38 @@ class EyePyramidFilter {
     unsigned code = v == h_[0] || v == h_[1] || v == h_[2] ? 32u : 0u;
     const std::optional<Sign> beyond = detail::semi_static_light_orientation(h_[0], h_[1], h_[2], {v[0], v[1], v[2], 1.0});
     if (beyond && *beyond == -eye_side_) code |= 16u | 32u;
-    const Vec3 from_eye = difference(v, eye_);
+    const Vec3 z = difference(v, eye_);
+    const Vec3 m{std::fabs(z[0]), std::fabs(z[1]), std::fabs(z[2])};
+    if (!(std::max({m[0], m[1], m[2]}) <= kTameFace)) return code;  // no face bit (a NaN declines too)
     for (std::size_t k = 0; k < 4; ++k) {
       if (inside_[k] == Sign::zero) continue;
-      const std::optional<Sign> s = filtered_det_sign(directions_[k], directions_[(k + 1) % 4], from_eye);
-      if (s && *s == -inside_[k]) code |= 1u << k;
+      const FaceFilter& f = faces_[k];
+      const double value = f.n[0] * z[0] + f.n[1] * z[1] + f.n[2] * z[2];
+      const double bound = (m[0] * f.c[0] + m[1] * f.c[1] + m[2] * f.c[2]) * (1.0 + 0x1p-20) + 0x1p-800;
+      const int sign = static_cast<int>(value > bound) - static_cast<int>(value < -bound);
+      if (sign == -static_cast<int>(inside_[k])) code |= 1u << k;
     }
     return code;
   }
 
+  // The sign of det[d_k, d_k+1, v - e] = N . Z (N = d_k x d_k+1 and Z = v - e, exact) from
+  // n = fl(d_k x d_k+1) (detail::rounded_cross: |n_i - N_i| <= e_i) and z = fl(v - e), one dot
+  // product per vertex instead of a determinant per vertex and face (the outcodes were most of
+  // a footprint test's time). |fl(n . z) - N . Z| <= sum_i |z_i| (4.02 u |n_i| + 1.0001 e_i):
+  // the dot product's three roundings (3.01 u |n_i z_i|), z's own (u |n_i| |Z_i|) and n's
+  // (e_i |Z_i|), with |Z_i| <= |z_i| / (1 - u). The bound's own evaluation is widened by 2^-20
+  // relative and 2^-800 absolute (underflow), as PlaneThroughFilter's; inputs beyond
+  // kTameFace decline (no product can overflow, no underflow error reach 2^-800).
+  struct FaceFilter {
+    Vec3 n{};
+    Vec3 c{};  // c_i: the coefficient of |z_i| in the bound
+  };
+  static constexpr double kTameFace = 0x1p200;
+
   Vec3 eye_;
   std::array<Vec3, 3> h_;
   Sign eye_side_;
-  std::array<Vec3, 4> directions_{};
+  std::array<FaceFilter, 4> faces_{};
   std::array<Sign, 4> inside_{};
   HitPlaneNeighbours neighbours_;
 };
@@ -2474,10 +2505,10 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
                   const std::pair<std::uint32_t, std::uint32_t> pair{h, id};
                   if (std::find(local.in_plane_pairs.begin(), local.in_plane_pairs.end(), pair) != local.in_plane_pairs.end())
                     return true;
-                  const HomogeneousPoint a = finite_point(g.vertex(h, 0)), b = finite_point(g.vertex(h, 1)),
-                                         c = finite_point(g.vertex(h, 2));
-                  for (std::size_t v = 0; v < 3; ++v)
-                    if (detail::orient_unchecked(a, b, c, finite_point(g.vertex(id, v))) != Sign::zero) return false;
+                  const HomogeneousPoint ha = finite_point(g.vertex(h, 0)), hb = finite_point(g.vertex(h, 1)),
+                                         hc = finite_point(g.vertex(h, 2));
+                  for (int v = 0; v < 3; ++v)
+                    if (detail::orient_unchecked(ha, hb, hc, finite_point(g.vertex(id, v))) != Sign::zero) return false;
                   local.in_plane_pairs.push_back(pair);
                   return true;
                 };
