@@ -77,13 +77,22 @@ struct PixelRay {
 // (i + 0.5, r + 0.5)): origin = eye, direction = forward + a right + b up with
 // a = (2x / width - 1) half_width and b = (1 - 2y / height) half_height, each rounded once
 // in double. Any finite (x, y) is allowed (corners of border pixels included).
-[[nodiscard]] inline PixelRay pixel_ray(const CameraFrame& frame, double x, double y) {
-  const double a = (2.0 * x / frame.width - 1.0) * frame.half_width;
-  const double b = (1.0 - 2.0 * y / frame.height) * frame.half_height;
+// Its parts, for callers that keep a and b per column and row (the exact image's ray grid):
+// pixel_ray(frame, x, y) == pixel_ray_through(frame, pixel_ray_a(frame, x), pixel_ray_b(frame, y)).
+[[nodiscard]] inline double pixel_ray_a(const CameraFrame& frame, double x) {
+  return (2.0 * x / frame.width - 1.0) * frame.half_width;
+}
+[[nodiscard]] inline double pixel_ray_b(const CameraFrame& frame, double y) {
+  return (1.0 - 2.0 * y / frame.height) * frame.half_height;
+}
+[[nodiscard]] inline PixelRay pixel_ray_through(const CameraFrame& frame, double a, double b) {
   PixelRay ray;
   ray.origin = frame.eye;
   for (int k = 0; k < 3; ++k) ray.direction[k] = frame.forward[k] + a * frame.right[k] + b * frame.up[k];
   return ray;
+}
+[[nodiscard]] inline PixelRay pixel_ray(const CameraFrame& frame, double x, double y) {
+  return pixel_ray_through(frame, pixel_ray_a(frame, x), pixel_ray_b(frame, y));
 }
 
 }  // namespace shadowcert

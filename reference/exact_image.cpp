@@ -982,24 +982,43 @@ class Progress {
 
 // Pixel rays and corner rays in one index space: centre (i, r) is r * width + i, corner
 // (i, r) (image point (i, r)) is centres + r * (width + 1) + i.
+// Each ray is pixel_ray's, from the image plane coordinates a of its column and b of its row
+// (core/pixel_ray.h), kept per column and row: the same doubles, without two divisions a ray.
 struct RayGrid {
   CameraFrame frame;
   std::uint32_t width;
   std::uint32_t height;
+  // [column] a, [row] b: of the centres (x = i + 0.5, y = r + 0.5) and of the corners (x = i, y = r).
+  std::vector<double> centre_a, centre_b, corner_a, corner_b;
+
+  RayGrid(const CameraFrame& f, std::uint32_t w, std::uint32_t h) : frame(f), width(w), height(h) {
+    for (std::uint32_t i = 0; i <= width; ++i) {
+      if (i < width) centre_a.push_back(pixel_ray_a(frame, i + 0.5));
+      corner_a.push_back(pixel_ray_a(frame, i));
+    }
+    for (std::uint32_t r = 0; r <= height; ++r) {
+      if (r < height) centre_b.push_back(pixel_ray_b(frame, r + 0.5));
+      corner_b.push_back(pixel_ray_b(frame, r));
+    }
+  }
 
   [[nodiscard]] std::size_t centres() const { return std::size_t{width} * height; }
   [[nodiscard]] std::size_t size() const { return centres() + std::size_t{width + 1} * (height + 1); }
   [[nodiscard]] std::size_t corner(std::uint32_t i, std::uint32_t r) const {
     return centres() + std::size_t{r} * (width + 1) + i;
   }
+  // pixel_ray(frame, i + 0.5, r + 0.5) and pixel_ray(frame, i, r).
+  [[nodiscard]] PixelRay centre_ray(std::uint32_t i, std::uint32_t r) const {
+    return pixel_ray_through(frame, centre_a[i], centre_b[r]);
+  }
+  [[nodiscard]] PixelRay corner_ray(std::uint32_t i, std::uint32_t r) const {
+    return pixel_ray_through(frame, corner_a[i], corner_b[r]);
+  }
   [[nodiscard]] PixelRay ray(std::size_t index) const {
-    if (index < centres()) {
-      const auto r = static_cast<std::uint32_t>(index / width), i = static_cast<std::uint32_t>(index % width);
-      return pixel_ray(frame, i + 0.5, r + 0.5);
-    }
+    if (index < centres())
+      return centre_ray(static_cast<std::uint32_t>(index % width), static_cast<std::uint32_t>(index / width));
     const std::size_t c = index - centres();
-    const auto r = static_cast<std::uint32_t>(c / (width + 1)), i = static_cast<std::uint32_t>(c % (width + 1));
-    return pixel_ray(frame, i, r);
+    return corner_ray(static_cast<std::uint32_t>(c % (width + 1)), static_cast<std::uint32_t>(c / (width + 1)));
   }
   // The footprint of pixel (i, r): its centre and four corners.
   [[nodiscard]] std::array<std::size_t, 5> footprint(std::uint32_t i, std::uint32_t r) const {
@@ -1454,11 +1473,12 @@ CornerHits corner_hits(const ImageGeometry& g, const RayGrid& grid, const std::v
                        const detail::HitPointBoxes& point_boxes, std::uint32_t i, std::uint32_t r) {
   const std::array<std::size_t, 4> corners{grid.corner(i, r), grid.corner(i + 1, r), grid.corner(i + 1, r + 1),
                                            grid.corner(i, r + 1)};
+  const std::array<std::array<std::uint32_t, 2>, 4> at_corner{{{i, r}, {i + 1, r}, {i + 1, r + 1}, {i, r + 1}}};
   const auto at = [&](std::size_t k) {
     const RayHit& hit = hits[corners[k]];
     const std::uint32_t h = hit.triangle;
-    return detail::RayParameter(grid.ray(corners[k]), g.vertex(h, 0), g.vertex(h, 1), g.vertex(h, 2),
-                                hit.direction_side, detail::RayParameter::Unenclosed{});
+    return detail::RayParameter(grid.corner_ray(at_corner[k][0], at_corner[k][1]), g.vertex(h, 0), g.vertex(h, 1),
+                                g.vertex(h, 2), hit.direction_side, detail::RayParameter::Unenclosed{});
   };
   return {{at(0), at(1), at(2), at(3)},
           {point_boxes[corners[0]], point_boxes[corners[1]], point_boxes[corners[2]], point_boxes[corners[3]]}};
@@ -2125,9 +2145,8 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
   // Not initialised (zeroing each ray's box costs more than the boxes): only the countable
   // hits' entries are written, and only those are read.
   detail::HitPointBoxes point_boxes(grid.size(), scene);
-  const auto trace = [&](std::size_t k, const std::vector<std::uint32_t>* list,
+  const auto trace = [&](std::size_t k, const PixelRay& ray, const std::vector<std::uint32_t>* list,
                          const std::vector<CandidateRaySigns>& signs, TileScratch& local) {
-    const PixelRay ray = grid.ray(k);
     // The candidates the filters show apart (the plane behind the eye, or the crossing strictly
     // outside an edge line: ray_meets_triangle's own verdicts) are skipped.
     // With the eye off the plane (side s = +-1), the candidate is apart where the direction's
@@ -2179,11 +2198,12 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
                                     detail::eye_tile_direction_bound(grid.frame, b.x0, b.x1, b.y0, b.y1))
               : std::vector<CandidateRaySigns>{};
       for (std::uint32_t y = b.y0; y < b.y1; ++y)
-        for (std::uint32_t x = b.x0; x < b.x1; ++x) trace(std::size_t{y} * grid.width + x, list, signs, local);
+        for (std::uint32_t x = b.x0; x < b.x1; ++x)
+          trace(std::size_t{y} * grid.width + x, grid.centre_ray(x, y), list, signs, local);
       std::size_t done = std::size_t{b.x1 - b.x0} * (b.y1 - b.y0);
       if (footprints) {
         for (std::uint32_t y = b.y0; y < b.cy1; ++y)
-          for (std::uint32_t x = b.x0; x < b.cx1; ++x) trace(grid.corner(x, y), list, signs, local);
+          for (std::uint32_t x = b.x0; x < b.cx1; ++x) trace(grid.corner(x, y), grid.corner_ray(x, y), list, signs, local);
         done += std::size_t{b.cx1 - b.x0} * (b.cy1 - b.y0);
       }
       return done;
