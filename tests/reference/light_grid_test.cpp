@@ -127,14 +127,20 @@ TEST(LightGrid, RandomSoupsLitFromEachSide_EveryMetTriangleIsReached) {
   }
 }
 
-TEST(LightGrid, WideFloorUnderSmallTriangles_ListedApartAndCellsFitTheRest) {
-  std::mt19937_64 rng(5);
+// random_soup's 300 triangles over a floor 100 times wider than the rest: without setting it
+// apart (big()) the cells would spread over it.
+Soup soup_over_wide_floor(std::mt19937_64& rng) {
   Soup soup = random_soup(rng, 300);
-  // A floor far wider than the rest: without setting it apart the cells would spread over it.
   for (Vec3& v : std::span(soup.vertices).first(4)) {
     v[0] *= 100.0;
     v[2] *= 100.0;
   }
+  return soup;
+}
+
+TEST(LightGrid, WideFloorUnderSmallTriangles_ListedApartAndCellsFitTheRest) {
+  std::mt19937_64 rng(5);
+  const Soup soup = soup_over_wide_floor(rng);
   const Box scene = bounding_box(soup.vertices);
   const std::vector<std::uint8_t> listed(soup.triangles.size(), 1);
   const std::optional<LightGrid> grid = LightGrid::build(soup, {0.5, 3.0, 0.5}, scene, listed);
@@ -165,11 +171,7 @@ TEST(LightGrid, WideFloorUnderSmallTriangles_ListedApartAndCellsFitTheRest) {
 // either (the count groups then skip their points' own reaches).
 TEST(LightGrid, BoxesAroundAndInsideOthers_CellsListAnyAgreesWithVisit) {
   std::mt19937_64 rng(21);
-  Soup soup = random_soup(rng, 300);
-  for (Vec3& v : std::span(soup.vertices).first(4)) {  // a floor wide enough to be listed apart
-    v[0] *= 100.0;
-    v[2] *= 100.0;
-  }
+  const Soup soup = soup_over_wide_floor(rng);
   const Box scene = bounding_box(soup.vertices);
   const std::vector<std::uint8_t> listed(soup.triangles.size(), 1);
   const std::optional<LightGrid> grid = LightGrid::build(soup, {0.5, 3.0, 0.5}, scene, listed);
