@@ -44,6 +44,7 @@
 #include "exact/light_orientation.h"
 #include "exact/light_orientation_filter.h"
 #include "exact/orient_unchecked.h"
+#include "reference/detail/eye_blocks.h"
 #include "reference/detail/eye_tile.h"
 #include "reference/detail/hit_point_boxes.h"
 #include "reference/detail/light_grid.h"
@@ -175,30 +176,47 @@ std::unique_ptr<Silhouette> casting_edges(const Soup& canonical, const EdgeTable
   });
 }
 
+// A listed candidate's estimates of N and D in t = N / D (RayParameter's estimates
+// constructor): N the tile's, D its direction filter's value and bound for this ray.
+struct ParameterEstimates {
+  detail::BoundedEstimate n;
+  detail::BoundedEstimate d;
+};
+
 // The first hit of `ray` (exact). `in_plane` is scratch space for contacts along the ray.
 // `candidates`: a list holding every triangle the ray can meet (its tile's, TileCandidates), or
 // nullptr: the box tree's nearest-first query. The answer is a function of the set of
 // triangles the ray meets (the nearest meeting; at a tie or an in-plane contact before it, the
 // least id), so both give the same hit.
-// With a list: known(k, signs) fills the signs of ray_meets_triangle for candidate k that the
-// tile's filters certify for this ray, and returns false where they show it apart (skipped).
+// With a list: `scan` holds the indices k into it of the candidates to test, ascending (all of
+// them, or those its block's filters leave: CandidateRaySigns::apart_over), and
+// known(k, signs, estimates) fills the signs of ray_meets_triangle for candidate k
+// that the tile's filters certify for this ray and the estimates of its parameter's N and D,
+// and returns false where they show it apart (skipped).
 // `near` (or nullptr): per candidate, ascending, a lower bound on its distance from the ray's
 // origin; the scan stops at the first candidate that can only be met beyond the best meeting's
-// parameter (t >= near / |d|), as the walk prunes its boxes, so the answer is the same.
+// parameter (t >= near / |d|), as the walk prunes its boxes, so the answer is the same;
+// `direction_length` >= |d| (1 + 2^-41) bounds the ray's |d| for that test (the list's rays
+// share one: direction_length_bound), 0 for none (no candidate is skipped).
 // `best`: the nearest meeting's parameter (of the hit triangle where the hit is countable).
 template <typename Known>
 RayHit first_hit(const ImageGeometry& g, const PixelRay& ray, std::vector<std::uint32_t>& in_plane,
-                 const std::vector<std::uint32_t>* candidates, const double* near, Known&& known,
+                 const std::vector<std::uint32_t>* candidates, std::span<const std::uint32_t> scan,
+                 const double* near, double direction_length, Known&& known,
                  std::optional<detail::RayParameter>& best) {
   in_plane.clear();
   best.reset();
   RayHit hit;
   double bound = std::numeric_limits<double>::infinity();
   const detail::KnownRaySigns* known_signs = nullptr;  // the visited candidate's, when known
+  const ParameterEstimates* estimates = nullptr;      // the visited candidate's N and D, when known
   const auto visit = [&](std::uint32_t id) {
     const Vec3 &a = g.vertex(id, 0), &b = g.vertex(id, 1), &c = g.vertex(id, 2);
-    const detail::RayMeeting m = known_signs != nullptr ? detail::ray_meets_triangle(ray, a, b, c, *known_signs)
-                                                        : detail::ray_meets_triangle(ray, a, b, c);
+    std::optional<detail::RayMeeting> from_signs;
+    if (known_signs != nullptr) from_signs = detail::meeting_from_signs(*known_signs);
+    const detail::RayMeeting m = from_signs                ? *from_signs
+                                 : known_signs != nullptr ? detail::ray_meets_triangle(ray, a, b, c, *known_signs)
+                                                          : detail::ray_meets_triangle(ray, a, b, c);
     switch (m.contact) {
       case detail::RayContact::apart:
         return true;
@@ -209,9 +227,19 @@ RayHit first_hit(const ImageGeometry& g, const PixelRay& ray, std::vector<std::u
       case detail::RayContact::touches:
         break;
     }
-    const detail::RayParameter t(ray, a, b, c, m.direction_side);
     const bool touch = m.contact == detail::RayContact::touches;
-    switch (best ? t.compare(*best) : Sign::negative) {
+    const auto parameter = [&](std::optional<detail::RayParameter>& slot) -> detail::RayParameter& {
+      return estimates != nullptr ? slot.emplace(ray, a, b, c, m.direction_side, estimates->n, estimates->d)
+                                  : slot.emplace(ray, a, b, c, m.direction_side);
+    };
+    if (!best) {  // the first meeting: built in place (a parameter is 160 bytes)
+      bound = parameter(best).upper();
+      hit = {id, touch, m.eye_side, m.direction_side};
+      return true;
+    }
+    std::optional<detail::RayParameter> candidate;
+    const detail::RayParameter& t = parameter(candidate);
+    switch (t.compare(*best)) {
       case Sign::negative:  // nearer than every meeting so far
         best = t;
         hit = {id, touch, m.eye_side, m.direction_side};
@@ -228,18 +256,19 @@ RayHit first_hit(const ImageGeometry& g, const PixelRay& ray, std::vector<std::u
   };
   if (candidates != nullptr) {
     // A candidate is met, if at all, at t >= near / |d|; the scan stops where that exceeds
-    // bound, tested without a division: length >= |d| (1 + 2^-41) (its few roundings of relative
-    // 2^-53 each, 2^-40 added), so near > fl(bound * length) + 2^-1000 (the product's rounding,
+    // bound, tested without a division: length >= |d| (1 + 2^-41), so near > fl(bound *
+    // length) + 2^-1000 (the product's rounding,
     // relative 2^-53, and its underflow, 2^-1074 at most, absorbed) gives near > bound |d|. An
     // infinite bound prunes nothing. Without a usable |d| no candidate is skipped.
-    const Vec3& d = ray.direction;
-    const double length = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) * (1.0 + 0x1p-40);
+    const double length = direction_length;
     const bool prune = near != nullptr && length > 0x1p-500 && std::isfinite(length);
     detail::KnownRaySigns signs;
+    ParameterEstimates candidate_estimates;
     known_signs = &signs;
-    for (std::size_t k = 0; k < candidates->size(); ++k) {
+    estimates = &candidate_estimates;
+    for (const std::uint32_t k : scan) {
       if (prune && near[k] > bound * length + 0x1p-1000) break;
-      if (known(k, signs)) visit((*candidates)[k]);
+      if (known(k, signs, candidate_estimates)) visit((*candidates)[k]);
     }
   } else {
     g.tree.nearest_first_ray_query(ray.origin, ray.direction, &bound, visit);
@@ -1132,6 +1161,10 @@ struct TileScratch {
   // Pairs (h, t) of triangles found in one plane (t's vertices on h's plane), for the count
   // groups whose only candidates are big()'s: a floor's two halves.
   std::vector<std::pair<std::uint32_t, std::uint32_t>> in_plane_pairs;
+  // RayBlocks': per block of an eye tile, the indices into its list its rays scan.
+  std::vector<std::uint32_t> block_scan;
+  std::vector<std::uint32_t> block_begin;
+  std::vector<std::array<detail::EyeBlocks::Plane, 4>> block_planes;  // per candidate, its four planes' terms
 
   // A fresh generation of `seen` (and `slot`), each sized `ids`: no id is marked in it.
   std::uint32_t next_generation(std::size_t ids) {
@@ -1163,6 +1196,10 @@ struct CandidateRaySigns {
   Sign eye_side;
   double side;  // eye_side as -1, 0 or +1
   std::array<Plane, 4> planes;
+  // N = det[b - a, c - a, a - e] of the candidate's ray parameters t = N / D, one for the tile's
+  // rays (their eye): with plane 0's fl(d . n) and bound as D's estimate, a listed ray's
+  // parameter costs a division (RayParameter's estimates constructor).
+  detail::BoundedEstimate numerator;
 
   // fl(d . n) of plane p, as EdgePlaneFilter::sign_along forms it.
   [[nodiscard]] double along(std::size_t p, const Vec3& d) const {
@@ -1187,7 +1224,8 @@ std::vector<CandidateRaySigns> candidate_ray_signs(const ImageGeometry& g, const
     out.push_back({eye_side,
                    eye_side == Sign::zero ? 0.0 : eye_side == Sign::positive ? 1.0 : -1.0,
                    {plane(EdgePlaneFilter(a, Vec3{}, W, b, c)), plane(EdgePlaneFilter(eye, Vec3{}, W, a, b)),
-                    plane(EdgePlaneFilter(eye, Vec3{}, W, b, c)), plane(EdgePlaneFilter(eye, Vec3{}, W, c, a))}});
+                    plane(EdgePlaneFilter(eye, Vec3{}, W, b, c)), plane(EdgePlaneFilter(eye, Vec3{}, W, c, a))},
+                   detail::plane_numerator_estimate(eye, a, b, c)});
   }
   return out;
 }
@@ -1218,6 +1256,75 @@ void order_by_distance(const ImageGeometry& g, const Vec3& eye, std::vector<std:
     near[k] = order[k].first;
     ids[k] = order[k].second;
   }
+}
+
+// The candidates each ray of a traced eye tile (or quarter) scans: blocks of kRayBlock x
+// kRayBlock pixels (reference/detail/eye_blocks.h) share a list, the tile's without the
+// candidates that every ray of the block certainly misses (on ogre's dense tiles a triangle
+// covers a few pixels: most of a long list misses most blocks). A block holds the image points
+// of its pixels' centres and of the corners on its closed square, and each ray reads the block
+// holding its own point. Lists shorter than kRayBlockMinCandidates are scanned whole. The
+// scans are ascending indices, so first_hit's nearest-first pruning holds.
+inline constexpr std::uint32_t kRayBlock = 2;
+inline constexpr std::size_t kRayBlockMinCandidates = 8;
+
+class RayBlocks {
+ public:
+  RayBlocks(const CameraFrame& frame, const TileGrid::Bounds& b, const std::vector<CandidateRaySigns>& signs,
+            TileScratch& scratch)
+      : scan_(scratch.block_scan), begin_(scratch.block_begin) {
+    scan_.clear();
+    begin_.assign(1, 0);
+    if (signs.size() < kRayBlockMinCandidates) {
+      for (std::uint32_t k = 0; k < signs.size(); ++k) scan_.push_back(k);
+      begin_.push_back(static_cast<std::uint32_t>(scan_.size()));
+      return;
+    }
+    blocks_.emplace(frame, b.x0, b.x1, b.y0, b.y1, kRayBlock);
+    const detail::EyeBlocks& blocks = *blocks_;
+    // Per candidate, whether each block's rays all miss it: its plane behind the eye, or an
+    // edge line with the crossing outside, for every ray of the block (ray_meets_triangle's
+    // own verdicts; the eye on the plane leaves each ray to decide). A filter's bound B
+    // covers twice the normal's rounding at every direction of the tile (EdgePlaneFilter):
+    // the normal's error is B / 2.
+    std::vector<std::array<detail::EyeBlocks::Plane, 4>>& planes = scratch.block_planes;
+    planes.resize(signs.size());
+    for (std::size_t k = 0; k < signs.size(); ++k)
+      for (std::size_t p = 0; p < 4; ++p) planes[k][p] = blocks.plane(signs[k].planes[p].n, 0.5 * signs[k].planes[p].bound);
+    for (std::uint32_t row = 0; row < blocks.rows(); ++row)
+      for (std::uint32_t column = 0; column < blocks.columns(); ++column) {
+        for (std::uint32_t k = 0; k < signs.size(); ++k) {
+          const Sign eye = signs[k].eye_side;
+          const auto side = [&](std::size_t p) { return blocks.sign(planes[k][p], column, row); };
+          const Sign direction = side(0);
+          const bool misses = eye != Sign::zero && (direction == eye || (direction != Sign::zero &&
+                                                                         (side(1) == eye || side(2) == eye ||
+                                                                          side(3) == eye)));
+          if (!misses) scan_.push_back(k);
+        }
+        begin_.push_back(static_cast<std::uint32_t>(scan_.size()));
+      }
+  }
+
+  // The scan of the ray through image point (x, y) (a corner) or (x + 0.5, y + 0.5) (a
+  // centre) of the tile: x up to the tile's x1, y up to its y1.
+  [[nodiscard]] std::span<const std::uint32_t> scan(std::uint32_t x, std::uint32_t y) const {
+    const std::size_t block =
+        blocks_ ? std::size_t{blocks_->row_of(y)} * blocks_->columns() + blocks_->column_of(x) : 0;
+    return {scan_.data() + begin_[block], begin_[block + 1] - begin_[block]};
+  }
+
+ private:
+  std::optional<detail::EyeBlocks> blocks_;
+  std::vector<std::uint32_t>& scan_;
+  std::vector<std::uint32_t>& begin_;
+};
+
+// An upper bound on |d| (1 + 2^-41) for every direction d with |d_i| <= W_i (the sum's and the
+// root's few roundings, a relative 2^-53 each, 2^-40 added): first_hit's pruning length for the
+// rays of an eye tile, W its eye_tile_direction_bound.
+double direction_length_bound(const Vec3& W) {
+  return std::sqrt(W[0] * W[0] + W[1] * W[1] + W[2] * W[2]) * (1.0 + 0x1p-40);
 }
 
 // The list the footprint tests read: the eye tile's, where it holds at most kTileCandidates.
@@ -2153,14 +2260,15 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
   // hits' entries are written, and only those are read.
   detail::HitPointBoxes point_boxes(grid.size(), scene);
   const auto trace = [&](std::size_t k, const PixelRay& ray, const std::vector<std::uint32_t>* list,
-                         const std::vector<CandidateRaySigns>& signs, TileScratch& local) {
+                         std::span<const std::uint32_t> scan, const std::vector<CandidateRaySigns>& signs,
+                         double length, TileScratch& local) {
     // The candidates the filters show apart (the plane behind the eye, or the crossing strictly
     // outside an edge line: ray_meets_triangle's own verdicts) are skipped.
     // With the eye off the plane (side s = +-1), the candidate is apart where the direction's
     // sign is certain and either it is s (the plane behind the eye) or some edge's is s (X
     // outside that edge line). s v > B is "certainly s" for either s; the filters never certify
     // a zero. Evaluated without a branch per sign (they vary from ray to ray).
-    const auto known = [&](std::size_t c, detail::KnownRaySigns& s) {
+    const auto known = [&](std::size_t c, detail::KnownRaySigns& s, ParameterEstimates& estimates) {
       const CandidateRaySigns& f = signs[c];
       const Vec3& d = ray.direction;
       const double v0 = f.along(0, d), v1 = f.along(1, d), v2 = f.along(2, d), v3 = f.along(3, d);
@@ -2171,10 +2279,11 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
       s.eye_side = f.eye_side;
       s.direction_side = f.sign_of(0, v0);
       s.edges = {f.sign_of(1, v1), f.sign_of(2, v2), f.sign_of(3, v3)};
+      estimates = {f.numerator, {v0, f.planes[0].bound}};
       return true;
     };
     std::optional<detail::RayParameter>& best = local.best;
-    const RayHit hit = first_hit(g, ray, local.in_plane, list, local.near.data(), known, best);
+    const RayHit hit = first_hit(g, ray, local.in_plane, list, scan, local.near.data(), length, known, best);
     hits[k] = hit;  // (not read back from hits[k]: its two narrow stores would stall an 8-byte load)
     if (!countable(hit)) return;
     // A countable hit's nearest meeting is its triangle's: its semi-static stage gives the box.
@@ -2199,18 +2308,20 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
     const auto trace_block = [&](const TileGrid::Bounds& b, TileCandidates& candidates, TileScratch& local) {
       if (candidates.listed) order_by_distance(g, grid.frame.eye, candidates.ids, local.near);
       const std::vector<std::uint32_t>* list = candidates.list();
+      const bool scanned = list != nullptr && !list->empty();
+      const Vec3 W = scanned ? detail::eye_tile_direction_bound(grid.frame, b.x0, b.x1, b.y0, b.y1) : Vec3{};
       const std::vector<CandidateRaySigns> signs =
-          list != nullptr && !list->empty()
-              ? candidate_ray_signs(g, *list, grid.frame.eye,
-                                    detail::eye_tile_direction_bound(grid.frame, b.x0, b.x1, b.y0, b.y1))
-              : std::vector<CandidateRaySigns>{};
+          scanned ? candidate_ray_signs(g, *list, grid.frame.eye, W) : std::vector<CandidateRaySigns>{};
+      const double length = direction_length_bound(W);
+      const RayBlocks blocks(grid.frame, b, signs, local);
       for (std::uint32_t y = b.y0; y < b.y1; ++y)
         for (std::uint32_t x = b.x0; x < b.x1; ++x)
-          trace(std::size_t{y} * grid.width + x, grid.centre_ray(x, y), list, signs, local);
+          trace(std::size_t{y} * grid.width + x, grid.centre_ray(x, y), list, blocks.scan(x, y), signs, length, local);
       std::size_t done = std::size_t{b.x1 - b.x0} * (b.y1 - b.y0);
       if (footprints) {
         for (std::uint32_t y = b.y0; y < b.cy1; ++y)
-          for (std::uint32_t x = b.x0; x < b.cx1; ++x) trace(grid.corner(x, y), grid.corner_ray(x, y), list, signs, local);
+          for (std::uint32_t x = b.x0; x < b.cx1; ++x)
+            trace(grid.corner(x, y), grid.corner_ray(x, y), list, blocks.scan(x, y), signs, length, local);
         done += std::size_t{b.cx1 - b.x0} * (b.cy1 - b.y0);
       }
       return done;

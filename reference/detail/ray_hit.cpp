@@ -61,13 +61,8 @@ bool in_plane_meets(const PixelRay& ray, const Vec3& a, const Vec3& b, const Vec
 // Orientation_3), for rows x = b - a, y = c - a and z either a difference a - e of doubles or an
 // input direction d (no rounding: the bound only over-estimates). nullopt outside the filter's
 // magnitude range.
-struct BoundedValue {
-  double value = 0.0;
-  double error = 0.0;  // |value - exact| <= error
-};
-
-std::optional<BoundedValue> bounded_determinant(const std::array<double, 3>& x, const std::array<double, 3>& y,
-                                                const std::array<double, 3>& z) {
+std::optional<BoundedEstimate> bounded_determinant(const std::array<double, 3>& x, const std::array<double, 3>& y,
+                                                   const std::array<double, 3>& z) {
   const double max0 = std::max({std::fabs(x[0]), std::fabs(y[0]), std::fabs(z[0])});
   const double max1 = std::max({std::fabs(x[1]), std::fabs(y[1]), std::fabs(z[1])});
   const double max2 = std::max({std::fabs(x[2]), std::fabs(y[2]), std::fabs(z[2])});
@@ -77,7 +72,7 @@ std::optional<BoundedValue> bounded_determinant(const std::array<double, 3>& x, 
   const double m01 = x[0] * y[1] - y[0] * x[1];
   const double m02 = x[0] * z[1] - z[0] * x[1];
   const double m12 = y[0] * z[1] - z[0] * y[1];
-  return BoundedValue{m01 * z[2] - m02 * y[2] + m12 * x[2], kOrientationErrorFactor * max0 * max1 * max2};
+  return BoundedEstimate{m01 * z[2] - m02 * y[2] + m12 * x[2], kOrientationErrorFactor * max0 * max1 * max2};
 }
 
 // The semi-static stage of t = N / D (hit_point_coordinates.h), in round-to-nearest doubles
@@ -87,7 +82,7 @@ std::optional<BoundedValue> bounded_determinant(const std::array<double, 3>& x, 
 // deviation is at most (rN + rD + u)(1 + rN) / (1 - rD - u) <= 1.01 (rN + rD + u) when rN, rD
 // <= 2^-10; rho = 2 (rN + rD) + 8u covers it, and every rounding of rho's own evaluation (a
 // relative 4u at most) with room to spare. nullopt where the filter does not apply (N or D
-// within 2^10 of its error, or out of range): the caller takes the interval stage.
+// within 2^10 of its error, zero, or out of range): the caller takes the interval stage.
 struct SemiStaticParameter {
   double q = 0.0;
   double rho = 0.0;
@@ -95,20 +90,26 @@ struct SemiStaticParameter {
 
 inline constexpr double kUnit = 0x1p-53;
 
+std::optional<SemiStaticParameter> semi_static_parameter(const BoundedEstimate& n, const BoundedEstimate& d) {
+  constexpr double kRange = 0x1p-10;
+  if (!(n.error <= kRange * std::fabs(n.value)) || !(d.error <= kRange * std::fabs(d.value)) || n.value == 0.0 ||
+      d.value == 0.0)
+    return std::nullopt;
+  const double q = n.value / d.value;
+  if (!std::isfinite(q)) return std::nullopt;
+  return SemiStaticParameter{q, 2.0 * (n.error / std::fabs(n.value) + d.error / std::fabs(d.value)) + 8.0 * kUnit};
+}
+
 std::optional<SemiStaticParameter> semi_static_parameter(const PixelRay& ray, const std::array<Vec3, 3>& t) {
   const std::array<double, 3> x{t[1][0] - t[0][0], t[1][1] - t[0][1], t[1][2] - t[0][2]};
   const std::array<double, 3> y{t[2][0] - t[0][0], t[2][1] - t[0][1], t[2][2] - t[0][2]};
   const std::array<double, 3> a_e{t[0][0] - ray.origin[0], t[0][1] - ray.origin[1], t[0][2] - ray.origin[2]};
   const std::array<double, 3> d{ray.direction[0], ray.direction[1], ray.direction[2]};
-  const std::optional<BoundedValue> n = bounded_determinant(x, y, a_e);
+  const std::optional<BoundedEstimate> n = bounded_determinant(x, y, a_e);
   if (!n) return std::nullopt;
-  const std::optional<BoundedValue> dd = bounded_determinant(x, y, d);
+  const std::optional<BoundedEstimate> dd = bounded_determinant(x, y, d);
   if (!dd) return std::nullopt;
-  constexpr double kRange = 0x1p-10;
-  if (!(n->error <= kRange * std::fabs(n->value)) || !(dd->error <= kRange * std::fabs(dd->value))) return std::nullopt;
-  const double q = n->value / dd->value;
-  if (!std::isfinite(q)) return std::nullopt;
-  return SemiStaticParameter{q, 2.0 * (n->error / std::fabs(n->value) + dd->error / std::fabs(dd->value)) + 8.0 * kUnit};
+  return semi_static_parameter(*n, *dd);
 }
 
 // The absolute term of every bound below: far above any underflow error of the few operations
@@ -127,7 +128,7 @@ std::optional<Sign> box_filtered_sign(const std::array<double, 3>& x, const std:
                                       const std::array<double, 3>& z, const std::array<double, 3>& a,
                                       const std::array<double, 3>& b, const Vec3& lo, const Vec3& hi,
                                       const Vec3& middle) {
-  const std::optional<BoundedValue> f = bounded_determinant(x, y, z);
+  const std::optional<BoundedEstimate> f = bounded_determinant(x, y, z);
   if (!f) return std::nullopt;
   double spread = 0.0;
   for (int k = 0; k < 3; ++k) {
@@ -180,16 +181,17 @@ RayMeeting ray_meets_triangle(const PixelRay& ray, const Vec3& a, const Vec3& b,
 
 RayMeeting ray_meets_triangle(const PixelRay& ray, const Vec3& a, const Vec3& b, const Vec3& c,
                               const KnownRaySigns& known) {
-  const HomogeneousPoint ha = finite_point(a), hb = finite_point(b), hc = finite_point(c);
-  const HomogeneousPoint e = finite_point(ray.origin);
+  // The homogeneous points are formed only for a sign the caller does not know (a listed ray
+  // usually knows all five: exact_image.cpp's tile filters).
+  const auto h = [](const Vec3& p) { return finite_point(p); };
   const HomogeneousPoint d{ray.direction[0], ray.direction[1], ray.direction[2], 0.0};
   RayMeeting m;
-  m.eye_side = known.eye_side ? *known.eye_side : orient_unchecked(ha, hb, hc, e);
-  m.direction_side = known.direction_side ? *known.direction_side : orient_unchecked(ha, hb, hc, d);
+  m.eye_side = known.eye_side ? *known.eye_side : orient_unchecked(h(a), h(b), h(c), h(ray.origin));
+  m.direction_side = known.direction_side ? *known.direction_side : orient_unchecked(h(a), h(b), h(c), d);
   if (m.direction_side == Sign::zero) {
     // Parallel to the plane: apart when off it; in it, a triangle without area is no surface
     // (docs/definitions.md#orientation), one with area may be met along a segment.
-    if (m.eye_side != Sign::zero || spans_no_plane(ha, hb, hc)) return m;
+    if (m.eye_side != Sign::zero || spans_no_plane(h(a), h(b), h(c))) return m;
     if (in_plane_meets(ray, a, b, c)) m.contact = RayContact::in_plane;
     return m;
   }
@@ -198,32 +200,60 @@ RayMeeting ray_meets_triangle(const PixelRay& ray, const Vec3& a, const Vec3& b,
   // eye's side (or minus the direction's when e is on the plane), orient(e, d, p, q) =
   // -s * sigma(p, q, X), so X is strictly inside iff every edge line gives -s.
   const Sign s = m.eye_side != Sign::zero ? m.eye_side : -m.direction_side;
-  const std::array<std::pair<const HomogeneousPoint*, const HomogeneousPoint*>, 3> edges{{{&ha, &hb}, {&hb, &hc}, {&hc, &ha}}};
+  const std::array<std::pair<const Vec3*, const Vec3*>, 3> edges{{{&a, &b}, {&b, &c}, {&c, &a}}};
   const Meeting meeting = fold_boundary_signs([&](int k) {
-    const auto& [p, q] = edges[static_cast<std::size_t>(k)];
     const std::optional<Sign>& edge = known.edges[static_cast<std::size_t>(k)];
-    return (edge ? *edge : orient_unchecked(e, d, *p, *q)) * -s;
+    if (edge) return *edge * -s;
+    const auto& [p, q] = edges[static_cast<std::size_t>(k)];
+    return orient_unchecked(h(ray.origin), d, h(*p), h(*q)) * -s;
   });
   if (meeting == Meeting::apart) return m;  // X strictly outside one edge line: outside the closed triangle
   m.contact = meeting == Meeting::touches || m.eye_side == Sign::zero ? RayContact::touches : RayContact::crosses;
   return m;
 }
 
+BoundedEstimate plane_numerator_estimate(const Vec3& e, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const std::array<double, 3> x{b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+  const std::array<double, 3> y{c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+  const std::array<double, 3> a_e{a[0] - e[0], a[1] - e[1], a[2] - e[2]};
+  return bounded_determinant(x, y, a_e).value_or(BoundedEstimate{0.0, std::numeric_limits<double>::infinity()});
+}
+
 RayParameter::RayParameter(const PixelRay& ray, const Vec3& a, const Vec3& b, const Vec3& c, Sign direction_side)
     : ray_(ray), triangle_{a, b, c}, direction_side_(direction_side), lo_(0.0), hi_(0.0) {
   if (direction_side == Sign::zero)
     throw std::invalid_argument("RayParameter: the ray is parallel to the triangle's plane");
-  if (const std::optional<SemiStaticParameter> s = semi_static_parameter(ray_, triangle_)) {
-    semi_static_ = true;
-    q_ = s->q;
-    rho_ = s->rho;
-    // t in q (1 -+ rho): the margin doubled covers the roundings of its product and of the
-    // sums (each a relative u of a value below 2 |q|; rho >= 8u).
-    const double m = 2.0 * std::fabs(s->q) * s->rho + kTiny;
-    lo_ = std::max(s->q - m, 0.0);  // t >= 0 for every meeting ray_meets_triangle reports
-    hi_ = s->q + m;
-    return;
-  }
+  if (const std::optional<SemiStaticParameter> s = semi_static_parameter(ray_, triangle_))
+    enclose_semi_static(s->q, s->rho);
+  else
+    enclose_by_intervals();
+}
+
+RayParameter::RayParameter(const PixelRay& ray, const Vec3& a, const Vec3& b, const Vec3& c, Sign direction_side,
+                           const BoundedEstimate& n, const BoundedEstimate& d)
+    : ray_(ray), triangle_{a, b, c}, direction_side_(direction_side), lo_(0.0), hi_(0.0) {
+  if (direction_side == Sign::zero)
+    throw std::invalid_argument("RayParameter: the ray is parallel to the triangle's plane");
+  if (const std::optional<SemiStaticParameter> s = semi_static_parameter(n, d))
+    enclose_semi_static(s->q, s->rho);
+  else if (const std::optional<SemiStaticParameter> own = semi_static_parameter(ray_, triangle_))
+    enclose_semi_static(own->q, own->rho);
+  else
+    enclose_by_intervals();
+}
+
+void RayParameter::enclose_semi_static(double q, double rho) {
+  semi_static_ = true;
+  q_ = q;
+  rho_ = rho;
+  // t in q (1 -+ rho): the margin doubled covers the roundings of its product and of the
+  // sums (each a relative u of a value below 2 |q|; rho >= 8u).
+  const double m = 2.0 * std::fabs(q) * rho + kTiny;
+  lo_ = std::max(q - m, 0.0);  // t >= 0 for every meeting ray_meets_triangle reports
+  hi_ = q + m;
+}
+
+void RayParameter::enclose_by_intervals() {
   const CGAL::Protect_FPU_rounding<true> protect;
   const auto [n, d] = plane_parameter<Interval>(ray_, triangle_);
   const Interval t = n / d;  // unbounded when d's enclosure contains 0

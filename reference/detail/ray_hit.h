@@ -49,12 +49,54 @@ struct KnownRaySigns {
 [[nodiscard]] RayMeeting ray_meets_triangle(const PixelRay& ray, const Vec3& a, const Vec3& b, const Vec3& c,
                                             const KnownRaySigns& known);
 
+// ray_meets_triangle's answer where `known` holds all five signs and the direction's is not
+// zero (no in-plane test is needed): the same folding of the same signs, inline, for the
+// listed rays whose tile filters decide them all. nullopt otherwise.
+[[nodiscard]] inline std::optional<RayMeeting> meeting_from_signs(const KnownRaySigns& known) {
+  if (!known.eye_side || !known.direction_side || *known.direction_side == Sign::zero || !known.edges[0] ||
+      !known.edges[1] || !known.edges[2])
+    return std::nullopt;
+  RayMeeting m;
+  m.eye_side = *known.eye_side;
+  m.direction_side = *known.direction_side;
+  if (m.eye_side == m.direction_side) return m;  // the plane behind the eye
+  const Sign s = m.eye_side != Sign::zero ? m.eye_side : -m.direction_side;
+  bool on_boundary = false;
+  for (const std::optional<Sign>& edge : known.edges) {
+    const Sign side = *edge * -s;  // as fold_boundary_signs (exact/face_crossing.h)
+    if (side == Sign::negative) return m;
+    on_boundary = on_boundary || side == Sign::zero;
+  }
+  m.contact = on_boundary || m.eye_side == Sign::zero ? RayContact::touches : RayContact::crosses;
+  return m;
+}
+
+// A double and a certified bound on its distance from the exact value it estimates:
+// |value - exact| <= error (error = +infinity: no estimate).
+struct BoundedEstimate {
+  double value = 0.0;
+  double error = 0.0;
+};
+
+// N = det[b - a, c - a, a - e] of the parameter t = N / D at which rays from e meet the plane
+// of abc (the same for every direction: a tile's rays share it), with CGAL's Orientation_3
+// bound on its rounding (error = +infinity outside that filter's magnitude range).
+[[nodiscard]] BoundedEstimate plane_numerator_estimate(const Vec3& e, const Vec3& a, const Vec3& b, const Vec3& c);
+
 // The parameter t = N / D at which the ray meets the plane of abc (crosses or touches, so
 // D != 0 and t >= 0). Keeps copies of its inputs for the exact fallback.
 class RayParameter {
  public:
   // Precondition: direction_side = sign D != 0 (from ray_meets_triangle).
   RayParameter(const PixelRay& ray, const Vec3& a, const Vec3& b, const Vec3& c, Sign direction_side);
+  // The same parameter from estimates of N and D a caller already holds (`n` of N =
+  // det[b - a, c - a, a - e], `d` of D = det[b - a, c - a, d]: plane_numerator_estimate's for a
+  // tile's eye, a tile's direction filter): the semi-static stage without forming N and D
+  // again, the constructor above where they are too loose for it (relative error over 2^-10).
+  // compare() and the boxes answer as for the constructor above (every verdict is exact; the
+  // enclosure, only a filter, may differ in its last bits).
+  RayParameter(const PixelRay& ray, const Vec3& a, const Vec3& b, const Vec3& c, Sign direction_side,
+               const BoundedEstimate& n, const BoundedEstimate& d);
   // The same parameter with the enclosure [0, +infinity] (every meeting has t >= 0), computed
   // without a rounding-mode switch: for callers that keep it only for what it was made of (a
   // HitPoint whose box is known, a footprint's corners); compare() is still exact.
@@ -81,6 +123,12 @@ class RayParameter {
   friend class HitPoint;
   friend bool in_plane_contact_before(const PixelRay& ray, const Vec3& a, const Vec3& b, const Vec3& c,
                                       const RayParameter& bound);
+  // The enclosure q (1 -+ rho) of the semi-static stage (t = q (1 + eps), |eps| <= rho).
+  void enclose_semi_static(double q, double rho);
+  // The enclosure of the interval stage (a rounding-mode switch), where the semi-static one
+  // does not apply.
+  void enclose_by_intervals();
+
   PixelRay ray_;
   std::array<Vec3, 3> triangle_;
   Sign direction_side_;
