@@ -71,6 +71,9 @@ struct RayHit {
 
 [[nodiscard]] bool countable(const RayHit& hit) { return hit.triangle != kNoHit && !hit.degenerate; }
 
+// Every ray's first hit, indexed as RayGrid numbers the rays.
+using RayHits = HugePageBuffer<RayHit>;
+
 // A box enclosing a ray's hit point ({lo, hi}: detail::semi_static_hit_box's, else HitPoint's
 // own; every test on P is exact whatever the box, which only filters), computed once per ray for
 // every countable hit and kept in detail::HitPointBoxes: the centre's count, and each corner's
@@ -1217,14 +1220,27 @@ std::vector<CandidateRaySigns> candidate_ray_signs(const ImageGeometry& g, const
                                                    const Vec3& eye, const Vec3& W) {
   std::vector<CandidateRaySigns> out;
   out.reserve(ids.size());
-  const auto plane = [](const EdgePlaneFilter& f) { return CandidateRaySigns::Plane{f.normal(), f.along_bound()}; };
+  // EdgePlaneFilter(m, {}, W, p, q)'s normal() and along_bound(), without the terms of P's
+  // radius (zero here) and |n| that the ray filters do not read: the same values.
+  const auto plane = [&W](const Vec3& m, const Vec3& p, const Vec3& q) {
+    constexpr double u = 0x1p-53, kTame = 0x1p200;
+    const Vec3 a = difference(p, m), b = difference(q, m), d = difference(p, q);
+    const detail::RoundedCross cross = detail::rounded_cross(a, b);
+    double bound = 0.0, largest = 0.0;
+    for (int i = 0; i < 3; ++i) {
+      bound += W[i] * (5.0 * u * std::fabs(cross.n[i]) + 2.0 * cross.e[i]);
+      largest = std::max({largest, std::fabs(a[i]), std::fabs(b[i]), std::fabs(d[i]), std::fabs(W[i])});
+    }
+    bound = bound * (1.0 + 0x1p-20) + 0x1p-800;
+    const bool usable = largest <= kTame && std::isfinite(bound);
+    return CandidateRaySigns::Plane{cross.n, usable ? bound : std::numeric_limits<double>::infinity()};
+  };
   for (std::uint32_t id : ids) {
     const Vec3 &a = g.vertex(id, 0), &b = g.vertex(id, 1), &c = g.vertex(id, 2);
     const Sign eye_side = detail::orient_unchecked(finite_point(a), finite_point(b), finite_point(c), finite_point(eye));
     out.push_back({eye_side,
                    eye_side == Sign::zero ? 0.0 : eye_side == Sign::positive ? 1.0 : -1.0,
-                   {plane(EdgePlaneFilter(a, Vec3{}, W, b, c)), plane(EdgePlaneFilter(eye, Vec3{}, W, a, b)),
-                    plane(EdgePlaneFilter(eye, Vec3{}, W, b, c)), plane(EdgePlaneFilter(eye, Vec3{}, W, c, a))},
+                   {plane(a, b, c), plane(eye, a, b), plane(eye, b, c), plane(eye, c, a)},
                    detail::plane_numerator_estimate(eye, a, b, c)});
   }
   return out;
@@ -1563,7 +1579,7 @@ SegmentCrossingFilter segment_crossing_filter(const ImageGeometry& g, std::size_
 
 // The light-independent ambiguity of a pixel: a zero sign on a footprint ray, or footprint
 // rays that see different triangles (or not all a triangle).
-std::uint8_t footprint_ambiguity(const std::vector<RayHit>& hits, const std::array<std::size_t, 5>& rays) {
+std::uint8_t footprint_ambiguity(const RayHits& hits, const std::array<std::size_t, 5>& rays) {
   std::uint8_t bits = 0;
   for (std::size_t ray : rays) {
     if (hits[ray].degenerate) bits |= kZeroSign;
@@ -1583,7 +1599,7 @@ struct CornerHits {
   detail::FootprintPolytope::CornerBoxes boxes;  // their HitPoint boxes, from the cache
 };
 
-CornerHits corner_hits(const ImageGeometry& g, const RayGrid& grid, const std::vector<RayHit>& hits,
+CornerHits corner_hits(const ImageGeometry& g, const RayGrid& grid, const RayHits& hits,
                        const detail::HitPointBoxes& point_boxes, std::uint32_t i, std::uint32_t r) {
   const std::array<std::size_t, 4> corners{grid.corner(i, r), grid.corner(i + 1, r), grid.corner(i + 1, r + 1),
                                            grid.corner(i, r + 1)};
@@ -2251,9 +2267,15 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
   // 1. First hits of every ray, row by row (rays of a row are coherent: good for the tree).
   auto stage = Clock::now();
   // The large per-ray arrays on huge pages (core/huge_page_advice.h): at 1024x768 they are about
-  // 100 MB, whose 4 KiB first-touch faults cost this virtual machine about 0.1 s of CPU.
-  std::vector<RayHit> hits;
-  resize_huge(hits, grid.size());
+  // 100 MB, whose 4 KiB first-touch faults cost this virtual machine about 0.1 s of CPU. Not
+  // filled before the rays are traced where every ray is (the whole image, with its corners):
+  // a fill first would touch all of it on one thread (12.6 MB, 3 to 15 ms on ogre at 1024x768),
+  // where the tiles' threads touch it as they write. Otherwise the untraced rays read as no hit.
+  RayHits hits(grid.size());
+  if (window.width != grid.width || window.height != grid.height || !footprints)
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, hits.size()), [&](const auto& r) {
+      std::fill(hits.data() + r.begin(), hits.data() + r.end(), RayHit{});
+    });
   // Every countable hit's point box, once, as its ray is traced (the centres' for their counts;
   // the corners' for theirs and for the pyramids of the four pixels around each).
   // Not initialised (zeroing each ray's box costs more than the boxes): only the countable
@@ -2364,17 +2386,18 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
   // 2. and 3., light by light.
   stage = Clock::now();
   resize_huge(image.hit_triangles, grid.centres());
-  for (std::size_t i = 0; i < grid.centres(); ++i) image.hit_triangles[i] = hits[i].triangle;
   std::vector<std::uint8_t> geometric;
   resize_huge(geometric, grid.centres());
   tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, grid.height), [&](const auto& r) {
     for (std::uint32_t row = r.begin(); row != r.end(); ++row)
-      for (std::uint32_t i = 0; i < grid.width; ++i)
+      for (std::uint32_t i = 0; i < grid.width; ++i) {
+        image.hit_triangles[std::size_t{row} * grid.width + i] = hits[std::size_t{row} * grid.width + i].triangle;
         // Outside the window no ray was traced (no hit: nothing below looks further).
         geometric[std::size_t{row} * grid.width + i] =
             !in_window(i, row) ? static_cast<std::uint8_t>(kOutsideWindow)
             : footprints       ? footprint_ambiguity(hits, grid.footprint(i, row))
                                : static_cast<std::uint8_t>(hits[std::size_t{row} * grid.width + i].degenerate ? kZeroSign : 0);
+      }
   });
   image.stats.count_seconds = seconds_since(stage);
 
@@ -2440,8 +2463,11 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
   image.stats.footprint_seconds = seconds_since(stage);
   image.view_ambiguity = geometric;
   stage = Clock::now();
-  std::vector<std::uint32_t> counts;
-  std::vector<std::uint8_t> needed;
+  // Per ray its count for the light at hand and whether that count is needed. Neither is
+  // filled first (a fill would touch them on one thread): every entry of `needed` is written
+  // for each light, and a count is read only where it was needed, and so written.
+  HugePageBuffer<std::uint32_t> counts;
+  HugePageBuffer<std::uint8_t> needed;
   // With the depth band: the pixels a casting edge passes near (fold_pair_at_centre's filter).
   const std::vector<std::uint8_t> fold_mask =
       footprints && options.depth_band && backdrop ? fold_candidates(g, grid.frame) : std::vector<std::uint8_t>{};
@@ -2450,8 +2476,8 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
   const bool beam = !footprints && lights.size() >= kBeamMinLights &&
                     std::all_of(g.lights.begin(), g.lights.end(), [](const HomogeneousPoint& l) { return l[3] != 0.0; });
   if (!beam) {  // the per-light counts' arrays, over every ray
-    resize_huge(counts, grid.size());
-    resize_huge(needed, grid.size());
+    counts = HugePageBuffer<std::uint32_t>(grid.size());
+    needed = HugePageBuffer<std::uint8_t>(grid.size());
   }
   // Without light images, the lights' sums per pixel (ExactLightTally).
   const bool tally = !options.light_images;
@@ -2530,20 +2556,33 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
   // With a tally the beam has summed every light (no light image to make).
   for (std::size_t light = 0; light < (beam && tally ? 0 : lights.size()); ++light) {
     // The centres' counts of the beam (every light counted above, centres only: no footprints).
-    const std::vector<std::uint32_t>& light_counts = beam ? beam_counts_of[light] : counts;
+    const std::uint32_t* light_counts = beam ? beam_counts_of[light].data() : counts.data();
     if (!beam) {
       // Which rays' counts matter: every countable centre (the count image), and the corners of
       // pixels whose footprint sees one triangle that the light does not graze.
-      std::fill(needed.begin(), needed.end(), std::uint8_t{0});
-      for (std::uint32_t row = 0; row < grid.height; ++row)
-        for (std::uint32_t i = 0; i < grid.width; ++i) {
-          const auto rays = grid.footprint(i, row);
-          const RayHit& centre = hits[rays[0]];
-          if (!countable(centre)) continue;
-          needed[rays[0]] = 1;
-          if (footprints && geometric[rays[0]] == 0 && !terminator(g, light, centre))
-            for (std::size_t k = 1; k < rays.size(); ++k) needed[rays[k]] = 1;
-        }
+      // The centres first (kNeededCorners: a clean pixel's, whose corners are needed too), then
+      // each corner from the four pixels around it: each entry written by one thread.
+      constexpr std::uint8_t kNeededCorners = 2;
+      tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, grid.height), [&](const auto& r) {
+        for (std::uint32_t row = r.begin(); row != r.end(); ++row)
+          for (std::uint32_t i = 0; i < grid.width; ++i) {
+            const std::size_t k = std::size_t{row} * grid.width + i;
+            const RayHit& centre = hits[k];
+            needed[k] = !countable(centre) ? 0
+                        : footprints && geometric[k] == 0 && !terminator(g, light, centre) ? kNeededCorners
+                                                                                            : 1;
+          }
+      });
+      tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, grid.height + 1), [&](const auto& r) {
+        for (std::uint32_t y = r.begin(); y != r.end(); ++y)
+          for (std::uint32_t x = 0; x <= grid.width; ++x) {
+            bool any = false;
+            for (std::uint32_t row = y == 0 ? 0 : y - 1; footprints && row <= std::min(y, grid.height - 1); ++row)
+              for (std::uint32_t i = x == 0 ? 0 : x - 1; i <= std::min(x, grid.width - 1); ++i)
+                any = any || needed[std::size_t{row} * grid.width + i] == kNeededCorners;
+            needed[grid.corner(x, y)] = any ? 1 : 0;
+          }
+      });
       // The count lists of a light with a grid come from it, not from walks of the tree.
       const std::optional<detail::LightGrid>& light_grid = light_grids[light];
       // Tile by tile (the hits' tiles): the box of the needed rays' hit points and the light
