@@ -54,13 +54,24 @@ class EyeBlocks {
   // The sign of d . n shared by every ray direction d of the block, or zero where the margin
   // cannot certify one.
   [[nodiscard]] Sign sign(const Plane& plane, std::uint32_t column, std::uint32_t row) const {
-    const double v = plane.gamma + a_middle_[column] * plane.alpha + b_middle_[row] * plane.beta;
+    const double v = value(plane, column, row);
     if (v > plane.margin) return Sign::positive;
     if (v < -plane.margin) return Sign::negative;
     return Sign::zero;
   }
 
+  // The same verdicts for every block at once, as bit masks (bit column + row * columns()), for
+  // at most kMaskBlocks blocks (std::logic_error otherwise): the blocks whose sign is `side`
+  // (nonzero), and those whose sign is certain (either).
+  static constexpr std::uint32_t kMaskBlocks = 32;
+  [[nodiscard]] std::uint32_t blocks_on_side(const Plane& plane, Sign side) const;
+  [[nodiscard]] std::uint32_t blocks_decided(const Plane& plane) const;
+
  private:
+  [[nodiscard]] double value(const Plane& plane, std::uint32_t column, std::uint32_t row) const {
+    return plane.gamma + a_middle_[column] * plane.alpha + b_middle_[row] * plane.beta;
+  }
+
   CameraFrame frame_;
   std::uint32_t x0_, y0_, block_;
   std::vector<double> a_middle_, b_middle_;  // per column ac, per row bc

@@ -86,6 +86,20 @@ TEST(EyeBlocks, PlanesThroughTheTilesRays_EveryRayOfADecidedBlockHasItsSign) {
         normal_error *= 1.0 + 0x1p-40;
       }
       const EyeBlocks::Plane plane = blocks.plane(n, normal_error);
+      // The masks give sign()'s verdicts, block by block.
+      if (blocks.columns() * blocks.rows() <= EyeBlocks::kMaskBlocks) {
+        const std::uint32_t positive = blocks.blocks_on_side(plane, Sign::positive),
+                            negative = blocks.blocks_on_side(plane, Sign::negative), decided_mask = blocks.blocks_decided(plane);
+        for (std::uint32_t row = 0; row < blocks.rows(); ++row)
+          for (std::uint32_t column = 0; column < blocks.columns(); ++column) {
+            const std::uint32_t bit = 1u << (row * blocks.columns() + column);
+            const Sign verdict = blocks.sign(plane, column, row);
+            ASSERT_EQ((positive & bit) != 0, verdict == Sign::positive) << "trial " << trial;
+            ASSERT_EQ((negative & bit) != 0, verdict == Sign::negative) << "trial " << trial;
+            ASSERT_EQ((decided_mask & bit) != 0, verdict != Sign::zero) << "trial " << trial;
+          }
+        EXPECT_EQ(blocks.blocks_on_side(plane, Sign::zero), 0u);
+      }
       for (std::uint32_t y = y0; y <= y1; ++y)
         for (std::uint32_t x = x0; x <= x1; ++x)
           for (const double half : {0.0, 0.5}) {  // the corner at (x, y), the centre beside it
@@ -157,6 +171,19 @@ TEST(EyeBlocks, HugeNormalOrUnboundedError_DecidesNothing) {
   }
   // The same plane with a bounded error decides the tile's blocks (all left of x = 32).
   EXPECT_EQ(blocks.sign(blocks.plane({1.0, 0.0, 0.0}, 0.0), 0, 0), Sign::negative);
+}
+
+TEST(EyeBlocks, MoreBlocksThanAMaskHolds_MasksThrow) {
+  Camera camera;
+  camera.eye = {0.0, 0.0, 5.0};
+  camera.target = {0.0, 0.0, 0.0};
+  camera.width = 64;
+  camera.height = 64;
+  const EyeBlocks blocks(shadowcert::camera_frame(camera), 0, 12, 0, 12, 2);  // 36 blocks
+  const EyeBlocks::Plane plane = blocks.plane({1.0, 0.0, 0.0}, 0.0);
+  EXPECT_EQ(blocks.sign(plane, 0, 0), Sign::negative);
+  EXPECT_THROW((void)blocks.blocks_on_side(plane, Sign::negative), std::logic_error);
+  EXPECT_THROW((void)blocks.blocks_decided(plane), std::logic_error);
 }
 
 TEST(EyeBlocks, EmptyTileOrBlock_Throws) {
