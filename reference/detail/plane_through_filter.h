@@ -46,12 +46,15 @@ class PlaneThroughFilter {
   PlaneThroughFilter() = default;
   PlaneThroughFilter(const Vec3& o, const Vec3& p, const Vec3& q, const Vec3& W, const Vec3& R) : o_(o) {
     constexpr double u = 0x1p-53, kTame = 0x1p200;
-    const RoundedCross cross = rounded_cross(difference(p, o), difference(q, o));
-    n_ = cross.n;
+    // rounded_cross's n and e, each component written where it is kept (a returned struct
+    // copied in here was read back before its stores retired: a stall per filter).
+    const Vec3 a = difference(p, o), b = difference(q, o);
     double bound = 0.0;
     bool tame = true;
     for (int i = 0; i < 3; ++i) {
-      const double e = cross.e[i];
+      const int j = (i + 1) % 3, k = (i + 2) % 3;
+      n_[i] = a[j] * b[k] - a[k] * b[j];
+      const double e = 8.2 * u * (std::fabs(a[j] * b[k]) + std::fabs(a[k] * b[j]));
       bound += W[i] * (5.0 * u * std::fabs(n_[i]) + e) + R[i] * (std::fabs(n_[i]) + e);
       for (const double x : {o[i], p[i], q[i], W[i], R[i]}) tame = tame && std::fabs(x) <= kTame;
     }
