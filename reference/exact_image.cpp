@@ -2320,8 +2320,8 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
     hits[k] = hit;  // (not read back from hits[k]: its two narrow stores would stall an 8-byte load)
     if (!countable(hit)) return;
     // A countable hit's nearest meeting is its triangle's: its semi-static stage gives the box.
-    if (const auto box = best->semi_static_hit_box()) {
-      point_boxes.set(k, *box);
+    if (PointBox box; best->semi_static_hit_box(box)) {
+      point_boxes.set(k, box);
       return;
     }
     const detail::HitPoint p(*best);

@@ -143,36 +143,41 @@ std::optional<Sign> box_filtered_sign(const std::array<double, 3>& x, const std:
   return std::nullopt;
 }
 
-// The box of semi_static_hit_box (below) from the semi-static stage's q and rho on `ray`.
-std::optional<std::array<Vec3, 2>> hit_box_of(const PixelRay& ray, const SemiStaticParameter& s) {
+// The box of semi_static_hit_box (below) from the semi-static stage's q and rho on `ray`, into
+// `box` (written only where every bound is finite); false where one is not.
+bool hit_box_of(const PixelRay& ray, const SemiStaticParameter& s, std::array<Vec3, 2>& box) {
   // P_k = e_k + t d_k, computed P~ = fl(e_k + y), y = fl(q d_k). t d_k = q d_k (1 + eps), so
   // |t d_k - y| <= |q d_k| (rho + u) <= 1.01 |y| (rho + u), and the sum adds u |P~| / (1 - u):
   // |P~ - P_k| <= 1.01 (|y| (rho + 2u) + u |P~|). The margin m below is twice that, times
   // (1 + 2^-40) for its own roundings (a relative 5u), plus kTiny; forming P~ -+ m rounds by
   // at most u (|P~| + m), which the doubling covers.
-  std::array<Vec3, 2> box;
+  Vec3 lo{}, hi{};
+  bool finite = true;
   for (int k = 0; k < 3; ++k) {
     const double y = s.q * ray.direction[k];
     const double p = ray.origin[k] + y;
     const double m = (2.0 * std::fabs(y) * (s.rho + 2.0 * kUnit) + 4.0 * kUnit * std::fabs(p)) * (1.0 + 0x1p-40) + kTiny;
-    box[0][k] = p - m;
-    box[1][k] = p + m;
-    if (!std::isfinite(box[0][k]) || !std::isfinite(box[1][k])) return std::nullopt;
+    lo[k] = p - m;
+    hi[k] = p + m;
+    finite = finite && std::isfinite(lo[k]) && std::isfinite(hi[k]);
   }
-  return box;
+  if (!finite) return false;
+  box[0] = lo;
+  box[1] = hi;
+  return true;
 }
 
 }  // namespace
 
 std::optional<std::array<Vec3, 2>> semi_static_hit_box(const PixelRay& ray, const std::array<Vec3, 3>& triangle) {
   const std::optional<SemiStaticParameter> s = semi_static_parameter(ray, triangle);
-  if (!s) return std::nullopt;
-  return hit_box_of(ray, *s);
+  std::array<Vec3, 2> box;
+  if (!s || !hit_box_of(ray, *s, box)) return std::nullopt;
+  return box;
 }
 
-std::optional<std::array<Vec3, 2>> RayParameter::semi_static_hit_box() const {
-  if (!semi_static_) return std::nullopt;
-  return hit_box_of(ray_, SemiStaticParameter{q_, rho_});
+bool RayParameter::semi_static_hit_box(std::array<Vec3, 2>& box) const {
+  return semi_static_ && hit_box_of(ray_, SemiStaticParameter{q_, rho_}, box);
 }
 
 RayMeeting ray_meets_triangle(const PixelRay& ray, const Vec3& a, const Vec3& b, const Vec3& c) {
