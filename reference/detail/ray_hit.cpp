@@ -100,16 +100,21 @@ std::optional<SemiStaticParameter> semi_static_parameter(const BoundedEstimate& 
   return SemiStaticParameter{q, 2.0 * (n.error / std::fabs(n.value) + d.error / std::fabs(d.value)) + 8.0 * kUnit};
 }
 
-std::optional<SemiStaticParameter> semi_static_parameter(const PixelRay& ray, const std::array<Vec3, 3>& t) {
-  const std::array<double, 3> x{t[1][0] - t[0][0], t[1][1] - t[0][1], t[1][2] - t[0][2]};
-  const std::array<double, 3> y{t[2][0] - t[0][0], t[2][1] - t[0][1], t[2][2] - t[0][2]};
-  const std::array<double, 3> a_e{t[0][0] - ray.origin[0], t[0][1] - ray.origin[1], t[0][2] - ray.origin[2]};
+std::optional<SemiStaticParameter> semi_static_parameter(const PixelRay& ray, const Vec3& a, const Vec3& b,
+                                                         const Vec3& c) {
+  const std::array<double, 3> x{b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+  const std::array<double, 3> y{c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+  const std::array<double, 3> a_e{a[0] - ray.origin[0], a[1] - ray.origin[1], a[2] - ray.origin[2]};
   const std::array<double, 3> d{ray.direction[0], ray.direction[1], ray.direction[2]};
   const std::optional<BoundedEstimate> n = bounded_determinant(x, y, a_e);
   if (!n) return std::nullopt;
   const std::optional<BoundedEstimate> dd = bounded_determinant(x, y, d);
   if (!dd) return std::nullopt;
   return semi_static_parameter(*n, *dd);
+}
+
+std::optional<SemiStaticParameter> semi_static_parameter(const PixelRay& ray, const std::array<Vec3, 3>& t) {
+  return semi_static_parameter(ray, t[0], t[1], t[2]);
 }
 
 // The absolute term of every bound below: far above any underflow error of the few operations
@@ -144,27 +149,24 @@ std::optional<Sign> box_filtered_sign(const std::array<double, 3>& x, const std:
 }
 
 // The box of semi_static_hit_box (below) from the semi-static stage's q and rho on `ray`, into
-// `box` (written only where every bound is finite); false where one is not.
+// `box`; false (`box` unspecified) where a bound is not finite. (Written in place, component by
+// component: a local box copied out is read back with wide loads before its stores retire.)
 bool hit_box_of(const PixelRay& ray, const SemiStaticParameter& s, std::array<Vec3, 2>& box) {
   // P_k = e_k + t d_k, computed P~ = fl(e_k + y), y = fl(q d_k). t d_k = q d_k (1 + eps), so
   // |t d_k - y| <= |q d_k| (rho + u) <= 1.01 |y| (rho + u), and the sum adds u |P~| / (1 - u):
   // |P~ - P_k| <= 1.01 (|y| (rho + 2u) + u |P~|). The margin m below is twice that, times
   // (1 + 2^-40) for its own roundings (a relative 5u), plus kTiny; forming P~ -+ m rounds by
   // at most u (|P~| + m), which the doubling covers.
-  Vec3 lo{}, hi{};
   bool finite = true;
   for (int k = 0; k < 3; ++k) {
     const double y = s.q * ray.direction[k];
     const double p = ray.origin[k] + y;
     const double m = (2.0 * std::fabs(y) * (s.rho + 2.0 * kUnit) + 4.0 * kUnit * std::fabs(p)) * (1.0 + 0x1p-40) + kTiny;
-    lo[k] = p - m;
-    hi[k] = p + m;
-    finite = finite && std::isfinite(lo[k]) && std::isfinite(hi[k]);
+    box[0][k] = p - m;
+    box[1][k] = p + m;
+    finite = finite && std::isfinite(box[0][k]) && std::isfinite(box[1][k]);
   }
-  if (!finite) return false;
-  box[0] = lo;
-  box[1] = hi;
-  return true;
+  return finite;
 }
 
 }  // namespace
@@ -228,7 +230,8 @@ RayParameter::RayParameter(const PixelRay& ray, const Vec3& a, const Vec3& b, co
     : ray_(ray), triangle_{a, b, c}, direction_side_(direction_side), lo_(0.0), hi_(0.0) {
   if (direction_side == Sign::zero)
     throw std::invalid_argument("RayParameter: the ray is parallel to the triangle's plane");
-  if (const std::optional<SemiStaticParameter> s = semi_static_parameter(ray_, triangle_))
+  // From the arguments, not the copies just made (read back with wide loads, they stall).
+  if (const std::optional<SemiStaticParameter> s = semi_static_parameter(ray, a, b, c))
     enclose_semi_static(s->q, s->rho);
   else
     enclose_by_intervals();
@@ -241,7 +244,7 @@ RayParameter::RayParameter(const PixelRay& ray, const Vec3& a, const Vec3& b, co
     throw std::invalid_argument("RayParameter: the ray is parallel to the triangle's plane");
   if (const std::optional<SemiStaticParameter> s = semi_static_parameter(n, d))
     enclose_semi_static(s->q, s->rho);
-  else if (const std::optional<SemiStaticParameter> own = semi_static_parameter(ray_, triangle_))
+  else if (const std::optional<SemiStaticParameter> own = semi_static_parameter(ray, a, b, c))
     enclose_semi_static(own->q, own->rho);
   else
     enclose_by_intervals();

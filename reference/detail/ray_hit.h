@@ -107,8 +107,8 @@ class RayParameter {
   [[nodiscard]] double upper() const { return hi_; }
 
   // semi_static_hit_box(ray(), triangle()) (below), from the semi-static stage this parameter's
-  // enclosure already ran (the same values, not computed twice), into `box`: false (`box` left
-  // as it was) where there is none, also for an Unenclosed parameter, which ran none. (An out
+  // enclosure already ran (the same values, not computed twice), into `box`: false (`box`
+  // unspecified) where there is none, also for an Unenclosed parameter, which ran none. (An out
   // parameter: a returned optional box is copied with wide loads of values just stored one by
   // one, which stall.)
   [[nodiscard]] bool semi_static_hit_box(std::array<Vec3, 2>& box) const;
