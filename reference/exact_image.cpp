@@ -192,7 +192,7 @@ struct ParameterEstimates {
 // triangles the ray meets (the nearest meeting; at a tie or an in-plane contact before it, the
 // least id), so both give the same hit.
 // With a list: `scan` holds the indices k into it of the candidates to test, ascending (all of
-// them, or those its block's filters leave: CandidateRaySigns::apart_over), and
+// them, or those the ray's block of pixels may meet: RayBlocks), and
 // known(k, signs, estimates) fills the signs of ray_meets_triangle for candidate k
 // that the tile's filters certify for this ray and the estimates of its parameter's N and D,
 // and returns false where they show it apart (skipped).

@@ -119,6 +119,96 @@ TEST(RayParameter, SemiStaticEnclosure_OrdersAsTheExactParameters) {
   }
 }
 
+// The estimates constructor (a tile's N and a ray's filtered D, each with a certified error):
+// its enclosure holds the exact parameter (compare() against the unenclosed parameter, which
+// always takes the exact path, is zero), its box encloses the exact point, and it orders
+// against a second triangle as the plain constructor does. D's estimate here is the long
+// double dot product of d with the normal, with an error bound far above its rounding; a
+// bound too loose for the semi-static stage (every tenth case) falls back to the plain one.
+TEST(RayParameter, EstimatesConstructor_EnclosesAndOrdersAsThePlainOne) {
+  std::mt19937_64 rng(20261207);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  int semi_static = 0;
+  for (int i = 0; i < 2000; ++i) {
+    const double scale = std::pow(10.0, 6.0 * unit(rng));
+    const Draw a = draw(rng, scale, 0.0, 4.0 * scale, false);
+    Draw b = a;
+    const double step = (i % 2 == 0 ? 1e-12 : 0.1) * unit(rng);
+    for (Vec3& v : b.triangle)
+      for (int k = 0; k < 3; ++k) v[k] += step * a.ray.direction[k];
+    const detail::RayMeeting ma = detail::ray_meets_triangle(a.ray, a.triangle[0], a.triangle[1], a.triangle[2]);
+    const detail::RayMeeting mb = detail::ray_meets_triangle(a.ray, b.triangle[0], b.triangle[1], b.triangle[2]);
+    if (ma.direction_side == Sign::zero || mb.direction_side == Sign::zero) continue;
+    const Vec3 &p = a.triangle[0], &q = a.triangle[1], &r = a.triangle[2];
+    const detail::BoundedEstimate n = detail::plane_numerator_estimate(a.ray.origin, p, q, r);
+    // D = d . ((q - p) x (r - p)), in long double (64 bits): within 2^-50 of its terms.
+    long double dot = 0.0L, magnitude = 0.0L;
+    for (int k = 0; k < 3; ++k) {
+      const int j = (k + 1) % 3, l = (k + 2) % 3;
+      const long double cross = static_cast<long double>(q[j] - p[j]) * (r[l] - p[l]) -
+                                static_cast<long double>(q[l] - p[l]) * (r[j] - p[j]);
+      const long double term = a.ray.direction[k] * cross;
+      dot += term;
+      magnitude += std::fabs(static_cast<long double>(a.ray.direction[k])) *
+                   (std::fabs(static_cast<long double>(q[j] - p[j]) * (r[l] - p[l])) +
+                    std::fabs(static_cast<long double>(q[l] - p[l]) * (r[j] - p[j])));
+    }
+    // The differences q - p, r - p are rounded too: a relative 2^-52 of each product.
+    const double error = static_cast<double>(magnitude) * (i % 10 == 9 ? 0.5 : 0x1p-40);
+    const detail::BoundedEstimate d{static_cast<double>(dot), error};
+    const RayParameter estimated(a.ray, p, q, r, ma.direction_side, n, d);
+    const RayParameter plain(a.ray, p, q, r, ma.direction_side);
+    const RayParameter exact(a.ray, p, q, r, ma.direction_side, RayParameter::Unenclosed{});
+    const RayParameter other(a.ray, b.triangle[0], b.triangle[1], b.triangle[2], mb.direction_side);
+    EXPECT_EQ(estimated.compare(exact), Sign::zero) << "case " << i;
+    EXPECT_EQ(estimated.compare(other), plain.compare(other)) << "case " << i;
+    EXPECT_EQ(other.compare(estimated), other.compare(plain)) << "case " << i;
+    std::array<Vec3, 2> box{};
+    if (!estimated.semi_static_hit_box(box)) continue;
+    ++semi_static;
+    const HitPoint point(exact);
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_NE(side_of_coordinate(point, k, box[0][k]), Sign::negative) << "case " << i << " axis " << k;
+      EXPECT_NE(side_of_coordinate(point, k, box[1][k]), Sign::positive) << "case " << i << " axis " << k;
+    }
+  }
+  EXPECT_GT(semi_static, 1000);
+}
+
+// meeting_from_signs folds the five signs as ray_meets_triangle does: for random rays and
+// triangles whose signs are all nonzero, the same meeting; with one sign unknown or the
+// direction's zero, none.
+TEST(RayMeeting, FromKnownSigns_AsRayMeetsTriangle) {
+  std::mt19937_64 rng(5);
+  int crossing = 0;
+  for (int i = 0; i < 3000; ++i) {
+    const Draw dr = draw(rng, 1.0, 0.0, 3.0, false);
+    const PixelRay ray{dr.ray.origin, {dr.ray.direction[0] + 0.3 * (i % 3 - 1), dr.ray.direction[1], dr.ray.direction[2]}};
+    const auto& t = dr.triangle;
+    const HomogeneousPoint e = finite_point(ray.origin), dir{ray.direction[0], ray.direction[1], ray.direction[2], 0.0};
+    detail::KnownRaySigns known;
+    known.eye_side = detail::orient_unchecked(finite_point(t[0]), finite_point(t[1]), finite_point(t[2]), e);
+    known.direction_side = detail::orient_unchecked(finite_point(t[0]), finite_point(t[1]), finite_point(t[2]), dir);
+    for (int k = 0; k < 3; ++k)
+      known.edges[static_cast<std::size_t>(k)] =
+          detail::orient_unchecked(e, dir, finite_point(t[static_cast<std::size_t>(k)]), finite_point(t[static_cast<std::size_t>((k + 1) % 3)]));
+    const detail::RayMeeting reference = detail::ray_meets_triangle(ray, t[0], t[1], t[2]);
+    const std::optional<detail::RayMeeting> folded = detail::meeting_from_signs(known);
+    if (*known.direction_side == Sign::zero) {
+      EXPECT_FALSE(folded.has_value());
+      continue;
+    }
+    ASSERT_TRUE(folded.has_value()) << "case " << i;
+    EXPECT_EQ(folded->contact, reference.contact) << "case " << i;
+    EXPECT_EQ(folded->eye_side, reference.eye_side) << "case " << i;
+    EXPECT_EQ(folded->direction_side, reference.direction_side) << "case " << i;
+    crossing += reference.contact == detail::RayContact::crosses ? 1 : 0;
+    known.edges[1].reset();
+    EXPECT_FALSE(detail::meeting_from_signs(known).has_value());
+  }
+  EXPECT_GT(crossing, 500);
+}
+
 // HitPoint's signs with a tight box (the semi-static and interval filters decide) equal the
 // exact ones (a box so wide that every filter fails and P's exact coordinates decide), for
 // planes and light wedges through points at and near P.
