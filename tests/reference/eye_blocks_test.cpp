@@ -51,6 +51,17 @@ Vec3 cross(const Vec3& a, const Vec3& b) {
   return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
 }
 
+// A camera at (0, 0, 5) looking down -z at the origin, `width` x `height` pixels: image x
+// grows along +x, the middle column looks along the plane x = 0.
+Camera looking_down(std::uint32_t width, std::uint32_t height) {
+  Camera camera;
+  camera.eye = {0.0, 0.0, 5.0};
+  camera.target = {0.0, 0.0, 0.0};
+  camera.width = width;
+  camera.height = height;
+  return camera;
+}
+
 TEST(EyeBlocks, PlanesThroughTheTilesRays_EveryRayOfADecidedBlockHasItsSign) {
   const unsigned seed = 20261207;
   std::printf("seed %u\n", seed);
@@ -128,11 +139,7 @@ TEST(EyeBlocks, PlanesThroughTheTilesRays_EveryRayOfADecidedBlockHasItsSign) {
 // the eye (normal (1, 0, 0)) cuts the tile at the image's middle column; the blocks left of
 // that column are negative, those right of it positive, the block it crosses undecided.
 TEST(EyeBlocks, VerticalPlaneThroughTheTile_DecidesTheBlocksBesideIt) {
-  Camera camera;
-  camera.eye = {0.0, 0.0, 5.0};
-  camera.target = {0.0, 0.0, 0.0};
-  camera.width = 1024;
-  camera.height = 768;
+  const Camera camera = looking_down(1024, 768);
   const CameraFrame frame = shadowcert::camera_frame(camera);
   const EyeBlocks blocks(frame, 509, 517, 100, 108, 2);  // columns [509, 511], [511, 513], ...
   ASSERT_EQ(blocks.columns(), 4u);
@@ -155,11 +162,7 @@ TEST(EyeBlocks, VerticalPlaneThroughTheTile_DecidesTheBlocksBesideIt) {
 // A normal whose terms overflow the margin's products, or one with an unbounded error: no
 // block is decided.
 TEST(EyeBlocks, HugeNormalOrUnboundedError_DecidesNothing) {
-  Camera camera;
-  camera.eye = {0.0, 0.0, 5.0};
-  camera.target = {0.0, 0.0, 0.0};
-  camera.width = 64;
-  camera.height = 64;
+  const Camera camera = looking_down(64, 64);
   const EyeBlocks blocks(shadowcert::camera_frame(camera), 0, 8, 0, 8, 2);
   for (const auto& [n, error] : {std::pair{Vec3{1e308, -1e308, 1e308}, 0.0},
                                  std::pair{Vec3{1.0, 0.0, 0.0}, std::numeric_limits<double>::infinity()},
@@ -174,11 +177,7 @@ TEST(EyeBlocks, HugeNormalOrUnboundedError_DecidesNothing) {
 }
 
 TEST(EyeBlocks, MoreBlocksThanAMaskHolds_MasksThrow) {
-  Camera camera;
-  camera.eye = {0.0, 0.0, 5.0};
-  camera.target = {0.0, 0.0, 0.0};
-  camera.width = 64;
-  camera.height = 64;
+  const Camera camera = looking_down(64, 64);
   const EyeBlocks blocks(shadowcert::camera_frame(camera), 0, 12, 0, 12, 2);  // 36 blocks
   const EyeBlocks::Plane plane = blocks.plane({1.0, 0.0, 0.0}, 0.0);
   EXPECT_EQ(blocks.sign(plane, 0, 0), Sign::negative);
@@ -187,11 +186,7 @@ TEST(EyeBlocks, MoreBlocksThanAMaskHolds_MasksThrow) {
 }
 
 TEST(EyeBlocks, EmptyTileOrBlock_Throws) {
-  Camera camera;
-  camera.eye = {0.0, 0.0, 5.0};
-  camera.target = {0.0, 0.0, 0.0};
-  camera.width = 64;
-  camera.height = 64;
+  const Camera camera = looking_down(64, 64);
   const CameraFrame frame = shadowcert::camera_frame(camera);
   EXPECT_THROW(EyeBlocks(frame, 4, 4, 0, 8, 2), std::invalid_argument);
   EXPECT_THROW(EyeBlocks(frame, 0, 8, 5, 3, 2), std::invalid_argument);

@@ -57,6 +57,19 @@ Sign side_of_coordinate(const HitPoint& p, int k, double value) {
   return p.side(a, b, c);
 }
 
+// Two triangles on one ray, at a random scale: the second is the first moved along the ray by
+// a tiny step (case i even) or a large one (odd).
+std::array<Draw, 2> two_on_a_ray(std::mt19937_64& rng, int i) {
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  const double scale = std::pow(10.0, 6.0 * unit(rng));
+  const Draw a = draw(rng, scale, 0.0, 4.0 * scale, false);
+  Draw b = a;
+  const double step = (i % 2 == 0 ? 1e-12 : 0.1) * unit(rng);
+  for (Vec3& v : b.triangle)
+    for (int k = 0; k < 3; ++k) v[k] += step * a.ray.direction[k];
+  return {a, b};
+}
+
 TEST(SemiStaticHitBox, RandomRaysAtEveryScale_EncloseTheExactPoint) {
   std::mt19937_64 rng(24);
   int checked = 0, filtered = 0;
@@ -91,15 +104,8 @@ TEST(RayParameter, SemiStaticEnclosure_OrdersAsTheExactParameters) {
   // Two triangles on one ray: compare() (filter first, exact when the enclosures overlap) must
   // agree with the order of the exact hit points along the ray, read exactly through HitPoint.
   std::mt19937_64 rng(7);
-  std::uniform_real_distribution<double> unit(-1.0, 1.0);
   for (int i = 0; i < 2000; ++i) {
-    const double scale = std::pow(10.0, 6.0 * unit(rng));
-    const Draw a = draw(rng, scale, 0.0, 4.0 * scale, false);
-    Draw b = a;
-    // b: a's triangle moved along the ray by a tiny or a large step.
-    const double step = (i % 2 == 0 ? 1e-12 : 0.1) * unit(rng);
-    for (Vec3& v : b.triangle)
-      for (int k = 0; k < 3; ++k) v[k] += step * a.ray.direction[k];
+    const auto [a, b] = two_on_a_ray(rng, i);
     const auto meet = [](const Draw& d) {
       return detail::ray_meets_triangle(d.ray, d.triangle[0], d.triangle[1], d.triangle[2]);
     };
@@ -127,15 +133,9 @@ TEST(RayParameter, SemiStaticEnclosure_OrdersAsTheExactParameters) {
 // bound too loose for the semi-static stage (every tenth case) falls back to the plain one.
 TEST(RayParameter, EstimatesConstructor_EnclosesAndOrdersAsThePlainOne) {
   std::mt19937_64 rng(20261207);
-  std::uniform_real_distribution<double> unit(-1.0, 1.0);
   int semi_static = 0;
   for (int i = 0; i < 2000; ++i) {
-    const double scale = std::pow(10.0, 6.0 * unit(rng));
-    const Draw a = draw(rng, scale, 0.0, 4.0 * scale, false);
-    Draw b = a;
-    const double step = (i % 2 == 0 ? 1e-12 : 0.1) * unit(rng);
-    for (Vec3& v : b.triangle)
-      for (int k = 0; k < 3; ++k) v[k] += step * a.ray.direction[k];
+    const auto [a, b] = two_on_a_ray(rng, i);
     const detail::RayMeeting ma = detail::ray_meets_triangle(a.ray, a.triangle[0], a.triangle[1], a.triangle[2]);
     const detail::RayMeeting mb = detail::ray_meets_triangle(a.ray, b.triangle[0], b.triangle[1], b.triangle[2]);
     if (ma.direction_side == Sign::zero || mb.direction_side == Sign::zero) continue;
