@@ -394,21 +394,10 @@ class EdgePlaneFilter {
   // `m` and `r`: P's box middle and a bound on |P - m| per axis; `W`: a bound on |L - m| per
   // axis over the lights this filter serves.
   EdgePlaneFilter(const Vec3& m, const Vec3& r, const Vec3& W, const Vec3& p, const Vec3& q) : m_(m) {
-    constexpr double u = 0x1p-53, kTame = 0x1p200;
-    const Vec3 a = difference(p, m), b = difference(q, m), d = difference(p, q);
-    const detail::RoundedCross cross = detail::rounded_cross(a, b);
-    n_ = cross.n;
-    double bound = 0.0;
-    bool tame = true;
-    for (int i = 0; i < 3; ++i) {
-      const int j = (i + 1) % 3, k = (i + 2) % 3;
-      const double e = cross.e[i];
-      bound += W[i] * (5.0 * u * std::fabs(n_[i]) + 2.0 * e) + r[i] * (std::fabs(n_[i]) + e) +
-               r[i] * (std::fabs(d[j]) * W[k] + std::fabs(d[k]) * W[j]);
-      for (const double x : {a[i], b[i], d[i], W[i], r[i]}) tame = tame && std::fabs(x) <= kTame;
-    }
-    bound_ = bound * (1.0 + 0x1p-20) + 0x1p-800;
-    usable_ = tame && std::isfinite(bound_);
+    const Terms t = terms(m, r, W, p, q);
+    n_ = t.n;
+    bound_ = t.bound;
+    usable_ = std::isfinite(bound_);
     norm_ = std::sqrt(n_[0] * n_[0] + n_[1] * n_[1] + n_[2] * n_[2]);
   }
 
@@ -421,6 +410,29 @@ class EdgePlaneFilter {
     if (v > bound_) return Sign::positive;
     if (v < -bound_) return Sign::negative;
     return std::nullopt;
+  }
+
+  // The filter's normal n(m) and bound B (+infinity where it is not usable), without the rest
+  // of it (|n|, m): what a caller that filters many directions keeps (r = 0).
+  struct Terms {
+    Vec3 n;
+    double bound;
+  };
+  [[nodiscard]] static Terms terms(const Vec3& m, const Vec3& r, const Vec3& W, const Vec3& p, const Vec3& q) {
+    constexpr double u = 0x1p-53, kTame = 0x1p200;
+    const Vec3 a = difference(p, m), b = difference(q, m), d = difference(p, q);
+    const detail::RoundedCross cross = detail::rounded_cross(a, b);
+    double bound = 0.0;
+    bool tame = true;
+    for (int i = 0; i < 3; ++i) {
+      const int j = (i + 1) % 3, k = (i + 2) % 3;
+      const double e = cross.e[i];
+      bound += W[i] * (5.0 * u * std::fabs(cross.n[i]) + 2.0 * e) + r[i] * (std::fabs(cross.n[i]) + e) +
+               r[i] * (std::fabs(d[j]) * W[k] + std::fabs(d[k]) * W[j]);
+      for (const double x : {a[i], b[i], d[i], W[i], r[i]}) tame = tame && std::fabs(x) <= kTame;
+    }
+    bound = bound * (1.0 + 0x1p-20) + 0x1p-800;
+    return {cross.n, tame && std::isfinite(bound) ? bound : std::numeric_limits<double>::infinity()};
   }
 
   // sign_along's terms, for callers that evaluate many directions at once: its normal n(m) and
@@ -1220,20 +1232,10 @@ std::vector<CandidateRaySigns> candidate_ray_signs(const ImageGeometry& g, const
                                                    const Vec3& eye, const Vec3& W) {
   std::vector<CandidateRaySigns> out;
   out.reserve(ids.size());
-  // EdgePlaneFilter(m, {}, W, p, q)'s normal() and along_bound(), without the terms of P's
-  // radius (zero here) and |n| that the ray filters do not read: the same values.
+  // The filters' terms alone (no |n|, no middle): they are read as normals and bounds.
   const auto plane = [&W](const Vec3& m, const Vec3& p, const Vec3& q) {
-    constexpr double u = 0x1p-53, kTame = 0x1p200;
-    const Vec3 a = difference(p, m), b = difference(q, m), d = difference(p, q);
-    const detail::RoundedCross cross = detail::rounded_cross(a, b);
-    double bound = 0.0, largest = 0.0;
-    for (int i = 0; i < 3; ++i) {
-      bound += W[i] * (5.0 * u * std::fabs(cross.n[i]) + 2.0 * cross.e[i]);
-      largest = std::max({largest, std::fabs(a[i]), std::fabs(b[i]), std::fabs(d[i]), std::fabs(W[i])});
-    }
-    bound = bound * (1.0 + 0x1p-20) + 0x1p-800;
-    const bool usable = largest <= kTame && std::isfinite(bound);
-    return CandidateRaySigns::Plane{cross.n, usable ? bound : std::numeric_limits<double>::infinity()};
+    const EdgePlaneFilter::Terms t = EdgePlaneFilter::terms(m, Vec3{}, W, p, q);
+    return CandidateRaySigns::Plane{t.n, t.bound};
   };
   for (std::uint32_t id : ids) {
     const Vec3 &a = g.vertex(id, 0), &b = g.vertex(id, 1), &c = g.vertex(id, 2);

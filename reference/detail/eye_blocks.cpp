@@ -23,6 +23,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <string>
 
 namespace shadowcert::detail {
 namespace {
@@ -80,24 +81,29 @@ EyeBlocks::Plane EyeBlocks::plane(const Vec3& n, double normal_error) const {
   return p;
 }
 
-std::uint32_t EyeBlocks::blocks_on_side(const Plane& plane, Sign side) const {
-  if (columns() * rows() > kMaskBlocks) throw std::logic_error("EyeBlocks::blocks_on_side: more blocks than a mask holds");
-  // s v > margin for s = +-1 (the negation is exact): without a branch per block.
-  const double s = side == Sign::negative ? -1.0 : 1.0;
-  std::uint32_t mask = 0;
+template <typename Holds>
+std::uint32_t EyeBlocks::mask(const char* function, Holds&& holds) const {
+  if (columns() * rows() > kMaskBlocks) throw std::logic_error(std::string(function) + ": more blocks than a mask holds");
+  std::uint32_t mask = 0;  // without a branch per block
   for (std::uint32_t row = 0; row < rows(); ++row)
     for (std::uint32_t column = 0; column < columns(); ++column)
-      mask |= static_cast<std::uint32_t>(s * value(plane, column, row) > plane.margin) << (row * columns() + column);
-  return side == Sign::zero ? 0 : mask;
+      mask |= static_cast<std::uint32_t>(holds(column, row)) << (row * columns() + column);
+  return mask;
+}
+
+std::uint32_t EyeBlocks::blocks_on_side(const Plane& plane, Sign side) const {
+  // s v > margin for s = +-1 (the negation is exact).
+  const double s = side == Sign::negative ? -1.0 : 1.0;
+  const std::uint32_t on_side = mask("EyeBlocks::blocks_on_side", [&](std::uint32_t column, std::uint32_t row) {
+    return s * value(plane, column, row) > plane.margin;
+  });
+  return side == Sign::zero ? 0 : on_side;
 }
 
 std::uint32_t EyeBlocks::blocks_decided(const Plane& plane) const {
-  if (columns() * rows() > kMaskBlocks) throw std::logic_error("EyeBlocks::blocks_decided: more blocks than a mask holds");
-  std::uint32_t mask = 0;
-  for (std::uint32_t row = 0; row < rows(); ++row)
-    for (std::uint32_t column = 0; column < columns(); ++column)
-      mask |= static_cast<std::uint32_t>(std::fabs(value(plane, column, row)) > plane.margin) << (row * columns() + column);
-  return mask;
+  return mask("EyeBlocks::blocks_decided", [&](std::uint32_t column, std::uint32_t row) {
+    return std::fabs(value(plane, column, row)) > plane.margin;
+  });
 }
 
 }  // namespace shadowcert::detail

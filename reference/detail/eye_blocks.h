@@ -68,6 +68,11 @@ class EyeBlocks {
   [[nodiscard]] std::uint32_t blocks_decided(const Plane& plane) const;
 
  private:
+  // The bits of the blocks where holds(column, row); std::logic_error naming `function` beyond
+  // kMaskBlocks blocks.
+  template <typename Holds>
+  [[nodiscard]] std::uint32_t mask(const char* function, Holds&& holds) const;
+
   [[nodiscard]] double value(const Plane& plane, std::uint32_t column, std::uint32_t row) const {
     return plane.gamma + a_middle_[column] * plane.alpha + b_middle_[row] * plane.beta;
   }
