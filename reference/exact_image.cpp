@@ -2398,20 +2398,26 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
 
   // 2. and 3., light by light.
   stage = Clock::now();
+  // Per pixel its hit triangle and its light-independent ambiguity (`geometric`, the image's
+  // view_ambiguity), from its rays' hits; with the footprints, the footprint pass below sets
+  // them as it reaches each pixel (one pass over the hits, not two).
   resize_huge(image.hit_triangles, grid.centres());
-  std::vector<std::uint8_t> geometric;
-  resize_huge(geometric, grid.centres());
-  tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, grid.height), [&](const auto& r) {
-    for (std::uint32_t row = r.begin(); row != r.end(); ++row)
-      for (std::uint32_t i = 0; i < grid.width; ++i) {
-        image.hit_triangles[std::size_t{row} * grid.width + i] = hits[std::size_t{row} * grid.width + i].triangle;
-        // Outside the window no ray was traced (no hit: nothing below looks further).
-        geometric[std::size_t{row} * grid.width + i] =
-            !in_window(i, row) ? static_cast<std::uint8_t>(kOutsideWindow)
-            : footprints       ? footprint_ambiguity(hits, grid.footprint(i, row))
-                               : static_cast<std::uint8_t>(hits[std::size_t{row} * grid.width + i].degenerate ? kZeroSign : 0);
-      }
-  });
+  resize_huge(image.view_ambiguity, grid.centres());
+  std::vector<std::uint8_t>& geometric = image.view_ambiguity;
+  const auto classify = [&](std::uint32_t i, std::uint32_t row) {
+    const std::size_t pixel = std::size_t{row} * grid.width + i;
+    image.hit_triangles[pixel] = hits[pixel].triangle;
+    // Outside the window no ray was traced (no hit: nothing below looks further).
+    geometric[pixel] = !in_window(i, row) ? static_cast<std::uint8_t>(kOutsideWindow)
+                       : footprints       ? footprint_ambiguity(hits, grid.footprint(i, row))
+                                          : static_cast<std::uint8_t>(hits[pixel].degenerate ? kZeroSign : 0);
+  };
+  if (!footprints) {
+    tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, grid.height), [&](const auto& r) {
+      for (std::uint32_t row = r.begin(); row != r.end(); ++row)
+        for (std::uint32_t i = 0; i < grid.width; ++i) classify(i, row);
+    });
+  }
   image.stats.count_seconds = seconds_since(stage);
 
   // Where the corners and the centre agree on one triangle, the whole footprint must see only
@@ -2427,6 +2433,7 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
       for (std::uint32_t row = r.begin(); row != r.end(); ++row) {
         for (std::uint32_t i = 0; i < grid.width; ++i) {
           const std::size_t pixel = std::size_t{row} * grid.width + i;
+          classify(i, row);
           if (geometric[pixel] == 0 && hits[pixel].triangle == kNoHit) {
             // All five rays miss (footprint_ambiguity found them alike): a triangle may still
             // poke into the footprint between them, a vertex or an edge within a rounding of
@@ -2474,7 +2481,6 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
     });
   }
   image.stats.footprint_seconds = seconds_since(stage);
-  image.view_ambiguity = geometric;
   stage = Clock::now();
   // Per ray its count for the light at hand and whether that count is needed. Neither is
   // filled first (a fill would touch them on one thread): every entry of `needed` is written
