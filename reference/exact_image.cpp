@@ -1078,28 +1078,19 @@ struct RayGrid {
 };
 
 // ---- Tiles of the window that share their box-tree queries --------------------------------
-// The window is cut into eye tiles of kEyeTileSize x kEyeTileSize pixels. A tile's rays (its
-// centres and the corners it owns) and its pixels' eye pyramids lie in one cone
-// (reference/detail/eye_tile.h): one query of the tree for that cone lists every triangle any of
-// them can meet, and where the list is short each of them tests the list instead of walking
-// the tree (the answers are those of the walk: first_hit, footprint_sees_more).
-// docs/diff.md#tiles-coherent-rays-share-their-queries. The counts group their hit points by
-// count tiles of kCountTileSize (their own lists come from the light's side).
-// Ogre at 1024x768: eye tiles of 10 pixels took the hits 0.075-0.077 s against 0.079-0.080 at 8
-// (fewer cone queries; the eye blocks keep each ray's scan short); the counts kept 8 (at 10 they
-// were 1-2 ms slower: their groups' filters are drawn for hit points farther apart).
-inline constexpr std::uint32_t kEyeTileSize = 10;
-inline constexpr std::uint32_t kCountTileSize = 8;
+// The window is cut into tiles of kTileSize x kTileSize pixels. A tile's rays (its centres and
+// the corners it owns) and its pixels' eye pyramids lie in one cone (reference/detail/eye_tile.h):
+// one query of the tree for that cone lists every triangle any of them can meet, and where the
+// list is short each of them tests the list instead of walking the tree (the answers are
+// those of the walk: first_hit, footprint_sees_more). docs/diff.md#tiles-coherent-rays-share-their-queries.
+inline constexpr std::uint32_t kTileSize = 8;
 // Beyond this many triangles a tile's rays walk the tree themselves: each ray would test every
 // candidate, where its own walk visits a few leaves.
 inline constexpr std::size_t kTileCandidates = 24;
 // The eye tiles' lists for the first hits: sorted nearest first, each ray stops its scan behind
 // its first hit, and the per-tile sign filters (CandidateRaySigns) skip most of what it scans,
-// so a longer list pays; the footprints test the list only up to kFootprintCandidates.
+// so a longer list pays; the footprints test the list only up to kTileCandidates.
 inline constexpr std::size_t kEyeTileCandidates = 128;
-// The footprint tests of a pixel read its eye tile's list where that holds at most this many
-// triangles (each entry through the walk's own box test first), else walk the tree.
-inline constexpr std::size_t kFootprintCandidates = 48;
 // The count tiles of a point light: each hit point tests every candidate through its filters
 // (a few dot products, SegmentCrossingFilter), so a longer list still costs less than a walk.
 inline constexpr std::size_t kFilteredCountCandidates = 128;
@@ -1123,14 +1114,13 @@ inline constexpr std::size_t kGridGroupCells = 256;
 // column and row in the tiles at its right and bottom ends.
 struct TileGrid {
   PixelWindow window;
-  std::uint32_t size = 1;  // a tile's width and height in pixels
   std::uint32_t columns = 0, rows = 0;
 
-  TileGrid(const PixelWindow& w, std::uint32_t tile_size)
-      : window(w), size(tile_size), columns((w.width + size - 1) / size), rows((w.height + size - 1) / size) {}
+  explicit TileGrid(const PixelWindow& w)
+      : window(w), columns((w.width + kTileSize - 1) / kTileSize), rows((w.height + kTileSize - 1) / kTileSize) {}
   [[nodiscard]] std::uint32_t count() const { return columns * rows; }
   [[nodiscard]] std::uint32_t of(std::uint32_t i, std::uint32_t r) const {
-    return (r - window.y) / size * columns + (i - window.x) / size;
+    return (r - window.y) / kTileSize * columns + (i - window.x) / kTileSize;
   }
   struct Bounds {
     std::uint32_t x0, x1, y0, y1, cx1, cy1;
@@ -1140,10 +1130,10 @@ struct TileGrid {
   [[nodiscard]] static std::uint32_t middle(std::uint32_t lo, std::uint32_t hi) { return lo + (hi - lo + 1) / 2; }
   [[nodiscard]] Bounds bounds(std::uint32_t t) const {
     Bounds b{};
-    b.x0 = window.x + t % columns * size;
-    b.y0 = window.y + t / columns * size;
-    b.x1 = std::min(b.x0 + size, window.x + window.width);
-    b.y1 = std::min(b.y0 + size, window.y + window.height);
+    b.x0 = window.x + t % columns * kTileSize;
+    b.y0 = window.y + t / columns * kTileSize;
+    b.x1 = std::min(b.x0 + kTileSize, window.x + window.width);
+    b.y1 = std::min(b.y0 + kTileSize, window.y + window.height);
     b.cx1 = b.x1 + (b.x1 == window.x + window.width ? 1 : 0);
     b.cy1 = b.y1 + (b.y1 == window.y + window.height ? 1 : 0);
     return b;
@@ -1294,7 +1284,7 @@ void order_by_distance(const ImageGeometry& g, const Vec3& eye, std::vector<std:
 // holding its own point. Lists shorter than kRayBlockMinCandidates are scanned whole. The
 // scans are ascending indices, so first_hit's nearest-first pruning holds.
 inline constexpr std::uint32_t kRayBlock = 2;
-static_assert((kEyeTileSize + kRayBlock - 1) / kRayBlock * ((kEyeTileSize + kRayBlock - 1) / kRayBlock) <=
+static_assert((kTileSize + kRayBlock - 1) / kRayBlock * ((kTileSize + kRayBlock - 1) / kRayBlock) <=
               detail::EyeBlocks::kMaskBlocks);
 inline constexpr std::size_t kRayBlockMinCandidates = 8;
 
@@ -1361,10 +1351,10 @@ double direction_length_bound(const Vec3& W) {
   return std::sqrt(W[0] * W[0] + W[1] * W[1] + W[2] * W[2]) * (1.0 + 0x1p-40);
 }
 
-// The list the footprint tests read: the eye tile's, where it holds at most kFootprintCandidates.
+// The list the footprint tests read: the eye tile's, where it holds at most kTileCandidates.
 const std::vector<std::uint32_t>* footprint_list(const TileCandidates& tile) {
   const std::vector<std::uint32_t>* list = tile.list();
-  return list != nullptr && list->size() <= kFootprintCandidates ? list : nullptr;
+  return list != nullptr && list->size() <= kTileCandidates ? list : nullptr;
 }
 
 TileCandidates tile_candidates(const ImageGeometry& g, const std::optional<detail::EyeTileCone>& cone,
@@ -2341,7 +2331,7 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
   };
   // Tile by tile: the tile's list (TileCandidates), then its centre rays and (for the
   // footprints) the corner rays it owns.
-  const TileGrid tiles(window, kEyeTileSize);
+  const TileGrid tiles(window);
   std::vector<TileCandidates> tile_lists(tiles.count());
   tbb::enumerable_thread_specific<TileScratch> tile_scratch;
   {
@@ -2497,7 +2487,6 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
   // for each light, and a count is read only where it was needed, and so written.
   HugePageBuffer<std::uint32_t> counts;
   HugePageBuffer<std::uint8_t> needed;
-  const TileGrid count_tiles(window, kCountTileSize);
   // With the depth band: the pixels a casting edge passes near (fold_pair_at_centre's filter).
   const std::vector<std::uint8_t> fold_mask =
       footprints && options.depth_band && backdrop ? fold_candidates(g, grid.frame) : std::vector<std::uint8_t>{};
@@ -2615,17 +2604,17 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
       });
       // The count lists of a light with a grid come from it, not from walks of the tree.
       const std::optional<detail::LightGrid>& light_grid = light_grids[light];
-      // Count tile by count tile: the box of the needed rays' hit points and the light give one
-      // list (light_tile_candidates) that each of them counts; with a grid, each reads its own
-      // cells' lists and the tile shares their filters.
+      // Tile by tile (the hits' tiles): the box of the needed rays' hit points and the light
+      // give one list (light_tile_candidates) that each of them counts; with a grid, each reads
+      // its own cells' lists and the tile shares their filters.
       std::atomic<std::uint64_t> work{0};
-      Progress progress(options, "counts", count_tiles.count());
-      tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, count_tiles.count(), 1), [&](const auto& r) {
+      Progress progress(options, "counts", tiles.count());
+      tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, tiles.count(), 1), [&](const auto& r) {
         TileScratch& local = tile_scratch.local();
         std::vector<std::size_t> rays;
         std::vector<std::uint32_t> rest;
         for (std::uint32_t t = r.begin(); t != r.end(); ++t) {
-          const TileGrid::Bounds b = count_tiles.bounds(t);
+          const TileGrid::Bounds b = tiles.bounds(t);
           rays.clear();
           for (std::uint32_t y = b.y0; y < b.y1; ++y)
             for (std::uint32_t x = b.x0; x < b.x1; ++x)
@@ -2861,14 +2850,14 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
     // With the footprints, per tile the silhouette edges the light pyramids of its pixels can
     // meet (the box of its pixels' countable corner hits and the light: light_cone_candidates),
     // for footprint_shadow_varies.
-    std::vector<TileCandidates> silhouette_lists(footprints ? count_tiles.count() : 0);
+    std::vector<TileCandidates> silhouette_lists(footprints ? tiles.count() : 0);
     if (footprints) {
       const Silhouette& silhouette = *g.silhouettes[light];
       tbb::enumerable_thread_specific<TileScratch> silhouette_scratch;
-      tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, count_tiles.count(), 1), [&](const auto& r) {
+      tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, tiles.count(), 1), [&](const auto& r) {
         TileScratch& local = silhouette_scratch.local();
         for (std::uint32_t t = r.begin(); t != r.end(); ++t) {
-          const TileGrid::Bounds b = count_tiles.bounds(t);
+          const TileGrid::Bounds b = tiles.bounds(t);
           bool any = false;
           Vec3 lo{}, hi{};
           for (std::uint32_t y = b.y0; y <= b.y1; ++y)
@@ -2918,7 +2907,7 @@ ExactImage exact_image(const Soup& soup, std::span<const Light> lights, const Ca
             // tile whose list holds no silhouette edge has none to meet: its corners' parameters
             // are not built (footprint_shadow_varies would test no candidate).
             const std::vector<std::uint32_t>* silhouettes_near =
-                footprints ? silhouette_lists[count_tiles.of(i, row)].list() : nullptr;
+                footprints ? silhouette_lists[tiles.of(i, row)].list() : nullptr;
             if (bits == 0 && footprints && !(silhouettes_near != nullptr && silhouettes_near->empty()) &&
                 footprint_shadow_varies(g, light, corner_hits(g, grid, hits, point_boxes, i, row), silhouettes_near))
               bits |= kFootprintCounts;
