@@ -413,7 +413,9 @@ class EdgePlaneFilter {
   }
 
   // The filter's normal n(m) and bound B (+infinity where it is not usable), without the rest
-  // of it (|n|, m): what a caller that filters many directions keeps (r = 0).
+  // of it (|n|, m): what a caller that filters many directions keeps (r = 0): sign_along(d) is
+  // positive where fl(d . n) > B, negative where fl(d . n) < -B, the dot product summed in axis
+  // order.
   struct Terms {
     Vec3 n;
     double bound;
@@ -434,12 +436,6 @@ class EdgePlaneFilter {
     bound = bound * (1.0 + 0x1p-20) + 0x1p-800;
     return {cross.n, tame && std::isfinite(bound) ? bound : std::numeric_limits<double>::infinity()};
   }
-
-  // sign_along's terms, for callers that evaluate many directions at once: its normal n(m) and
-  // its bound B (sign_along(d) is positive where fl(d . n) > B, negative where fl(d . n) < -B,
-  // the dot product summed in axis order), B = +infinity where the filter is not usable.
-  [[nodiscard]] const Vec3& normal() const { return n_; }
-  [[nodiscard]] double along_bound() const { return usable_ ? bound_ : std::numeric_limits<double>::infinity(); }
 
   // The sign for light L (|L - m| <= W), or nullopt where the filter cannot decide.
   [[nodiscard]] std::optional<Sign> sign(const HomogeneousPoint& light) const {
@@ -1206,7 +1202,7 @@ struct CandidateRaySigns {
   // Plane 0 the triangle's (the direction's side), planes 1-3 its edges' through the eye.
   struct Plane {
     Vec3 n;
-    double bound;  // EdgePlaneFilter::along_bound
+    double bound;  // EdgePlaneFilter::terms' bound
   };
   Sign eye_side;
   double side;  // eye_side as -1, 0 or +1
@@ -1466,14 +1462,14 @@ struct SegmentCrossingFilter {
   int side = 0;
 
   SegmentCrossingFilter() = default;
-  // Triangle abc on its side `side` of the point light L, for points x with |x - a| <= W per
-  // axis (WL from L) within R of their box middles; every member built in place.
+  // Triangle abc on its side `light_side` of the point light L, for points x with |x - a| <= W
+  // per axis (WL from L) within R of their box middles; every member built in place.
   SegmentCrossingFilter(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& W, const Vec3& L, const Vec3& WL,
-                        const Vec3& R, int side)
+                        const Vec3& R, int light_side)
       : plane(a, b, c, W, R),
         edges{detail::PlaneThroughFilter(L, a, b, WL, R), detail::PlaneThroughFilter(L, b, c, WL, R),
               detail::PlaneThroughFilter(L, c, a, WL, R)},
-        side(side) {}
+        side(light_side) {}
 };
 
 // What the filters say of the open segment P -> L and one candidate: apart, crosses, or

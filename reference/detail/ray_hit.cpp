@@ -113,10 +113,6 @@ std::optional<SemiStaticParameter> semi_static_parameter(const PixelRay& ray, co
   return semi_static_parameter(*n, *dd);
 }
 
-std::optional<SemiStaticParameter> semi_static_parameter(const PixelRay& ray, const std::array<Vec3, 3>& t) {
-  return semi_static_parameter(ray, t[0], t[1], t[2]);
-}
-
 // The absolute term of every bound below: far above any underflow error of the few operations
 // it covers (each at most 2^-1074).
 inline constexpr double kTiny = 0x1p-1000;
@@ -172,7 +168,7 @@ bool hit_box_of(const PixelRay& ray, const SemiStaticParameter& s, std::array<Ve
 }  // namespace
 
 std::optional<std::array<Vec3, 2>> semi_static_hit_box(const PixelRay& ray, const std::array<Vec3, 3>& triangle) {
-  const std::optional<SemiStaticParameter> s = semi_static_parameter(ray, triangle);
+  const std::optional<SemiStaticParameter> s = semi_static_parameter(ray, triangle[0], triangle[1], triangle[2]);
   std::array<Vec3, 2> box;
   if (!s || !hit_box_of(ray, *s, box)) return std::nullopt;
   return box;
