@@ -1,9 +1,10 @@
 #pragma once
-// The widest x86 vector instruction set this CPU offers, as the peer benchmarks print it beside
-// exact/Embree: Embree (Debian's libembree-dev) picks its kernels at run time, up to AVX-512,
-// while shadowcert is built for baseline x86-64 (-ffp-contract=off; a build for x86-64-v3 was
-// measured to gain nothing: docs/diff.md#scaling), so the ratio depends on the CPU it is
-// measured on. Figures from two machines compare only where this line agrees.
+// The widest x86 vector instruction set this CPU offers, and the x86-64 level shadowcert's code
+// was compiled for, as the peer benchmarks print them beside exact/Embree: Embree (Debian's
+// libembree-dev) picks its kernels at run time, up to AVX-512, and shadowcert is compiled for
+// the level SHADOWCERT_CPU_LEVEL names (by default the highest the building machine runs:
+// cmake/ShadowcertCpuLevel.cmake, docs/development.md#cpu-level), so the ratio depends on the
+// CPU it is measured on. Figures from two machines compare only where this line agrees.
 namespace shadowcert::bench {
 
 inline const char* cpu_vector_isa() {
@@ -14,6 +15,15 @@ inline const char* cpu_vector_isa() {
   return "sse2";
 #else
   return "not x86";
+#endif
+}
+
+// The level the benchmark's code was compiled for ("baseline": any x86-64).
+inline const char* code_level() {
+#ifdef SHADOWCERT_CPU_MARCH
+  return SHADOWCERT_CPU_MARCH[0] != '\0' ? SHADOWCERT_CPU_MARCH : "baseline";
+#else
+  return "baseline";
 #endif
 }
 

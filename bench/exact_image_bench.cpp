@@ -173,9 +173,9 @@ void exact_vs_embree(benchmark::State& state, const BenchScene& scene, const cha
   state.counters["counts_s"] = stats.count_seconds;
   state.counters["ratio"] = exact / embree;
   std::printf("%s %ux%u, %u threads: exact %.3f s (tree %.3f, hits %.3f, footprints %.3f, counts %.3f), "
-              "Embree robust %.3f s, exact/Embree %.2f (cpu %s)\n",
+              "Embree robust %.3f s, exact/Embree %.2f (cpu %s, code %s)\n",
               name, camera.width, camera.height, threads, exact, stats.tree_seconds, stats.hit_seconds,
-              stats.footprint_seconds, stats.count_seconds, embree, exact / embree, bench::cpu_vector_isa());
+              stats.footprint_seconds, stats.count_seconds, embree, exact / embree, bench::cpu_vector_isa(), bench::code_level());
 }
 
 void BM_ExactVsEmbree_OgreOverFloor(benchmark::State& state) {
@@ -246,9 +246,9 @@ void BM_ExactVsEmbree_Scaling(benchmark::State& state) {
   state.counters["embree_peak_MiB"] = embree_peak;
   state.counters["exact_peak_MiB"] = exact_peak;
   std::printf("scaling: sphere grid %zu triangles %ux%u, %u threads: exact %.3f s, %.0f MiB; Embree robust %.3f s, "
-              "%.0f MiB; exact/Embree %.2f (cpu %s)\n",
+              "%.0f MiB; exact/Embree %.2f (cpu %s, code %s)\n",
               scene.soup.triangles.size(), camera.width, camera.height, threads, exact, exact_peak, embree, embree_peak,
-              exact / embree, bench::cpu_vector_isa());
+              exact / embree, bench::cpu_vector_isa(), bench::code_level());
 }
 BENCHMARK(BM_ExactVsEmbree_Scaling)
     ->Args({100'000, 1024, 768})

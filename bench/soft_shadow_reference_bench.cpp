@@ -169,10 +169,10 @@ void soft_vs_embree(benchmark::State& state, const BenchScene& scene, const char
   state.counters["counts_s"] = stats.count_seconds;
   state.counters["ratio"] = reference / embree;
   std::printf("%s %ux%u, K = %zu, %u threads: soft reference %.3f s (%llu exact images; tree %.3f, hits %.3f, "
-              "counts %.3f), Embree robust %.3f s, reference/Embree %.2f (cpu %s)\n",
+              "counts %.3f), Embree robust %.3f s, reference/Embree %.2f (cpu %s, code %s)\n",
               name, camera.width, camera.height, samples.size(), threads, reference,
               static_cast<unsigned long long>(stats.exact_images), stats.tree_seconds, stats.hit_seconds,
-              stats.count_seconds, embree, reference / embree, bench::cpu_vector_isa());
+              stats.count_seconds, embree, reference / embree, bench::cpu_vector_isa(), bench::code_level());
 }
 
 void BM_SoftVsEmbree_SphereGrid100k(benchmark::State& state) {
