@@ -175,7 +175,8 @@ void exact_vs_embree(benchmark::State& state, const BenchScene& scene, const cha
   std::printf("%s %ux%u, %u threads: exact %.3f s (tree %.3f, hits %.3f, footprints %.3f, counts %.3f), "
               "Embree robust %.3f s, exact/Embree %.2f (cpu %s, code %s)\n",
               name, camera.width, camera.height, threads, exact, stats.tree_seconds, stats.hit_seconds,
-              stats.footprint_seconds, stats.count_seconds, embree, exact / embree, bench::cpu_vector_isa(), bench::code_level());
+              stats.footprint_seconds, stats.count_seconds, embree, exact / embree, bench::cpu_vector_isa(),
+              bench::code_level());
 }
 
 void BM_ExactVsEmbree_OgreOverFloor(benchmark::State& state) {
