@@ -18,13 +18,8 @@ inline const char* cpu_vector_isa() {
 #endif
 }
 
-// The level the benchmark's code was compiled for ("baseline": any x86-64).
-inline const char* code_level() {
-#ifdef SHADOWCERT_CPU_MARCH
-  return SHADOWCERT_CPU_MARCH[0] != '\0' ? SHADOWCERT_CPU_MARCH : "baseline";
-#else
-  return "baseline";
-#endif
-}
+// The level the benchmark's code was compiled for ("baseline": any x86-64), as bench/CMakeLists.txt
+// defines it from cmake/ShadowcertCpuLevel.cmake.
+inline const char* code_level() { return SHADOWCERT_CODE_LEVEL; }
 
 }  // namespace shadowcert::bench

@@ -11,8 +11,8 @@
 # CMakeLists.txt), so every double is rounded operation by operation at every level, and the
 # inputs that define an exact answer come from core/portable_math.h, not from libm.
 #
-# Sets SHADOWCERT_CPU_MARCH: the level compiled for, or empty for baseline (what the benchmarks
-# print beside their ratios).
+# Sets SHADOWCERT_CPU_MARCH: the -march level compiled for, empty for baseline; and
+# SHADOWCERT_CODE_LEVEL: that level's name, or "baseline" (what configuring and the benchmarks print).
 
 set(SHADOWCERT_CPU_LEVEL auto CACHE STRING
     "x86-64 level the project's code is compiled for: auto, baseline, x86-64-v2, x86-64-v3 or x86-64-v4")
@@ -23,8 +23,9 @@ if(SHADOWCERT_CPU_LEVEL STREQUAL "auto")
   if(CMAKE_SYSTEM_PROCESSOR MATCHES "^(x86_64|AMD64|amd64)$" AND NOT CMAKE_CROSSCOMPILING
      AND CMAKE_CXX_COMPILER_ID MATCHES "GNU|Clang")
     include(CheckCXXSourceRuns)
-    # Per level, features that __builtin_cpu_supports names in GCC 12 and clang 14 alike; a
-    # program built for a level this CPU lacks may also die on its first instruction: no.
+    # Per level, features that __builtin_cpu_supports names in GCC 12 and clang 14 alike. A test
+    # program built for a level this CPU lacks may also die on its first instruction: that counts
+    # as "does not run" too.
     set(features_x86-64-v4 avx512f avx512bw avx512cd avx512dq avx512vl avx2 fma bmi2)
     set(features_x86-64-v3 avx2 fma bmi bmi2 popcnt sse4.2)
     set(features_x86-64-v2 popcnt sse4.2 ssse3)
@@ -52,9 +53,9 @@ elseif(NOT SHADOWCERT_CPU_LEVEL STREQUAL "baseline")
                       "x86-64-v3 or x86-64-v4")
 endif()
 
+set(SHADOWCERT_CODE_LEVEL baseline)
 if(SHADOWCERT_CPU_MARCH)
   add_compile_options(-march=${SHADOWCERT_CPU_MARCH})
-  message(STATUS "shadowcert: code compiled for ${SHADOWCERT_CPU_MARCH} (SHADOWCERT_CPU_LEVEL=${SHADOWCERT_CPU_LEVEL})")
-else()
-  message(STATUS "shadowcert: code compiled for baseline x86-64 (SHADOWCERT_CPU_LEVEL=${SHADOWCERT_CPU_LEVEL})")
+  set(SHADOWCERT_CODE_LEVEL ${SHADOWCERT_CPU_MARCH})
 endif()
+message(STATUS "shadowcert: code compiled for ${SHADOWCERT_CODE_LEVEL} (SHADOWCERT_CPU_LEVEL=${SHADOWCERT_CPU_LEVEL})")
