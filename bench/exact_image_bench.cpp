@@ -194,6 +194,7 @@ void exact_vs_embree(benchmark::State& state, const BenchScene& scene, const cha
       for (std::size_t c = 0; c < row.size(); ++c) rounds[c].push_back(row[c]);
     }
   }
+  if (rounds[kRatio].empty()) return;  // the benchmark's loop never ran
   std::array<double, 7> m{};
   for (std::size_t c = 0; c < m.size(); ++c) m[c] = median(rounds[c]);
   const auto [least, most] = std::minmax_element(rounds[kRatio].begin(), rounds[kRatio].end());
@@ -209,7 +210,8 @@ void exact_vs_embree(benchmark::State& state, const BenchScene& scene, const cha
   state.counters["ratio"] = m[kRatio];
   state.counters["first_ratio"] = rounds[kRatio].front();
   std::printf("%s %ux%u, %u threads: exact %.3f s (tree %.3f, hits %.3f, footprints %.3f, counts %.3f), "
-              "Embree robust %.3f s, exact/Embree %.2f (median of %zu rounds: %.2f-%.2f, first %.2f; cpu %s, code %s)\n",
+              "Embree robust %.3f s, exact/Embree %.2f "
+              "(median of %zu rounds: %.2f-%.2f, first %.2f; cpu %s, code %s)\n",
               name, camera.width, camera.height, threads, m[kExact], m[kTree], m[kHits], m[kFootprints], m[kCounts],
               m[kEmbree], m[kRatio], kPeerRounds, *least, *most, rounds[kRatio].front(), bench::cpu_vector_isa(),
               bench::code_level());
