@@ -217,24 +217,9 @@ void exact_vs_embree(benchmark::State& state, const BenchScene& scene, const cha
               bench::code_level());
 }
 
-void BM_ExactVsEmbree_OgreOverFloor(benchmark::State& state) {
-  const BenchScene* scene = shared_mesh_scene();
-  if (scene == nullptr) {
-    state.SkipWithError("../shared/data/soups/ogre.obj not found");
-    return;
-  }
-  exact_vs_embree(state, *scene, "ogre over floor");
-}
-BENCHMARK(BM_ExactVsEmbree_OgreOverFloor)
-    ->Args({1024, 768})
-    ->ArgNames({"w", "h"})
-    ->Unit(benchmark::kSecond)
-    ->UseRealTime()
-    ->Iterations(1);
-
-// The other real meshes of the shared data with at least 50K triangles (issue 24's bar), so
-// the ratio is seen not to be ogre's alone: the Stanford bunny (69K) and Nefertiti (100K).
-void BM_ExactVsEmbree_RealMesh(benchmark::State& state, const char* relative, const char* name) {
+// The peer runs of a real mesh of the shared data (`relative` to it); an error naming the file
+// where it is missing.
+void exact_vs_embree_on_mesh(benchmark::State& state, const char* relative, const char* name) {
   const BenchScene* scene = shared_mesh_scene(relative);
   if (scene == nullptr) {
     state.SkipWithError((std::string("../shared/data/") + relative + " not found").c_str());
@@ -242,29 +227,31 @@ void BM_ExactVsEmbree_RealMesh(benchmark::State& state, const char* relative, co
   }
   exact_vs_embree(state, *scene, name);
 }
+
+// Every ExactVsEmbree benchmark: 1024x768, one iteration (its rounds run inside), in seconds.
+void peer_runs(benchmark::internal::Benchmark* b) {
+  b->Args({1024, 768})->ArgNames({"w", "h"})->Unit(benchmark::kSecond)->UseRealTime()->Iterations(1);
+}
+
+void BM_ExactVsEmbree_OgreOverFloor(benchmark::State& state) {
+  exact_vs_embree_on_mesh(state, "soups/ogre.obj", "ogre over floor");
+}
+BENCHMARK(BM_ExactVsEmbree_OgreOverFloor)->Apply(peer_runs);
+
+// The other real meshes of the shared data with at least 50K triangles (issue 24's bar), so
+// the ratio is seen not to be ogre's alone: the Stanford bunny (69K) and Nefertiti (100K).
+void BM_ExactVsEmbree_RealMesh(benchmark::State& state, const char* relative, const char* name) {
+  exact_vs_embree_on_mesh(state, relative, name);
+}
 BENCHMARK_CAPTURE(BM_ExactVsEmbree_RealMesh, Bunny, "soups/stanford-bunny.obj", "stanford bunny over floor")
-    ->Args({1024, 768})
-    ->ArgNames({"w", "h"})
-    ->Unit(benchmark::kSecond)
-    ->UseRealTime()
-    ->Iterations(1);
+    ->Apply(peer_runs);
 BENCHMARK_CAPTURE(BM_ExactVsEmbree_RealMesh, Nefertiti, "closed_manifold/nefertiti.obj", "nefertiti over floor")
-    ->Args({1024, 768})
-    ->ArgNames({"w", "h"})
-    ->Unit(benchmark::kSecond)
-    ->UseRealTime()
-    ->Iterations(1);
+    ->Apply(peer_runs);
 
 void BM_ExactVsEmbree_SphereGrid100k(benchmark::State& state) {
   exact_vs_embree(state, sphere_grid_scene(), "sphere grid 100K");
 }
-BENCHMARK(BM_ExactVsEmbree_SphereGrid100k)
-    ->Args({1024, 768})
-    ->ArgNames({"w", "h"})
-    ->Unit(benchmark::kSecond)
-    ->UseRealTime()
-    ->Iterations(1);
-
+BENCHMARK(BM_ExactVsEmbree_SphereGrid100k)->Apply(peer_runs);
 
 // Issue 24's scaling table (docs/diff.md#scaling): Milet's sphere grid of 100K, 1M and 4M
 // triangles over the floor, at 1024x768 and 1920x1080, Embree (robust, corner rays) then the
